@@ -1,0 +1,260 @@
+#pragma once
+// Strict YAML reading and writing of reflectable config structs (core/config.hpp).
+// Unknown keys, wrong types, NaN/inf and values rejected by Validate() are ConfigErrors whose
+// message names the file, the line, the key path and, for unknown keys, the nearest valid key.
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/config.hpp"
+#include "core/errors.hpp"
+#include "core/pose2.hpp"
+
+namespace retrace::io {
+
+/// One `--set a.b.c=value` override; value is parsed as YAML (so `[1, 2]` is a list).
+struct ConfigOverride {
+  std::string key_path;
+  std::string value;
+};
+
+/// Parses "a.b.c=value". Throws ConfigError on a missing '=' or an empty key.
+ConfigOverride ParseOverride(std::string_view text);
+
+/// Loads a YAML file. Throws IoError if it cannot be read, ConfigError (with line) if it is
+/// not valid YAML.
+YAML::Node LoadYamlFile(const std::filesystem::path& file);
+
+/// Writes each override into the node tree, creating maps on the way. List elements are
+/// addressed by index ("walls.2.thickness"). Throws ConfigError on an invalid value.
+void ApplyOverrides(YAML::Node& root, const std::vector<ConfigOverride>& overrides);
+
+namespace internal {
+
+/// Where a value came from, for error messages.
+struct ReadContext {
+  std::string source;  ///< file name (or "<string>")
+  std::string path;    ///< dotted key path of the current node
+  const std::vector<ConfigOverride>* overrides = nullptr;
+
+  ReadContext Child(std::string_view key) const {
+    return {source, path.empty() ? std::string(key) : path + "." + std::string(key), overrides};
+  }
+  ReadContext Element(std::size_t i) const {
+    return {source, path + "[" + std::to_string(i) + "]", overrides};
+  }
+};
+
+/// Throws a located ConfigError: "<source>:<line>: <path>: <message>".
+[[noreturn]] void Fail(const YAML::Node& node, const ReadContext& ctx, const std::string& message);
+/// Rethrows a ConfigError from Validate() at `ctx`, locating e.key_path() inside `node`.
+[[noreturn]] void FailValidation(const YAML::Node& node, const ReadContext& ctx,
+                                 const core::ConfigError& e);
+/// Rejects keys of `node` not in `valid`, suggesting the nearest valid key.
+void CheckKeys(const YAML::Node& node, const ReadContext& ctx,
+               const std::vector<std::string_view>& valid);
+
+double ReadDouble(const YAML::Node& node, const ReadContext& ctx);
+std::int64_t ReadInteger(const YAML::Node& node, const ReadContext& ctx, std::int64_t lo,
+                         std::int64_t hi);
+bool ReadBool(const YAML::Node& node, const ReadContext& ctx);
+std::string ReadString(const YAML::Node& node, const ReadContext& ctx);
+std::vector<double> ReadNumbers(const YAML::Node& node, const ReadContext& ctx,
+                                std::size_t expected_size);
+
+template <class T>
+void Read(const YAML::Node& node, T& out, const ReadContext& ctx);
+
+struct KeyCollector {
+  std::vector<std::string_view>* keys;
+  template <class T>
+  void operator()(std::string_view key, T&) {
+    keys->push_back(key);
+  }
+};
+
+struct FieldReader {
+  const YAML::Node* node;
+  const ReadContext* ctx;
+  template <class T>
+  void operator()(std::string_view key, T& field) {
+    const YAML::Node child = (*node)[std::string(key)];
+    if (child) Read(child, field, ctx->Child(key));
+  }
+};
+
+template <class T>
+struct IsVector : std::false_type {};
+template <class T, class A>
+struct IsVector<std::vector<T, A>> : std::true_type {};
+template <class T>
+struct IsOptional : std::false_type {};
+template <class T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+template <class T>
+struct IsDoubleArray : std::false_type {};
+template <std::size_t N>
+struct IsDoubleArray<std::array<double, N>> : std::true_type {};
+
+template <class T>
+void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
+  if constexpr (std::is_same_v<T, bool>) {
+    out = ReadBool(node, ctx);
+  } else if constexpr (std::is_integral_v<T>) {
+    out = static_cast<T>(ReadInteger(node, ctx, std::numeric_limits<T>::min(),
+                                     static_cast<std::int64_t>(std::min<std::uint64_t>(
+                                         std::numeric_limits<T>::max(), INT64_MAX))));
+  } else if constexpr (std::is_floating_point_v<T>) {
+    out = static_cast<T>(ReadDouble(node, ctx));
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    out = ReadString(node, ctx);
+  } else if constexpr (core::NamedEnum<T>) {
+    const std::string name = ReadString(node, ctx);
+    const auto value = core::ParseEnum<T>(name);
+    if (!value) {
+      Fail(node, ctx, "unknown value '" + name + "'; expected one of: " + core::EnumNameList<T>());
+    }
+    out = *value;
+  } else if constexpr (std::is_same_v<T, core::Vec2>) {
+    const auto v = ReadNumbers(node, ctx, 2);
+    out = core::Vec2(v[0], v[1]);
+  } else if constexpr (std::is_same_v<T, core::Pose2>) {
+    const auto v = ReadNumbers(node, ctx, 3);
+    out = core::Pose2(v[0], v[1], v[2]);
+  } else if constexpr (IsDoubleArray<T>::value) {
+    const auto v = ReadNumbers(node, ctx, out.size());
+    std::copy(v.begin(), v.end(), out.begin());
+  } else if constexpr (IsOptional<T>::value) {
+    typename T::value_type value{};
+    if (out) value = *out;
+    Read(node, value, ctx);
+    out = std::move(value);
+  } else if constexpr (IsVector<T>::value) {
+    if (!node.IsSequence()) Fail(node, ctx, "expected a list");
+    out.clear();
+    out.resize(node.size());
+    for (std::size_t i = 0; i < node.size(); ++i) Read(node[i], out[i], ctx.Element(i));
+  } else if constexpr (core::Reflectable<T>) {
+    if (!node.IsMap()) Fail(node, ctx, node.IsNull() ? "expected a mapping, got nothing" : "expected a mapping");
+    std::vector<std::string_view> keys;
+    KeyCollector collector{&keys};
+    out.Reflect(collector);
+    CheckKeys(node, ctx, keys);
+    FieldReader reader{&node, &ctx};
+    out.Reflect(reader);
+    if constexpr (core::Validatable<T>) {
+      try {
+        out.Validate();
+      } catch (const core::ConfigError& e) {
+        if (e.located()) throw;
+        FailValidation(node, ctx, e);
+      }
+    }
+  } else {
+    static_assert(sizeof(T) == 0, "unsupported config field type");
+  }
+}
+
+void Emit(YAML::Emitter& out, double v);
+void Emit(YAML::Emitter& out, const std::string& v);
+void Emit(YAML::Emitter& out, bool v);
+
+template <class T>
+void Write(YAML::Emitter& out, const T& value);
+
+struct FieldWriter {
+  YAML::Emitter* out;
+  template <class T>
+  void operator()(std::string_view key, const T& field) {
+    if constexpr (IsOptional<T>::value) {
+      if (!field) return;
+    }
+    *out << YAML::Key << std::string(key) << YAML::Value;
+    Write(*out, field);
+  }
+};
+
+template <class T>
+void Write(YAML::Emitter& out, const T& value) {
+  if constexpr (std::is_same_v<T, bool>) {
+    out << value;
+  } else if constexpr (std::is_integral_v<T>) {
+    out << static_cast<long long>(value);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    Emit(out, static_cast<double>(value));
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    out << value;
+  } else if constexpr (core::NamedEnum<T>) {
+    out << std::string(core::EnumName(value));
+  } else if constexpr (std::is_same_v<T, core::Vec2>) {
+    out << YAML::Flow << YAML::BeginSeq;
+    Emit(out, value.x());
+    Emit(out, value.y());
+    out << YAML::EndSeq;
+  } else if constexpr (std::is_same_v<T, core::Pose2>) {
+    out << YAML::Flow << YAML::BeginSeq;
+    Emit(out, value.x);
+    Emit(out, value.y);
+    Emit(out, value.theta);
+    out << YAML::EndSeq;
+  } else if constexpr (IsDoubleArray<T>::value) {
+    out << YAML::Flow << YAML::BeginSeq;
+    for (double v : value) Emit(out, v);
+    out << YAML::EndSeq;
+  } else if constexpr (IsOptional<T>::value) {
+    Write(out, *value);
+  } else if constexpr (IsVector<T>::value) {
+    out << YAML::BeginSeq;
+    for (const auto& v : value) Write(out, v);
+    out << YAML::EndSeq;
+  } else if constexpr (core::Reflectable<T>) {
+    out << YAML::BeginMap;
+    FieldWriter writer{&out};
+    // Reflect() is non-const by convention; the writer only reads the fields.
+    const_cast<T&>(value).Reflect(writer);
+    out << YAML::EndMap;
+  } else {
+    static_assert(sizeof(T) == 0, "unsupported config field type");
+  }
+}
+
+}  // namespace internal
+
+/// Reads a config struct from a YAML node, strictly, then validates it. `source` names the
+/// file in error messages. Keys missing from the node keep their default values.
+template <core::Reflectable T>
+T ReadConfig(const YAML::Node& node, const std::string& source,
+             const std::vector<ConfigOverride>& overrides = {}) {
+  T out{};
+  internal::ReadContext ctx{source, "", &overrides};
+  internal::Read(node, out, ctx);
+  return out;
+}
+
+/// Loads, overrides and strictly reads a config file.
+template <core::Reflectable T>
+T LoadConfigFile(const std::filesystem::path& file,
+                 const std::vector<ConfigOverride>& overrides = {}) {
+  YAML::Node root = LoadYamlFile(file);
+  ApplyOverrides(root, overrides);
+  return ReadConfig<T>(root, file.string(), overrides);
+}
+
+/// The config as YAML text (the effective config written into manifests).
+template <core::Reflectable T>
+std::string ConfigToYaml(const T& config) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  internal::Write(out, config);
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace retrace::io

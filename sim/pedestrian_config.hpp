@@ -1,0 +1,54 @@
+#pragma once
+// Configuration of pedestrian groups (world files) and of the social-force model.
+
+#include <cstdint>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/config.hpp"
+#include "core/pose2.hpp"
+
+namespace retrace::sim {
+
+enum class PedestrianMode { kWander, kLoop };
+
+}  // namespace retrace::sim
+
+template <>
+struct retrace::core::EnumTraits<retrace::sim::PedestrianMode> {
+  static constexpr std::array<std::pair<retrace::sim::PedestrianMode, std::string_view>, 2> kNames{
+      {{retrace::sim::PedestrianMode::kWander, "wander"},
+       {retrace::sim::PedestrianMode::kLoop, "loop"}}};
+};
+
+namespace retrace::sim {
+
+/// A group of pedestrians spawned at random free points of a region (W, m).
+/// `wander`: each walks between random free points of the region.
+/// `loop`: each follows the waypoint loop, starting at a random waypoint.
+struct PedestrianGroupConfig {
+  int count = 1;
+  core::Vec2 region_min{0.0, 0.0};
+  core::Vec2 region_max{1.0, 1.0};
+  PedestrianMode mode = PedestrianMode::kWander;
+  std::vector<core::Vec2> waypoints;
+  double speed_mean = 1.34;  ///< desired speed (m/s), drawn per person
+  double speed_std = 0.26;
+  double radius = 0.3;       ///< m
+
+  template <class V>
+  void Reflect(V& v) {
+    v("count", count);
+    v("region_min", region_min);
+    v("region_max", region_max);
+    v("mode", mode);
+    v("waypoints", waypoints);
+    v("speed_mean", speed_mean);
+    v("speed_std", speed_std);
+    v("radius", radius);
+  }
+  void Validate() const;
+};
+
+}  // namespace retrace::sim

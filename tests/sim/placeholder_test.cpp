@@ -1,0 +1,2 @@
+#include <gtest/gtest.h>
+TEST(SimPlaceholder, Builds) { SUCCEED(); }
