@@ -24,6 +24,13 @@ struct Circle {
   double radius = 0.0;
 };
 
+/// A moving circle (a pedestrian) as seen by sensors at one instant; id >= 0.
+struct DynamicCircle {
+  Vec2 center;
+  double radius = 0.0;
+  int id = 0;
+};
+
 struct Aabb {
   Vec2 min{0.0, 0.0};
   Vec2 max{0.0, 0.0};
