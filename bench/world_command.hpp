@@ -1,0 +1,23 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace retrace::bench {
+
+struct WorldCommandOptions {
+  std::filesystem::path world_file;
+  std::filesystem::path png;
+  std::filesystem::path route_file;  ///< optional route to draw
+  std::vector<std::string> overrides;
+  double pixels_per_meter = 20.0;
+  bool pedestrians = true;  ///< spawn the world's pedestrians and draw them
+  unsigned long long seed = 1;
+};
+
+/// `retrace world`: loads and validates a world file and renders it to a PNG.
+/// Returns a one-line summary; throws core::Error on bad input.
+std::string RunWorldCommand(const WorldCommandOptions& options);
+
+}  // namespace retrace::bench
