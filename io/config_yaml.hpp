@@ -17,17 +17,9 @@
 #include "core/config.hpp"
 #include "core/errors.hpp"
 #include "core/pose2.hpp"
+#include "io/config_override.hpp"
 
 namespace retrace::io {
-
-/// One `--set a.b.c=value` override; value is parsed as YAML (so `[1, 2]` is a list).
-struct ConfigOverride {
-  std::string key_path;
-  std::string value;
-};
-
-/// Parses "a.b.c=value". Throws ConfigError on a missing '=' or an empty key.
-ConfigOverride ParseOverride(std::string_view text);
 
 /// Loads a YAML file. Throws IoError if it cannot be read, ConfigError (with line) if it is
 /// not valid YAML.

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "io/config_yaml.hpp"
 #include "io/ros_map.hpp"
 #include "sim/grid_edges.hpp"
 

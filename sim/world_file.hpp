@@ -16,7 +16,7 @@
 
 #include "core/config.hpp"
 #include "core/pose2.hpp"
-#include "io/config_yaml.hpp"
+#include "io/config_override.hpp"
 #include "sim/pedestrian_config.hpp"
 #include "sim/static_geometry.hpp"
 

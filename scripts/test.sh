@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what is missing, checks the include rules, builds and runs every test, then builds
+# once more with AddressSanitizer + UndefinedBehaviorSanitizer and runs the fast tests again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install_deps.sh
+scripts/check_includes.sh
+
+jobs=$(nproc)
+echo "== Release build and tests"
+scripts/build.sh build -DRETRACE_WERROR=ON
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== AddressSanitizer + UBSan build and tests"
+scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRETRACE_SANITIZE=ON \
+  -DRETRACE_WERROR=ON -DRETRACE_BUILD_BENCHMARKS=OFF
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE slow

@@ -1,0 +1,75 @@
+#include "sim/grid_edges.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/rng.hpp"
+
+namespace retrace::sim {
+namespace {
+
+OccupancyMask MaskFrom(const std::vector<std::string>& rows_top_down, double res = 0.1) {
+  OccupancyMask m;
+  m.height = static_cast<int>(rows_top_down.size());
+  m.width = static_cast<int>(rows_top_down[0].size());
+  m.resolution = res;
+  m.origin = Vec2(1.0, -2.0);
+  m.occupied.resize(static_cast<std::size_t>(m.width * m.height));
+  for (int r = 0; r < m.height; ++r) {
+    for (int x = 0; x < m.width; ++x) {
+      const int y = m.height - 1 - r;
+      m.occupied[static_cast<std::size_t>(y * m.width + x)] = rows_top_down[r][x] == '#';
+    }
+  }
+  return m;
+}
+
+double TotalLength(const std::vector<Segment>& edges) {
+  double s = 0;
+  for (const auto& e : edges) s += (e.b - e.a).norm();
+  return s;
+}
+
+TEST(GridEdges, ARectangleOfCellsBecomesFourEdges) {
+  const auto edges = MergedBoundaryEdges(MaskFrom({"......", ".####.", ".####.", "......"}));
+  ASSERT_EQ(edges.size(), 4u);
+  EXPECT_NEAR(TotalLength(edges), 2 * (0.4 + 0.2), 1e-12);
+}
+
+TEST(GridEdges, AnLShapeBecomesSixEdgesAndTouchesTheGridBorder) {
+  const auto edges = MergedBoundaryEdges(MaskFrom({"#..", "#..", "###"}));
+  EXPECT_EQ(edges.size(), 6u);
+  EXPECT_NEAR(TotalLength(edges), 1.2, 1e-12);
+}
+
+TEST(GridEdges, EdgesSeparateSolidFromFreeEverywhere) {
+  // A random map: every boundary edge has a solid cell on exactly one side at its midpoint.
+  core::Rng rng(3);
+  std::vector<std::string> rows(40, std::string(60, '.'));
+  for (auto& r : rows) for (auto& c : r) c = rng.Bernoulli(0.3) ? '#' : '.';
+  const OccupancyMask mask = MaskFrom(rows);
+  const auto edges = MergedBoundaryEdges(mask);
+  std::size_t faces = 0;
+  for (int y = 0; y <= mask.height; ++y) {
+    for (int x = 0; x <= mask.width; ++x) {
+      auto s = [&](int cx, int cy) {
+        return cx >= 0 && cy >= 0 && cx < mask.width && cy < mask.height &&
+               mask.occupied[static_cast<std::size_t>(cy * mask.width + cx)];
+      };
+      if (x < mask.width) faces += s(x, y - 1) != s(x, y);
+      if (y < mask.height) faces += s(x - 1, y) != s(x, y);
+    }
+  }
+  EXPECT_NEAR(TotalLength(edges), faces * mask.resolution, 1e-9);
+  EXPECT_LT(edges.size(), faces);
+  for (const auto& e : edges) {
+    const Vec2 mid = 0.5 * (e.a + e.b);
+    const Vec2 d = (e.b - e.a).normalized();
+    const Vec2 n(-d.y(), d.x());
+    EXPECT_NE(mask.IsOccupied(mid + 0.01 * n), mask.IsOccupied(mid - 0.01 * n));
+  }
+}
+
+}  // namespace
+}  // namespace retrace::sim
