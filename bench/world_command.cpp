@@ -4,6 +4,8 @@
 
 #include "io/config_yaml.hpp"
 #include "io/route_file.hpp"
+#include "sim/robot.hpp"
+#include "sim/route_check.hpp"
 #include "sim/world_file.hpp"
 #include "viz/world_sketch.hpp"
 
@@ -24,7 +26,10 @@ std::string RunWorldCommand(const WorldCommandOptions& options) {
     scene.edges.emplace_back(g.segments()[i].a, g.segments()[i].b);
   }
   for (const auto& c : g.circles()) scene.discs.emplace_back(c.center, c.radius);
-  if (!options.route_file.empty()) scene.route = io::ReadRouteFile(options.route_file);
+  if (!options.route_file.empty()) {
+    scene.route = io::ReadRouteFile(options.route_file);
+    sim::CheckRouteIsDrivable(g, scene.route, sim::RobotConfig{}.radius);
+  }
 
   viz::SketchOptions sketch;
   sketch.pixels_per_meter = options.pixels_per_meter;

@@ -1,1 +1,40 @@
-// Placeholder: filled in by its owner.
+#include "io/json_writer.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+
+namespace retrace::io {
+
+void WriteJsonAtomic(const std::filesystem::path& path, const nlohmann::json& value) {
+  // nlohmann::json already prints non-finite numbers as null and doubles in shortest
+  // round-trip form; `replace` keeps a stray non-UTF-8 byte from aborting the write.
+  std::string text = value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+  text += '\n';
+  WriteFileAtomic(path, text);
+}
+
+nlohmann::json ReadJsonFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path, ec))
+    throw core::IoError(path.string() + ": cannot open file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw core::IoError(path.string() + ": cannot read file");
+  try {
+    return nlohmann::json::parse(buffer.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    // what() is "[json.exception.parse_error.101] parse error at line L, column C: ...".
+    std::string message = e.what();
+    const auto bracket = message.find("] ");
+    if (bracket != std::string::npos) message.erase(0, bracket + 2);
+    throw core::IoError(path.string() + ": invalid JSON: " + message);
+  }
+}
+
+}  // namespace retrace::io

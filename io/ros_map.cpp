@@ -1,1 +1,429 @@
-// Placeholder: filled in by its owner.
+#include "io/ros_map.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "core/check.hpp"
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/config_yaml.hpp"
+
+namespace retrace::io {
+namespace {
+
+// An 8-bit image as decoded from file: interleaved channels (1 grey, 2 grey+alpha, 3 BGR or
+// 4 BGRA), row 0 at the top.
+struct DecodedImage {
+  int width = 0;
+  int height = 0;
+  int channels = 1;
+  std::vector<std::uint8_t> data;
+};
+
+std::string FormatNumber(double v) {
+  char buf[32];
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), v);
+  RETRACE_CHECK(ec == std::errc());
+  return std::string(buf, ptr);
+}
+
+std::string ReadBinaryFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path, ec)) {
+    throw core::IoError(path.string() + ": cannot open file");
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw core::IoError(path.string() + ": cannot read file");
+  return std::move(buffer).str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// PGM (Netpbm P5 binary and P2 ASCII), parsed strictly: the pixel data must hold exactly
+// width x height values.
+
+class PgmParser {
+ public:
+  PgmParser(const std::string& bytes, const std::filesystem::path& path)
+      : bytes_(bytes), path_(path) {}
+
+  DecodedImage Parse() {
+    RETRACE_CHECK(bytes_.size() >= 2 && bytes_[0] == 'P' && (bytes_[1] == '5' || bytes_[1] == '2'));
+    const bool binary = bytes_[1] == '5';
+    pos_ = 2;
+    const std::int64_t width = HeaderNumber("width");
+    const std::int64_t height = HeaderNumber("height");
+    const std::int64_t maxval = HeaderNumber("maxval");
+    if (width == 0 || height == 0) {
+      Fail("PGM header gives an empty image (" + std::to_string(width) + " x " +
+           std::to_string(height) + ")");
+    }
+    if (maxval == 0 || maxval > 255) {
+      Fail("PGM maxval " + std::to_string(maxval) +
+           " is not supported: only 8-bit images (maxval 1..255) are");
+    }
+    // Exactly one whitespace character separates the header from the pixel data.
+    if (pos_ >= bytes_.size()) Fail("PGM has no pixel data after its header");
+    if (!IsSpace(bytes_[pos_])) Fail("malformed PGM header after maxval");
+    ++pos_;
+
+    const std::uint64_t expected =
+        static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    std::vector<std::uint8_t> values =
+        binary ? BinaryValues(expected, width, height) : AsciiValues(expected, width, height);
+    for (std::uint8_t& v : values) {
+      if (v > maxval) {
+        Fail("PGM pixel value " + std::to_string(v) + " exceeds the header's maxval " +
+             std::to_string(maxval));
+      }
+      // Stretch to 0..255 the way map_server's image loader (SDL_image) does.
+      if (maxval < 255) v = static_cast<std::uint8_t>(v * 255 / maxval);
+    }
+    DecodedImage image;
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    image.channels = 1;
+    image.data = std::move(values);
+    return image;
+  }
+
+ private:
+  static bool IsSpace(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+  }
+
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw core::IoError(path_.string() + ": " + what);
+  }
+
+  void SkipSpaceAndComments() {
+    while (pos_ < bytes_.size()) {
+      if (IsSpace(bytes_[pos_])) {
+        ++pos_;
+      } else if (bytes_[pos_] == '#') {
+        while (pos_ < bytes_.size() && bytes_[pos_] != '\n' && bytes_[pos_] != '\r') ++pos_;
+      } else {
+        break;
+      }
+    }
+  }
+
+  // A non-negative decimal integer token; `what` names it in error messages.
+  std::int64_t Number(const std::string& what, bool in_header) {
+    SkipSpaceAndComments();
+    if (pos_ >= bytes_.size()) {
+      Fail(in_header ? "truncated PGM header: the file ends before the " + what
+                     : "PGM pixel data ends early");
+    }
+    const std::size_t start = pos_;
+    std::int64_t value = 0;
+    while (pos_ < bytes_.size() && std::isdigit(static_cast<unsigned char>(bytes_[pos_]))) {
+      value = value * 10 + (bytes_[pos_] - '0');
+      if (value > std::numeric_limits<int>::max()) Fail("PGM " + what + " is too large");
+      ++pos_;
+    }
+    if (pos_ == start || (pos_ < bytes_.size() && !IsSpace(bytes_[pos_]) && bytes_[pos_] != '#')) {
+      std::size_t end = start;
+      while (end < bytes_.size() && !IsSpace(bytes_[end]) && end - start < 16) ++end;
+      Fail("malformed PGM " + std::string(in_header ? "header" : "pixel data") + ": the " + what +
+           " '" + bytes_.substr(start, end - start) + "' is not a non-negative integer");
+    }
+    return value;
+  }
+
+  std::int64_t HeaderNumber(const std::string& what) { return Number(what, true); }
+
+  [[noreturn]] void FailSize(std::uint64_t got, std::int64_t width, std::int64_t height,
+                             const char* unit) const {
+    const std::uint64_t expected =
+        static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    Fail("PGM has the wrong size: its pixel data holds " + std::to_string(got) + " " + unit +
+         " but the header says " + std::to_string(width) + " x " + std::to_string(height) + " = " +
+         std::to_string(expected) + " pixels (" +
+         (got < expected ? "the file is truncated" : "there is extra data after the image") +
+         ", or the header is wrong)");
+  }
+
+  std::vector<std::uint8_t> BinaryValues(std::uint64_t expected, std::int64_t width,
+                                         std::int64_t height) const {
+    const std::uint64_t got = bytes_.size() - pos_;
+    if (got != expected) FailSize(got, width, height, "bytes");
+    return std::vector<std::uint8_t>(bytes_.begin() + static_cast<std::ptrdiff_t>(pos_),
+                                     bytes_.end());
+  }
+
+  std::vector<std::uint8_t> AsciiValues(std::uint64_t expected, std::int64_t width,
+                                        std::int64_t height) {
+    std::vector<std::uint8_t> values;
+    std::uint64_t count = 0;
+    while (true) {
+      SkipSpaceAndComments();
+      if (pos_ >= bytes_.size()) break;
+      const std::int64_t v = Number("pixel value", false);
+      if (v > 255) Fail("PGM pixel value " + std::to_string(v) + " exceeds 255");
+      // Only store what fits, so a lying header cannot make us allocate without bound.
+      if (count < expected) values.push_back(static_cast<std::uint8_t>(v));
+      ++count;
+    }
+    if (count != expected) FailSize(count, width, height, "values");
+    return values;
+  }
+
+  const std::string& bytes_;
+  const std::filesystem::path& path_;
+  std::size_t pos_ = 0;
+};
+
+// Any other format: PNG and whatever else OpenCV decodes (as map_server accepts any image
+// SDL_image reads).
+DecodedImage DecodeWithOpenCv(const std::string& bytes, const std::filesystem::path& path) {
+  cv::Mat mat;
+  try {
+    const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8UC1,
+                         const_cast<char*>(bytes.data()));
+    mat = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw core::IoError(path.string() + ": cannot decode image: " + e.msg);
+  }
+  if (mat.empty()) {
+    throw core::IoError(path.string() +
+                        ": cannot decode image (not a PGM, PNG or other supported image format)");
+  }
+  if (mat.depth() != CV_8U) {
+    throw core::IoError(path.string() + ": only 8-bit images are supported (this one has " +
+                        std::to_string(mat.elemSize1() * 8) + "-bit channels)");
+  }
+  if (mat.channels() < 1 || mat.channels() > 4) {
+    throw core::IoError(path.string() + ": unsupported number of image channels (" +
+                        std::to_string(mat.channels()) + ")");
+  }
+  DecodedImage image;
+  image.width = mat.cols;
+  image.height = mat.rows;
+  image.channels = mat.channels();
+  const std::size_t row_bytes =
+      static_cast<std::size_t>(mat.cols) * static_cast<std::size_t>(image.channels);
+  image.data.resize(row_bytes * static_cast<std::size_t>(mat.rows));
+  for (int r = 0; r < mat.rows; ++r) {
+    std::copy_n(mat.ptr<std::uint8_t>(r), row_bytes,
+                image.data.begin() + static_cast<std::ptrdiff_t>(row_bytes) * r);
+  }
+  return image;
+}
+
+DecodedImage ReadImage(const std::filesystem::path& path) {
+  const std::string bytes = ReadBinaryFile(path);
+  if (bytes.empty()) throw core::IoError(path.string() + ": the image file is empty");
+  if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '2')) {
+    return PgmParser(bytes, path).Parse();
+  }
+  return DecodeWithOpenCv(bytes, path);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pixel semantics.
+
+float ClampedLogOdds(double p) {
+  return static_cast<float>(
+      core::Logit(std::clamp(p, kRosMapFreeProbability, kRosMapOccupiedProbability)));
+}
+
+// Log-odds of a pixel whose colour channels sum to `sum` over `colours` channels; NaN marks a
+// raw value outside 0..100 and 255.
+float PixelLogOdds(int sum, int colours, bool opaque, const RosMapMetadata& meta) {
+  double v = static_cast<double>(sum) / colours;  // map_server averages the colour channels
+  if (meta.negate != 0) v = 255.0 - v;
+  if (meta.mode == RosMapMode::kRaw) {
+    const long value = std::lround(v);
+    if (value == 255) return 0.0f;
+    if (value > 100) return std::numeric_limits<float>::quiet_NaN();
+    return ClampedLogOdds(static_cast<double>(value) / 100.0);
+  }
+  if (meta.mode == RosMapMode::kScale && !opaque) return 0.0f;
+  const double p = (255.0 - v) / 255.0;
+  if (p > meta.occupied_thresh) return ClampedLogOdds(kRosMapOccupiedProbability);
+  if (p < meta.free_thresh) return ClampedLogOdds(kRosMapFreeProbability);
+  if (meta.mode == RosMapMode::kTrinary) return 0.0f;
+  return ClampedLogOdds(p);
+}
+
+core::OccupancyGrid ImageToGrid(const DecodedImage& image, const RosMapMetadata& meta,
+                                const std::filesystem::path& image_path) {
+  core::OccupancyGrid grid(image.width, image.height, meta.resolution,
+                           core::Vec2(meta.origin[0], meta.origin[1]));
+  const bool has_alpha = image.channels == 2 || image.channels == 4;
+  const int colours = has_alpha ? image.channels - 1 : image.channels;
+  // One lookup table per opacity, indexed by the sum of the colour channels.
+  std::vector<float> opaque_table(static_cast<std::size_t>(255 * colours + 1));
+  std::vector<float> transparent_table(opaque_table.size());
+  for (int s = 0; s <= 255 * colours; ++s) {
+    opaque_table[static_cast<std::size_t>(s)] = PixelLogOdds(s, colours, true, meta);
+    transparent_table[static_cast<std::size_t>(s)] = PixelLogOdds(s, colours, false, meta);
+  }
+  const std::size_t stride = static_cast<std::size_t>(image.channels);
+  for (int row = 0; row < image.height; ++row) {
+    const int cy = image.height - 1 - row;  // image row 0 is the top of the map
+    for (int col = 0; col < image.width; ++col) {
+      const std::uint8_t* px =
+          &image.data[(static_cast<std::size_t>(row) * static_cast<std::size_t>(image.width) +
+                       static_cast<std::size_t>(col)) *
+                      stride];
+      int sum = 0;
+      for (int k = 0; k < colours; ++k) sum += px[k];
+      const bool opaque = !has_alpha || px[image.channels - 1] == 255;
+      const float l = (opaque ? opaque_table : transparent_table)[static_cast<std::size_t>(sum)];
+      if (std::isnan(l)) {
+        throw core::IoError(image_path.string() + ": pixel (" + std::to_string(col) + ", " +
+                            std::to_string(row) + ") has value " +
+                            std::to_string(std::lround(static_cast<double>(sum) / colours)) +
+                            ", which is not a raw occupancy (0..100, or 255 for unknown)");
+      }
+      grid.SetLogOdds({col, cy}, l);
+    }
+  }
+  return grid;
+}
+
+RosMapMetadata ParseMetadata(const YAML::Node& root, const std::string& source) {
+  if (root.IsMap()) {
+    const internal::ReadContext ctx{source, "", nullptr};
+    for (const char* key : {"image", "resolution", "origin"}) {
+      if (!root[key]) internal::Fail(root, ctx.Child(key), "required key is missing");
+    }
+  }
+  return ReadConfig<RosMapMetadata>(root, source);
+}
+
+}  // namespace
+
+void RosMapMetadata::Validate() const {
+  if (image.empty()) throw core::ConfigError("image", "must name an image file");
+  core::RequirePositive("resolution", resolution);
+  if (negate != 0 && negate != 1) {
+    throw core::ConfigError("negate", "must be 0 or 1, got " + std::to_string(negate));
+  }
+  core::RequireInRange("occupied_thresh", occupied_thresh, 0.0, 1.0);
+  core::RequireInRange("free_thresh", free_thresh, 0.0, 1.0);
+  if (!(free_thresh < occupied_thresh)) {
+    throw core::ConfigError("free_thresh", "must be below occupied_thresh (" +
+                                               FormatNumber(occupied_thresh) + "), got " +
+                                               FormatNumber(free_thresh));
+  }
+}
+
+RosMapMetadata ReadRosMapMetadata(const std::filesystem::path& yaml) {
+  return ParseMetadata(LoadYamlFile(yaml), yaml.string());
+}
+
+core::OccupancyGrid ReadRosMap(const std::filesystem::path& yaml) {
+  const YAML::Node root = LoadYamlFile(yaml);
+  const RosMapMetadata meta = ParseMetadata(root, yaml.string());
+  if (meta.origin[2] != 0.0) {
+    const internal::ReadContext ctx{yaml.string(), "origin", nullptr};
+    internal::Fail(root["origin"], ctx,
+                   "origin yaw " + FormatNumber(meta.origin[2]) +
+                       " rad is not supported: retrace's occupancy grids are axis-aligned; "
+                       "rotate the image and set the yaw to 0");
+  }
+  std::filesystem::path image_path(meta.image);
+  if (image_path.is_relative()) image_path = yaml.parent_path() / image_path;
+  std::error_code ec;
+  if (!std::filesystem::exists(image_path, ec)) {
+    throw core::IoError(yaml.string() + ": image '" + meta.image + "' not found (looked for " +
+                        image_path.string() + ")");
+  }
+  return ImageToGrid(ReadImage(image_path), meta, image_path);
+}
+
+void WriteRosMap(const std::filesystem::path& yaml, const core::OccupancyGrid& grid,
+                 const RosMapWriteOptions& options) {
+  if (options.mode == RosMapMode::kRaw) {
+    throw core::ConfigError("mode", "raw maps cannot be written; use trinary or scale");
+  }
+  core::RequireInRange("occupied_thresh", options.occupied_thresh, 0.0, 1.0);
+  core::RequireInRange("free_thresh", options.free_thresh, 0.0, 1.0);
+  if (!(options.free_thresh < options.occupied_thresh)) {
+    throw core::ConfigError("free_thresh", "must be below occupied_thresh");
+  }
+  if (grid.empty()) {
+    throw core::IoError(yaml.string() + ": cannot write an empty map (" +
+                        std::to_string(grid.width()) + " x " + std::to_string(grid.height()) +
+                        " cells)");
+  }
+
+  const int w = grid.width();
+  const int h = grid.height();
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  for (int cy = 0; cy < h; ++cy) {
+    const int row = h - 1 - cy;
+    for (int cx = 0; cx < w; ++cx) {
+      const float l = grid.LogOdds({cx, cy});
+      RETRACE_CHECK(!std::isnan(l));
+      const double q = core::InverseLogit(l);
+      std::uint8_t v = 0;
+      if (q > options.occupied_thresh) {
+        v = 0;
+      } else if (q < options.free_thresh) {
+        v = 254;
+      } else if (options.mode == RosMapMode::kTrinary) {
+        v = 205;
+      } else {
+        v = static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - q)));
+      }
+      pixels[static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
+             static_cast<std::size_t>(cx)] = v;
+    }
+  }
+
+  const bool png = options.image_format == RosMapImageFormat::kPng;
+  std::filesystem::path image_name = yaml.filename();
+  image_name.replace_extension(png ? ".png" : ".pgm");
+  std::string image_bytes;
+  if (png) {
+    const cv::Mat mat(h, w, CV_8UC1, pixels.data());
+    std::vector<std::uint8_t> encoded;
+    bool ok = false;
+    try {
+      ok = cv::imencode(".png", mat, encoded);
+    } catch (const cv::Exception& e) {
+      throw core::IoError((yaml.parent_path() / image_name).string() +
+                          ": cannot encode PNG: " + e.msg);
+    }
+    if (!ok)
+      throw core::IoError((yaml.parent_path() / image_name).string() + ": cannot encode PNG");
+    image_bytes.assign(encoded.begin(), encoded.end());
+  } else {
+    image_bytes = "P5\n# CREATOR: retrace " + FormatNumber(grid.resolution()) + " m/pix\n" +
+                  std::to_string(w) + " " + std::to_string(h) + "\n255\n";
+    image_bytes.append(pixels.begin(), pixels.end());
+  }
+
+  RosMapMetadata meta;
+  meta.image = image_name.string();
+  meta.resolution = grid.resolution();
+  meta.origin = {grid.origin().x(), grid.origin().y(), 0.0};
+  meta.negate = 0;
+  meta.mode = options.mode;
+  if (options.mode == RosMapMode::kScale) {
+    meta.occupied_thresh = options.occupied_thresh;
+    meta.free_thresh = options.free_thresh;
+  }  // trinary: map_saver's 0.65 / 0.196 (the defaults) classify 0 / 205 / 254 correctly
+
+  // Image first: the YAML must never name a missing or partial image.
+  WriteFileAtomic(yaml.parent_path() / image_name, image_bytes);
+  WriteFileAtomic(yaml, ConfigToYaml(meta));
+}
+
+}  // namespace retrace::io

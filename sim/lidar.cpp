@@ -1,1 +1,209 @@
-// Placeholder: filled in by its owner.
+#include "sim/lidar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/angle.hpp"
+#include "core/check.hpp"
+#include "core/errors.hpp"
+
+namespace retrace::sim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kMaxBeams = 1 << 20;
+
+void RequireProbability(std::string_view key, double p) { core::RequireInRange(key, p, 0.0, 1.0); }
+
+const LidarConfig& Validated(const LidarConfig& config) {
+  config.Validate();
+  return config;
+}
+
+// A double range in [range_min, range_max] as a float that still lies in that interval (the
+// nearest float may round across a limit that is not a float itself).
+float ToReading(double r, double range_min, double range_max) {
+  float f = static_cast<float>(r);
+  if (static_cast<double>(f) > range_max) f = std::nextafter(f, 0.0f);
+  if (static_cast<double>(f) < range_min) f = std::nextafter(f, std::numeric_limits<float>::max());
+  return f;
+}
+
+}  // namespace
+
+void LidarNoiseConfig::Validate() const {
+  core::RequireNonNegative("sigma0", sigma0);
+  core::RequireNonNegative("sigma1", sigma1);
+  RequireProbability("dropout_probability", dropout_probability);
+  RequireProbability("short_probability", short_probability);
+  if (dropout_probability + short_probability > 1.0) {
+    throw core::ConfigError("short_probability",
+                            "dropout_probability + short_probability must not exceed 1");
+  }
+}
+
+void LidarConfig::Validate() const {
+  if (!(fov_deg > 0.0 && fov_deg <= 360.0)) {
+    throw core::ConfigError("fov_deg", "must be in (0, 360], got " + std::to_string(fov_deg));
+  }
+  if (beams < 2 || beams > kMaxBeams) {
+    throw core::ConfigError(
+        "beams", "must be in [2, " + std::to_string(kMaxBeams) + "], got " + std::to_string(beams));
+  }
+  core::RequireNonNegative("range_min", range_min);
+  core::RequirePositive("range_max", range_max);
+  if (!(range_max > range_min)) {
+    throw core::ConfigError("range_max", "must be greater than range_min (" +
+                                             std::to_string(range_min) + "), got " +
+                                             std::to_string(range_max));
+  }
+  core::RequirePositive("rate_hz", rate_hz);
+  if (!std::isfinite(mount.x) || !std::isfinite(mount.y) || !std::isfinite(mount.theta)) {
+    throw core::ConfigError("mount", "must be finite [x, y, theta]");
+  }
+  try {
+    noise.Validate();
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError("noise." + e.key_path(), e.detail());
+  }
+}
+
+Lidar::Lidar(const LidarConfig& config, const StaticGeometry& geometry)
+    : config_(Validated(config)), caster_(geometry) {
+  const double fov = core::DegToRad(config_.fov_deg);
+  angle_min_ = -0.5 * fov;
+  angle_increment_ = fov / static_cast<double>(config_.beams - 1);
+  beam_dirs_L_.reserve(static_cast<std::size_t>(config_.beams));
+  for (int i = 0; i < config_.beams; ++i) {
+    // Same formula as core::LaserScan::Angle, so consumers see the beams where they were cast.
+    const double a = angle_min_ + static_cast<double>(i) * angle_increment_;
+    beam_dirs_L_.emplace_back(std::cos(a), std::sin(a));
+  }
+}
+
+LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle> pedestrians,
+                         double stamp, core::Rng& rng) const {
+  const std::size_t n = beam_dirs_L_.size();
+  const double range_min = config_.range_min;
+  const double range_max = config_.range_max;
+
+  LidarReading out;
+  out.scan.stamp = stamp;
+  out.scan.angle_min = angle_min_;
+  out.scan.angle_increment = angle_increment_;
+  out.scan.range_min = range_min;
+  out.scan.range_max = range_max;
+  out.scan.ranges.resize(n);
+  out.truth.resize(n);
+
+  const core::Pose2 X_WL = X_WR * config_.mount;
+  const Vec2 origin = X_WL.translation();
+  const double c = std::cos(X_WL.theta);
+  const double s = std::sin(X_WL.theta);
+  std::vector<Vec2> dirs(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& d = beam_dirs_L_[i];
+    dirs[i] = Vec2(c * d.x() - s * d.y(), s * d.x() + c * d.y());
+  }
+
+  // Pedestrians first: each is tested only on the beams its angular interval (seen from L)
+  // covers, widened by one beam against rounding; the exact circle test decides.
+  std::vector<double> limit(n, range_max);
+  for (auto& t : out.truth) t.pedestrian_id = -1;
+  const int last_beam = static_cast<int>(n) - 1;
+  for (const DynamicCircle& p : pedestrians) {
+    RETRACE_CHECK(p.id >= 0 && p.radius > 0.0 && std::isfinite(p.center.x()) &&
+                  std::isfinite(p.center.y()));
+    const Circle circle{p.center, p.radius};
+    const Vec2 rel = p.center - origin;
+    const double dist = rel.norm();
+    if (dist - p.radius > range_max) continue;
+    auto test_beams = [&](int lo, int hi) {
+      lo = std::max(lo, 0);
+      hi = std::min(hi, last_beam);
+      for (int i = lo; i <= hi; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        const double t = RayCircleHit(origin, dirs[k], circle);
+        // Ties keep the earlier pedestrian; the first one exactly at range_max still counts.
+        if (t < limit[k] || (t == limit[k] && out.truth[k].pedestrian_id < 0)) {
+          limit[k] = t;
+          out.truth[k].pedestrian_id = p.id;
+        }
+      }
+    };
+    if (dist <= p.radius) {  // the sensor is inside: every beam meets the boundary
+      test_beams(0, last_beam);
+      continue;
+    }
+    const double half = std::asin(p.radius / dist);
+    const double bearing = std::atan2(-s * rel.x() + c * rel.y(), c * rel.x() + s * rel.y());
+    for (const double wrap : {-2.0 * core::kPi, 0.0, 2.0 * core::kPi}) {
+      const double lo = (bearing + wrap - half - angle_min_) / angle_increment_;
+      const double hi = (bearing + wrap + half - angle_min_) / angle_increment_;
+      if (hi < -1.0 || lo > static_cast<double>(last_beam) + 1.0) continue;
+      // Clamped before the conversion so that huge indices (tiny increments) stay in int.
+      test_beams(static_cast<int>(std::ceil(std::max(lo, -1.0))) - 1,
+                 static_cast<int>(std::floor(std::min(hi, last_beam + 1.0))) + 1);
+    }
+  }
+
+  // Static geometry up to the nearest pedestrian (or range_max): a wall at the same distance
+  // as a pedestrian wins the tie.
+  std::vector<double> wall(n);
+  caster_.CastFan(origin, dirs, limit, wall);
+
+  const LidarNoiseConfig& noise = config_.noise;
+  const double p_drop = noise.dropout_probability;
+  const double p_event = noise.dropout_probability + noise.short_probability;
+  const bool noisy = noise.sigma0 > 0.0 || noise.sigma1 > 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    BeamTruth& truth = out.truth[i];
+    double t = kInf;
+    if (wall[i] <= limit[i]) {
+      t = wall[i];
+      truth.pedestrian_id = -1;
+      truth.source = BeamSource::kStatic;
+    } else if (truth.pedestrian_id >= 0) {
+      t = limit[i];
+      truth.source = BeamSource::kPedestrian;
+    } else {
+      truth.source = BeamSource::kNothing;
+    }
+    truth.range = t;
+
+    float& reading = out.scan.ranges[i];
+    // One uniform draw per beam decides dropout / spurious / regular, whatever the geometry.
+    const double u = p_event > 0.0 ? rng.Uniform() : 1.0;
+    if (u < p_drop) {
+      truth.source = BeamSource::kDropout;
+      reading = std::numeric_limits<float>::infinity();
+      continue;
+    }
+    if (u < p_event) {
+      const double upper = std::min(t, range_max);
+      if (upper > range_min) {
+        truth.source = BeamSource::kSpurious;
+        reading = ToReading(rng.Uniform(range_min, upper), range_min, range_max);
+        continue;
+      }
+    }
+    if (t == kInf) {
+      reading = std::numeric_limits<float>::infinity();
+      continue;
+    }
+    double r = t;
+    if (noisy) r += (noise.sigma0 + noise.sigma1 * t) * rng.Normal();
+    if (r > range_max) {
+      reading = std::numeric_limits<float>::infinity();
+    } else if (r < range_min) {
+      reading = -std::numeric_limits<float>::infinity();
+    } else {
+      reading = ToReading(r, range_min, range_max);
+    }
+  }
+  return out;
+}
+
+}  // namespace retrace::sim

@@ -1,1 +1,380 @@
-// Placeholder: filled in by its owner.
+#include "sim/pedestrians.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "core/check.hpp"
+#include "core/errors.hpp"
+
+namespace retrace::sim {
+namespace {
+
+// Samples drawn per attempt when looking for a wander goal, and attempts.
+constexpr int kGoalSamples = 200;
+constexpr int kGoalAttempts = 20;
+// A pedestrian with nowhere to go stands for this long before looking again (s).
+constexpr double kIdleTime = 2.0;
+// How far (m) a loop waypoint may be moved to reach free space.
+constexpr double kWaypointSnap = 1.5;
+// Longest pause (s) of a pedestrian that got stuck, to let others through.
+constexpr double kYieldTime = 2.0;
+// How often (s) each pedestrian checks that it can still walk straight to its next waypoint
+// (after being pushed aside); if not, it re-plans.
+constexpr double kPathCheckPeriod = 0.25;
+
+void ValidateNested(std::string_view prefix, const auto& config) {
+  try {
+    config.Validate();
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError(std::string(prefix) + "." + e.key_path(), e.detail());
+  }
+}
+
+std::string Format(const char* fmt, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof(buf), fmt, args...);
+  return buf;
+}
+
+}  // namespace
+
+void CrowdConfig::Validate() const {
+  ValidateNested("social_force", social_force);
+  ValidateNested("planner", planner);
+  core::RequirePositive("mass", mass);
+  core::RequirePositive("waypoint_tolerance", waypoint_tolerance);
+  core::RequirePositive("goal_tolerance", goal_tolerance);
+  core::RequireNonNegative("min_goal_distance", min_goal_distance);
+  core::RequireNonNegative("loop_spread", loop_spread);
+  core::RequirePositive("stuck_time", stuck_time);
+  core::RequirePositive("stuck_progress", stuck_progress);
+  core::RequireNonNegative("spawn_gap", spawn_gap);
+  core::RequireNonNegative("keep_clear_gap", keep_clear_gap);
+  if (max_spawn_tries < 1) {
+    throw core::ConfigError("max_spawn_tries",
+                            "must be >= 1, got " + std::to_string(max_spawn_tries));
+  }
+}
+
+struct Pedestrians::Walker {
+  core::Rng rng;
+  Aabb region;
+  PedestrianMode mode = PedestrianMode::kWander;
+  std::vector<Vec2> loop;  // loop waypoints, snapped to free space
+  std::size_t loop_index = 0;
+  double idle_until = -1.0;   // standing with nowhere to go until then (s)
+  double yield_until = -1.0;  // standing aside after getting stuck until then (s)
+  // Progress window: distance to the current waypoint and waypoints passed at its start.
+  double window_start = 0.0;
+  double window_distance = 0.0;
+  int window_passed = 0;
+  int window_goals = 0;
+  int stuck_count = 0;
+};
+
+Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
+                         const CrowdConfig& config, const StaticGeometry& geometry,
+                         const core::Rng& rng, const std::vector<Circle>& keep_clear,
+                         PhysicsWorld& world)
+    : config_(config), groups_(groups) {
+  config_.Validate();
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    try {
+      groups_[g].Validate();
+    } catch (const core::ConfigError& e) {
+      throw core::ConfigError("pedestrians[" + std::to_string(g) + "]." + e.key_path(), e.detail());
+    }
+  }
+  index_ = std::make_unique<GeometryIndex>(geometry, 1.0);
+
+  // One planner for everyone, inflated for the largest pedestrian.
+  std::vector<Aabb> regions;
+  std::vector<Vec2> points;
+  double max_radius = 0.0;
+  for (const auto& g : groups_) {
+    if (g.count == 0) continue;
+    regions.push_back({g.region_min, g.region_max});
+    if (g.mode == PedestrianMode::kLoop) points.insert(points.end(), g.waypoints.begin(), g.waypoints.end());
+    max_radius = std::max(max_radius, g.radius);
+  }
+  if (regions.empty()) return;  // nobody to spawn: no planner either
+  planner_ = std::make_unique<WalkPlanner>(
+      *index_, PlanningArea(regions, points, config_.planner.area_padding), max_radius,
+      config_.planner);
+
+  std::vector<Circle> placed;  // spawned pedestrians so far
+  std::uint64_t person = 0;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    const PedestrianGroupConfig& group = groups_[g];
+    if (group.count == 0) continue;
+    const Aabb region{group.region_min, group.region_max};
+
+    std::vector<Vec2> loop;
+    int loop_component = -1;
+    if (group.mode == PedestrianMode::kLoop) {
+      for (std::size_t k = 0; k < group.waypoints.size(); ++k) {
+        const Vec2& w = group.waypoints[k];
+        std::optional<Vec2> snapped = planner_->IsFree(w) ? std::optional<Vec2>(w)
+                                                          : planner_->NearestFree(w, kWaypointSnap);
+        if (!snapped) {
+          throw core::WorldError(Format(
+              "pedestrian group %zu: loop waypoint %zu (%.2f, %.2f) is inside or too close to "
+              "static geometry (no walkable point within %.1f m)",
+              g, k, w.x(), w.y(), kWaypointSnap));
+        }
+        const int c = planner_->Component(*snapped);
+        if (k == 0) loop_component = c;
+        if (c != loop_component) {
+          throw core::WorldError(Format(
+              "pedestrian group %zu: loop waypoint %zu (%.2f, %.2f) cannot be reached on foot "
+              "from waypoint 0 (%.2f, %.2f)",
+              g, k, w.x(), w.y(), group.waypoints[0].x(), group.waypoints[0].y()));
+        }
+        loop.push_back(*snapped);
+      }
+    }
+
+    for (int n = 0; n < group.count; ++n, ++person) {
+      Walker walker{.rng = rng.Split(person), .region = region, .mode = group.mode, .loop = loop};
+      PedestrianStatus status;
+      status.group = static_cast<int>(g);
+      status.radius = group.radius;
+      // Desired speed N(mean, std) clipped to two standard deviations and to a walking minimum.
+      const double lo = std::max(0.1 * group.speed_mean, group.speed_mean - 2.0 * group.speed_std);
+      const double hi = group.speed_mean + 2.0 * group.speed_std;
+      status.desired_speed = std::clamp(walker.rng.Normal(group.speed_mean, group.speed_std), lo, hi);
+
+      std::optional<Vec2> spawn;
+      for (int t = 0; t < config_.max_spawn_tries && !spawn; ++t) {
+        const auto p = planner_->SampleFreePoint(region, walker.rng, 1, loop_component);
+        if (!p) continue;
+        bool ok = true;
+        for (const Circle& c : placed) {
+          const double min_d = c.radius + group.radius + config_.spawn_gap;
+          if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
+        }
+        for (const Circle& c : keep_clear) {
+          const double min_d = c.radius + group.radius + config_.keep_clear_gap;
+          if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
+        }
+        if (ok) spawn = p;
+      }
+      if (!spawn) {
+        core::Rng probe = walker.rng.Split("probe");
+        const bool any_free = planner_->SampleFreePoint(region, probe, 10000, loop_component).has_value();
+        throw core::WorldError(Format(
+            "pedestrian group %zu: cannot place pedestrian %d of %d in region [%.2f, %.2f]-[%.2f, "
+            "%.2f] after %d tries: %s",
+            g, n + 1, group.count, region.min.x(), region.min.y(), region.max.x(), region.max.y(),
+            config_.max_spawn_tries,
+            any_free ? "the region is too full (fewer pedestrians, a larger region, or a robot "
+                       "start too close)"
+                     : (group.mode == PedestrianMode::kLoop
+                            ? "the region has no free space connected to the loop waypoints"
+                            : "the region has no free space (inside walls or too narrow for the "
+                              "pedestrian radius plus margin)")));
+      }
+      placed.push_back({*spawn, group.radius});
+      status.id = world.AddPedestrian(*spawn, group.radius, config_.mass);
+      if (group.mode == PedestrianMode::kLoop) {
+        walker.loop_index = static_cast<std::size_t>(walker.rng.UniformIndex(loop.size()));
+        // Everyone aims at their own spot near each waypoint: a shared point would make them
+        // queue for it.
+        for (Vec2& w : walker.loop) {
+          const double angle = walker.rng.Uniform(0.0, 2.0 * core::kPi);
+          const double dist = config_.loop_spread * std::sqrt(walker.rng.Uniform());
+          const Vec2 q = w + dist * Vec2(std::cos(angle), std::sin(angle));
+          if (planner_->Component(q) == loop_component && planner_->ClearPath(w, q, group.radius)) w = q;
+        }
+      }
+      status_.push_back(std::move(status));
+      walkers_.push_back(std::move(walker));
+    }
+  }
+  // Goals are chosen after everyone is placed so that spawning alone decides positions.
+  for (std::size_t i = 0; i < status_.size(); ++i) {
+    const Vec2 p = world.PedestrianPosition(status_[i].id);
+    if (walkers_[i].mode == PedestrianMode::kLoop) {
+      status_[i].goal = walkers_[i].loop[walkers_[i].loop_index];
+      Replan(i, p);
+    } else {
+      ChooseNextGoal(i, p, world.time());
+    }
+    // Stagger the progress windows so that two pedestrians blocking each other (in a door,
+    // say) do not give up at the same instant: one re-plans or turns away, the other passes.
+    walkers_[i].window_start = world.time() - walkers_[i].rng.Uniform(0.0, config_.stuck_time);
+    walkers_[i].window_distance = status_[i].path.empty() ? 0.0 : (status_[i].path.front() - p).norm();
+  }
+}
+
+Pedestrians::~Pedestrians() = default;
+Pedestrians::Pedestrians(Pedestrians&&) noexcept = default;
+Pedestrians& Pedestrians::operator=(Pedestrians&&) noexcept = default;
+
+void Pedestrians::ChooseNextGoal(std::size_t i, const Vec2& position, double time) {
+  Walker& w = walkers_[i];
+  PedestrianStatus& s = status_[i];
+  if (w.mode == PedestrianMode::kLoop) {
+    w.loop_index = (w.loop_index + 1) % w.loop.size();
+    s.goal = w.loop[w.loop_index];
+    Replan(i, position);
+    return;
+  }
+  int component = planner_->Component(position);
+  if (component < 0) {
+    const auto near = planner_->NearestFree(position, 1.5);
+    if (near) component = planner_->Component(*near);
+  }
+  std::optional<Vec2> goal;
+  std::optional<Vec2> fallback;  // a reachable goal closer than min_goal_distance
+  for (int attempt = 0; attempt < kGoalAttempts && !goal && component >= 0; ++attempt) {
+    const auto p = planner_->SampleFreePoint(w.region, w.rng, kGoalSamples, component);
+    if (!p) break;
+    if (robot_ && (*p - robot_->position).norm() <
+                      robot_->radius + s.radius + config_.keep_clear_gap) {
+      continue;  // the planner does not know the robot: do not aim at it
+    }
+    if ((*p - position).norm() >= config_.min_goal_distance) {
+      goal = p;
+    } else if (!fallback) {
+      fallback = p;
+    }
+  }
+  if (!goal) goal = fallback;
+  if (!goal) {
+    // Nowhere to go from here (pushed out of the walkable area, or the region is tiny): stand
+    // and look again later.
+    s.goal = position;
+    s.path.clear();
+    w.idle_until = time + kIdleTime;
+    return;
+  }
+  s.goal = *goal;
+  Replan(i, position);
+}
+
+void Pedestrians::Replan(std::size_t i, const Vec2& position) {
+  PedestrianStatus& s = status_[i];
+  auto path = planner_->Plan(position, s.goal);
+  // No walkable path (pushed off the grid, goal cut off): head straight for the goal; the
+  // progress check will pick another goal if that does not work either.
+  s.path = path ? std::move(*path) : std::vector<Vec2>{s.goal};
+}
+
+void Pedestrians::Update(PhysicsWorld& world) {
+  if (status_.empty()) return;
+  const double t = world.time();
+  const double dt = world.time_step();
+  const SocialForceConfig& sf = config_.social_force;
+
+  agents_.resize(status_.size());
+  for (std::size_t i = 0; i < status_.size(); ++i) {
+    agents_[i] = {world.PedestrianPosition(status_[i].id), world.PedestrianVelocity(status_[i].id),
+                  status_[i].radius};
+  }
+  const bool has_robot = world.has_robot();
+  if (has_robot) {
+    robot_ = SocialAgent{world.RobotPose().translation(), world.RobotVelocityW(),
+                         world.robot_radius()};
+  }
+  const auto check_period =
+      static_cast<std::uint64_t>(std::max(1.0, std::round(kPathCheckPeriod / dt)));
+
+  new_velocities_.resize(status_.size());
+  for (std::size_t i = 0; i < status_.size(); ++i) {
+    PedestrianStatus& s = status_[i];
+    Walker& w = walkers_[i];
+    const Vec2 p = agents_[i].position;
+
+    // Waypoints and goals.
+    if (w.idle_until >= 0.0) {
+      if (t >= w.idle_until) {
+        w.idle_until = -1.0;
+        ChooseNextGoal(i, p, t);
+        w.window_start = t;
+        w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+      }
+    } else {
+      while (!s.path.empty()) {
+        const bool last = s.path.size() == 1;
+        const double tol = last ? config_.goal_tolerance : config_.waypoint_tolerance;
+        if ((s.path.front() - p).norm() >= tol) break;
+        if (last) {
+          ++s.goals_reached;
+          ChooseNextGoal(i, p, t);
+          break;  // the new path starts afresh; checked next step
+        }
+        ++s.waypoints_passed;
+        s.path.erase(s.path.begin());
+      }
+      // Pushed off the straight line to the next waypoint (behind a corner, say): re-plan.
+      // Staggered over pedestrians to spread the cost.
+      if (!s.path.empty() && (world.step_count() + i) % check_period == 0 &&
+          !planner_->ClearPath(p, s.path.front(), s.radius)) {
+        Replan(i, p);
+        w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+      }
+      // Progress check: within stuck_time, pass a waypoint or get stuck_progress closer to it.
+      if (t - w.window_start >= config_.stuck_time) {
+        const double d = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+        const bool progressed = s.waypoints_passed != w.window_passed ||
+                                s.goals_reached != w.window_goals ||
+                                w.window_distance - d >= config_.stuck_progress;
+        if (progressed || s.path.empty()) {
+          w.stuck_count = 0;
+        } else if (++w.stuck_count == 1) {
+          // Blocked (typically two people meeting in a door): stand for a moment, which lets
+          // the other one through or push us aside, then re-plan. The next check comes a full
+          // window after the pause.
+          ++s.replans;
+          Replan(i, p);
+          w.yield_until = t + w.rng.Uniform(0.5 * kYieldTime, kYieldTime);
+        } else {
+          ++s.goals_abandoned;
+          w.stuck_count = 0;
+          ChooseNextGoal(i, p, t);
+        }
+        w.window_start = std::max(t, w.yield_until);
+        w.window_passed = s.waypoints_passed;
+        w.window_goals = s.goals_reached;
+        w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+      }
+    }
+
+    // Social force.
+    Vec2 direction = Vec2::Zero();
+    if (w.idle_until < 0.0 && t >= w.yield_until && !s.path.empty()) {
+      const Vec2 to = s.path.front() - p;
+      const double n = to.norm();
+      if (n > 1e-6) direction = to / n;
+    }
+    neighbours_.clear();
+    const double range2 = sf.interaction_range * sf.interaction_range;
+    for (std::size_t j = 0; j < agents_.size(); ++j) {
+      if (j != i && (agents_[j].position - p).squaredNorm() < range2) neighbours_.push_back(agents_[j]);
+    }
+    obstacle_points_.clear();
+    index_->NearbyClosestPoints(p, sf.obstacle_cutoff, &obstacle_points_);
+    SelectObstaclePoints(p, &obstacle_points_);
+    SocialForceInputs in;
+    in.self = agents_[i];
+    in.direction = direction;
+    in.desired_speed = s.desired_speed;
+    in.others = neighbours_;
+    in.robot = has_robot ? &*robot_ : nullptr;
+    in.obstacle_points = obstacle_points_;
+    const Vec2 a = SocialForce(in, sf);
+    new_velocities_[i] =
+        IntegrateVelocity(agents_[i].velocity, a, dt, sf.max_speed_factor * s.desired_speed);
+  }
+  // Set after computing all, so that the result does not depend on the update order.
+  for (std::size_t i = 0; i < status_.size(); ++i) {
+    world.SetPedestrianVelocity(status_[i].id, new_velocities_[i]);
+  }
+}
+
+}  // namespace retrace::sim

@@ -1,1 +1,314 @@
-// Placeholder: filled in by its owner.
+#include "sim/ray_caster.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/check.hpp"
+
+namespace retrace::sim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Ray origin + t * dir against segment a + s * d, s in [0, 1]. Cramer's rule on
+// t * dir - s * d = a - origin; the range checks compare numerators against the denominator's
+// sign so that only accepted hits pay for the division. Both the public function and the grid
+// walk call this, so they agree bit for bit.
+inline double SegmentHit(double ox, double oy, double ux, double uy, double ax, double ay,
+                         double dx, double dy) {
+  const double denom = ux * dy - uy * dx;
+  const double wx = ax - ox;
+  const double wy = ay - oy;
+  const double nt = wx * dy - wy * dx;
+  const double ns = wx * uy - wy * ux;
+  if (denom > 0.0) {
+    if (nt < 0.0 || ns < 0.0 || ns > denom) return kInf;
+  } else if (denom < 0.0) {
+    if (nt > 0.0 || ns > 0.0 || ns < denom) return kInf;
+  } else {
+    return kInf;  // parallel or collinear: a grazing ray
+  }
+  return nt / denom + 0.0;  // + 0.0 turns a -0.0 into +0.0
+}
+
+// Ray origin + t * dir (|dir|^2 = uu) against the boundary of a circle (centre c, radius^2 r2).
+// Roots of uu t^2 - 2 b t + cc = 0; the near root is written as cc / (b + sqrt(D)) to avoid
+// cancellation, the far one (origin inside) likewise by its sign of b.
+inline double CircleHit(double ox, double oy, double ux, double uy, double uu, double cx, double cy,
+                        double r2) {
+  const double wx = cx - ox;
+  const double wy = cy - oy;
+  const double b = wx * ux + wy * uy;
+  const double cc = wx * wx + wy * wy - r2;
+  if (cc > 0.0) {  // outside
+    if (b <= 0.0) return kInf;
+    const double disc = b * b - uu * cc;
+    if (disc < 0.0) return kInf;
+    return cc / (b + std::sqrt(disc));
+  }
+  if (cc == 0.0) return 0.0;  // on the boundary
+  const double root = std::sqrt(b * b - uu * cc);
+  return b >= 0.0 ? (b + root) / uu : cc / (b - root);
+}
+
+struct CellSpan {
+  int lo;
+  int hi;
+};
+
+}  // namespace
+
+double RaySegmentHit(const Vec2& origin, const Vec2& dir, const Segment& s) {
+  return SegmentHit(origin.x(), origin.y(), dir.x(), dir.y(), s.a.x(), s.a.y(), s.b.x() - s.a.x(),
+                    s.b.y() - s.a.y());
+}
+
+double RayCircleHit(const Vec2& origin, const Vec2& dir, const Circle& c) {
+  const double uu = dir.x() * dir.x() + dir.y() * dir.y();
+  return CircleHit(origin.x(), origin.y(), dir.x(), dir.y(), uu, c.center.x(), c.center.y(),
+                   c.radius * c.radius);
+}
+
+RayCaster::RayCaster(const StaticGeometry& geometry, double cell_size) {
+  RETRACE_CHECK(cell_size >= 0.0 && std::isfinite(cell_size));
+  const auto& segments = geometry.segments();
+  const auto& circles = geometry.circles();
+  const std::size_t n = segments.size() + circles.size();
+  if (n == 0) {
+    cells_.assign(1, CellRange{0, 0});
+    return;
+  }
+  RETRACE_CHECK(n < std::numeric_limits<std::uint32_t>::max() / 64);
+
+  const Aabb box = geometry.Bounds();
+  const double width = box.max.x() - box.min.x();
+  const double height = box.max.y() - box.min.y();
+  const double extent = std::max({width, height, 1e-3});
+  double h = cell_size;
+  if (h == 0.0) {
+    // About one primitive per cell: walls in rooms then share cells with their few
+    // neighbours, and open space costs one cheap step per cell.
+    const double area = std::max(width, extent * 1e-3) * std::max(height, extent * 1e-3);
+    h = std::sqrt(area / static_cast<double>(n));
+  }
+  // At most ~16M cells whatever the request.
+  h = std::max(h, extent / 4096.0);
+  cell_size_ = h;
+  inv_cell_size_ = 1.0 / h;
+  const double pad = 0.01 * h;
+  grid_min_ = box.min - Vec2(pad, pad);
+  nx_ = std::max(1, static_cast<int>(std::ceil((width + 2.0 * pad) * inv_cell_size_)));
+  ny_ = std::max(1, static_cast<int>(std::ceil((height + 2.0 * pad) * inv_cell_size_)));
+  grid_max_ = grid_min_ + Vec2(nx_ * h, ny_ * h);
+
+  // Primitives go into every cell their geometry comes within `margin` of. The margin dwarfs
+  // the rounding of the walk's cell boundaries (relative 1e-16 per step), so the walk never
+  // misses a primitive the exact ray meets; it only costs a rare extra test.
+  double magnitude = 0.0;
+  for (const Vec2& p : {box.min, box.max}) {
+    magnitude = std::max({magnitude, std::abs(p.x()), std::abs(p.y())});
+  }
+  const double margin = 1e-6 * h + 1e-9 * magnitude;
+
+  auto col = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x - grid_min_.x()) * inv_cell_size_)), 0,
+                      nx_ - 1);
+  };
+  auto row = [&](double y) {
+    return std::clamp(static_cast<int>(std::floor((y - grid_min_.y()) * inv_cell_size_)), 0,
+                      ny_ - 1);
+  };
+  auto row_band = [&](int iy, double* lo, double* hi) {
+    *lo = grid_min_.y() + iy * h - margin;
+    *hi = grid_min_.y() + (iy + 1) * h + margin;
+  };
+  // Calls fn(iy, CellSpan) for each row the segment crosses, with the columns it touches.
+  auto for_segment_cells = [&](const Segment& s, auto&& fn) {
+    const double ylo_all = std::min(s.a.y(), s.b.y()) - margin;
+    const double yhi_all = std::max(s.a.y(), s.b.y()) + margin;
+    const double dy = s.b.y() - s.a.y();
+    for (int iy = row(ylo_all); iy <= row(yhi_all); ++iy) {
+      double lo = 0.0, hi = 0.0;
+      row_band(iy, &lo, &hi);
+      double s0 = 0.0, s1 = 1.0;
+      if (dy != 0.0) {
+        const double sa = (lo - s.a.y()) / dy;
+        const double sb = (hi - s.a.y()) / dy;
+        s0 = std::max(0.0, std::min(sa, sb));
+        s1 = std::min(1.0, std::max(sa, sb));
+        if (s0 > s1) continue;
+      }
+      const double xa = s.a.x() + s0 * (s.b.x() - s.a.x());
+      const double xb = s.a.x() + s1 * (s.b.x() - s.a.x());
+      fn(iy, CellSpan{col(std::min(xa, xb) - margin), col(std::max(xa, xb) + margin)});
+    }
+  };
+  auto for_circle_cells = [&](const Circle& c, auto&& fn) {
+    const double r = c.radius + margin;
+    for (int iy = row(c.center.y() - r); iy <= row(c.center.y() + r); ++iy) {
+      double lo = 0.0, hi = 0.0;
+      row_band(iy, &lo, &hi);
+      const double gap = c.center.y() < lo   ? lo - c.center.y()
+                         : c.center.y() > hi ? c.center.y() - hi
+                                             : 0.0;
+      if (gap > r) continue;
+      const double half = std::sqrt(r * r - gap * gap);
+      fn(iy, CellSpan{col(c.center.x() - half), col(c.center.x() + half)});
+    }
+  };
+
+  // Two passes: count entries per cell, then fill (CSR layout, segments before circles).
+  const std::size_t cell_count = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  std::vector<std::uint32_t> seg_count(cell_count, 0), circle_count(cell_count, 0);
+  auto counter = [&](std::vector<std::uint32_t>& count) {
+    return [&](int iy, CellSpan span) {
+      for (int ix = span.lo; ix <= span.hi; ++ix) ++count[static_cast<std::size_t>(iy) * nx_ + ix];
+    };
+  };
+  for (const Segment& s : segments) for_segment_cells(s, counter(seg_count));
+  for (const Circle& c : circles) for_circle_cells(c, counter(circle_count));
+
+  cells_.resize(cell_count + 1);
+  std::vector<std::uint32_t> seg_fill(cell_count), circle_fill(cell_count);
+  std::uint64_t total = 0;
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    cells_[c].begin = static_cast<std::uint32_t>(total);
+    cells_[c].mid = static_cast<std::uint32_t>(total + seg_count[c]);
+    seg_fill[c] = cells_[c].begin;
+    circle_fill[c] = cells_[c].mid;
+    total += seg_count[c] + circle_count[c];
+    RETRACE_CHECK(total < std::numeric_limits<std::uint32_t>::max());
+  }
+  cells_[cell_count] =
+      CellRange{static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(total)};
+  items_.resize(total);
+  for (const Segment& s : segments) {
+    const Item item{s.a.x(), s.a.y(), s.b.x() - s.a.x(), s.b.y() - s.a.y()};
+    for_segment_cells(s, [&](int iy, CellSpan span) {
+      for (int ix = span.lo; ix <= span.hi; ++ix) {
+        items_[seg_fill[static_cast<std::size_t>(iy) * nx_ + ix]++] = item;
+      }
+    });
+  }
+  for (const Circle& c : circles) {
+    const Item item{c.center.x(), c.center.y(), c.radius, c.radius * c.radius};
+    for_circle_cells(c, [&](int iy, CellSpan span) {
+      for (int ix = span.lo; ix <= span.hi; ++ix) {
+        items_[circle_fill[static_cast<std::size_t>(iy) * nx_ + ix]++] = item;
+      }
+    });
+  }
+}
+
+double RayCaster::Cast(const Vec2& origin, const Vec2& dir, double max_t) const {
+  RETRACE_CHECK(std::isfinite(origin.x()) && std::isfinite(origin.y()));
+  RETRACE_CHECK(std::isfinite(dir.x()) && std::isfinite(dir.y()) &&
+                (dir.x() != 0.0 || dir.y() != 0.0));
+  return CastFrom(origin, dir, max_t);
+}
+
+void RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
+                        std::span<const double> max_t, std::span<double> out) const {
+  RETRACE_CHECK(dirs.size() == max_t.size() && dirs.size() == out.size());
+  RETRACE_CHECK(std::isfinite(origin.x()) && std::isfinite(origin.y()));
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const Vec2& dir = dirs[i];
+    RETRACE_CHECK(std::isfinite(dir.x()) && std::isfinite(dir.y()) &&
+                  (dir.x() != 0.0 || dir.y() != 0.0));
+    out[i] = CastFrom(origin, dir, max_t[i]);
+  }
+}
+
+double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) const {
+  if (!(max_t >= 0.0) || nx_ == 0) return kInf;
+  const double ox = origin.x(), oy = origin.y();
+  const double ux = dir.x(), uy = dir.y();
+
+  // Clip [0, max_t] to the grid's box (slab test).
+  double t0 = 0.0, t1 = max_t;
+  double inv_ux = 0.0, inv_uy = 0.0;
+  if (ux != 0.0) {
+    inv_ux = 1.0 / ux;
+    const double ta = (grid_min_.x() - ox) * inv_ux;
+    const double tb = (grid_max_.x() - ox) * inv_ux;
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  } else if (ox < grid_min_.x() || ox > grid_max_.x()) {
+    return kInf;
+  }
+  if (uy != 0.0) {
+    inv_uy = 1.0 / uy;
+    const double ta = (grid_min_.y() - oy) * inv_uy;
+    const double tb = (grid_max_.y() - oy) * inv_uy;
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  } else if (oy < grid_min_.y() || oy > grid_max_.y()) {
+    return kInf;
+  }
+  if (t0 > t1) return kInf;
+
+  // Amanatides-Woo walk from the entry cell.
+  const double h = cell_size_;
+  const double ex = ox + t0 * ux, ey = oy + t0 * uy;
+  int ix =
+      std::clamp(static_cast<int>(std::floor((ex - grid_min_.x()) * inv_cell_size_)), 0, nx_ - 1);
+  int iy =
+      std::clamp(static_cast<int>(std::floor((ey - grid_min_.y()) * inv_cell_size_)), 0, ny_ - 1);
+  int step_x = 0, step_y = 0;
+  double tx = kInf, ty = kInf, dtx = kInf, dty = kInf;
+  if (ux > 0.0) {
+    step_x = 1;
+    tx = (grid_min_.x() + (ix + 1) * h - ox) * inv_ux;
+    dtx = h * inv_ux;
+  } else if (ux < 0.0) {
+    step_x = -1;
+    tx = (grid_min_.x() + ix * h - ox) * inv_ux;
+    dtx = -h * inv_ux;
+  }
+  if (uy > 0.0) {
+    step_y = 1;
+    ty = (grid_min_.y() + (iy + 1) * h - oy) * inv_uy;
+    dty = h * inv_uy;
+  } else if (uy < 0.0) {
+    step_y = -1;
+    ty = (grid_min_.y() + iy * h - oy) * inv_uy;
+    dty = -h * inv_uy;
+  }
+
+  const double uu = ux * ux + uy * uy;
+  const CellRange* cells = cells_.data();
+  const Item* items = items_.data();
+  double best = kInf;
+  for (;;) {
+    const std::size_t c =
+        static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix);
+    const std::uint32_t mid = cells[c].mid;
+    const std::uint32_t end = cells[c + 1].begin;
+    for (std::uint32_t k = cells[c].begin; k < mid; ++k) {
+      const Item& s = items[k];
+      const double t = SegmentHit(ox, oy, ux, uy, s.p, s.q, s.u, s.v);
+      if (t < best) best = t;
+    }
+    for (std::uint32_t k = mid; k < end; ++k) {
+      const Item& s = items[k];
+      const double t = CircleHit(ox, oy, ux, uy, uu, s.p, s.q, s.v);
+      if (t < best) best = t;
+    }
+    // Every primitive the ray meets before leaving this cell is in this cell or an earlier one.
+    const double t_exit = std::min(tx, ty);
+    if (best <= t_exit || t_exit >= t1) break;
+    if (tx < ty) {
+      ix += step_x;
+      if (ix < 0 || ix >= nx_) break;
+      tx += dtx;
+    } else {
+      iy += step_y;
+      if (iy < 0 || iy >= ny_) break;
+      ty += dty;
+    }
+  }
+  return best <= max_t ? best : kInf;
+}
+
+}  // namespace retrace::sim

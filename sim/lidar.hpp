@@ -1,0 +1,123 @@
+#pragma once
+// The simulated planar LiDAR (DESIGN §4): exact closest hits over the static geometry and the
+// pedestrians, Gaussian range noise, dropouts and spurious short returns, REP-117 readings.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/config.hpp"
+#include "core/laser_scan.hpp"
+#include "core/pose2.hpp"
+#include "core/rng.hpp"
+#include "sim/ray_caster.hpp"
+#include "sim/static_geometry.hpp"
+
+namespace retrace::sim {
+
+/// Range noise and spurious readings. Defaults are those of a Hokuyo UTM-30LX: the datasheet's
+/// accuracy is +-30 mm up to 10 m and +-50 mm up to 30 m, which sigma = 0.01 m + 0.001 * range
+/// stays inside.
+struct LidarNoiseConfig {
+  double sigma0 = 0.01;               ///< m, standard deviation at range 0
+  double sigma1 = 0.001;              ///< m per m of range: sigma = sigma0 + sigma1 * range
+  double dropout_probability = 0.01;  ///< per beam: the beam reads +inf (no return)
+  /// Per beam: a spurious return (ground, clutter) uniform in [range_min, true range), or in
+  /// [range_min, range_max) if nothing is in range.
+  double short_probability = 0.002;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("sigma0", sigma0);
+    v("sigma1", sigma1);
+    v("dropout_probability", dropout_probability);
+    v("short_probability", short_probability);
+  }
+  /// Throws core::ConfigError naming the key (e.g. "sigma0").
+  void Validate() const;
+};
+
+/// Sensor geometry, rate and mounting. Beam i points at -fov/2 + i * fov / (beams - 1) in L
+/// (the fan is centred on L's x axis; with fov 360 the first and last beams coincide).
+struct LidarConfig {
+  double fov_deg = 270.0;
+  int beams = 1081;
+  double range_min = 0.05;  ///< m
+  double range_max = 30.0;  ///< m
+  double rate_hz = 20.0;
+  core::Pose2 mount;  ///< X_RL: the LiDAR frame L in the robot frame R
+  LidarNoiseConfig noise;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("fov_deg", fov_deg);
+    v("beams", beams);
+    v("range_min", range_min);
+    v("range_max", range_max);
+    v("rate_hz", rate_hz);
+    v("mount", mount);
+    v("noise", noise);
+  }
+  /// Throws core::ConfigError naming the key path (e.g. "beams", "noise.sigma0").
+  void Validate() const;
+};
+
+/// What produced a beam's reading.
+enum class BeamSource : std::uint8_t {
+  kNothing,     ///< no surface within range_max: reads +inf
+  kStatic,      ///< static geometry (a noisy range, or +-inf when out of the valid interval)
+  kPedestrian,  ///< a pedestrian (likewise)
+  kSpurious,    ///< a spurious short return
+  kDropout,     ///< the return was lost: reads +inf
+};
+
+/// Ground truth of one beam.
+struct BeamTruth {
+  BeamSource source = BeamSource::kNothing;
+  /// Id of the pedestrian the beam truly meets first (-1 if none), whatever the reading's
+  /// source: a dropout or spurious reading on a pedestrian beam keeps the id.
+  int pedestrian_id = -1;
+  /// Noise-free distance (m) from L to the first surface along the beam; +inf if none within
+  /// range_max.
+  double range = 0.0;
+};
+
+/// One scan and its per-beam ground truth (truth[i] belongs to scan.ranges[i]).
+struct LidarReading {
+  core::LaserScan scan;
+  std::vector<BeamTruth> truth;
+};
+
+/// A 2D LiDAR in a static world, seeing pedestrians given per scan.
+///
+/// Readings follow REP-117: a beam whose true range exceeds range_max, and a dropout, read
+/// +inf; a surface closer than range_min reads -inf ("too close"). Noise is added to the true
+/// range; a noisy value above range_max reads +inf (the sensor reports nothing beyond its
+/// maximum, never a clamped max), one below range_min reads -inf, so no reading is ever
+/// negative, zero or outside [range_min, range_max] while finite.
+class Lidar {
+ public:
+  /// Validates the config (throws core::ConfigError) and builds the ray caster over a copy of
+  /// the geometry (no reference kept).
+  Lidar(const LidarConfig& config, const StaticGeometry& geometry);
+
+  /// One scan from the robot at X_WR (W), the LiDAR at X_WR * mount. Pedestrians are circles
+  /// in W (finite centres, radius > 0, id >= 0: checked). stamp (s) is copied into the scan. All
+  /// randomness is drawn from rng, so equal inputs and rng state give bit-identical readings.
+  LidarReading Scan(const core::Pose2& X_WR, std::span<const DynamicCircle> pedestrians,
+                    double stamp, core::Rng& rng) const;
+
+  const LidarConfig& config() const { return config_; }
+  const RayCaster& ray_caster() const { return caster_; }
+  double angle_min() const { return angle_min_; }              ///< rad, in L
+  double angle_increment() const { return angle_increment_; }  ///< rad
+
+ private:
+  LidarConfig config_;
+  RayCaster caster_;
+  double angle_min_ = 0.0;
+  double angle_increment_ = 0.0;
+  std::vector<Vec2> beam_dirs_L_;  // unit beam directions in L
+};
+
+}  // namespace retrace::sim

@@ -1,0 +1,120 @@
+#pragma once
+// The crowd: spawns the pedestrian groups into the physics world and drives them every step
+// with the social-force model along waypoints from the walk planner. The velocity the model
+// asks for is set on each pedestrian's Box2D body, so contacts keep them out of walls, out of
+// each other and out of the robot. Deterministic: every random draw comes from the Rng given
+// at construction, split per pedestrian.
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/config.hpp"
+#include "core/rng.hpp"
+#include "sim/geometry_index.hpp"
+#include "sim/pedestrian_config.hpp"
+#include "sim/physics_world.hpp"
+#include "sim/social_force.hpp"
+#include "sim/static_geometry.hpp"
+#include "sim/walk_planner.hpp"
+
+namespace retrace::sim {
+
+/// Crowd-wide behaviour settings (the groups themselves come from the world file).
+struct CrowdConfig {
+  SocialForceConfig social_force;
+  WalkPlannerConfig planner;
+  double mass = 70.0;               ///< kg per pedestrian (an adult)
+  double waypoint_tolerance = 0.4;  ///< m: an intermediate waypoint closer than this is passed
+  double goal_tolerance = 0.5;      ///< m: a goal or loop waypoint closer than this is reached
+  double min_goal_distance = 2.0;   ///< m: wander goals are drawn at least this far away
+  /// m: each pedestrian of a loop group aims at its own random point within this distance of
+  /// every loop waypoint (so that they do not queue for one spot)
+  double loop_spread = 0.5;
+  double stuck_time = 3.0;          ///< s: window of the progress check
+  double stuck_progress = 0.3;      ///< m towards the current waypoint expected per window
+  double spawn_gap = 0.1;           ///< m of free space between spawned pedestrians
+  /// m between spawned pedestrians and keep-clear circles, and between wander goals and the
+  /// robot
+  double keep_clear_gap = 1.0;
+  int max_spawn_tries = 5000;       ///< random samples per pedestrian before giving up
+
+  template <class V>
+  void Reflect(V& v) {
+    v("social_force", social_force);
+    v("planner", planner);
+    v("mass", mass);
+    v("waypoint_tolerance", waypoint_tolerance);
+    v("goal_tolerance", goal_tolerance);
+    v("min_goal_distance", min_goal_distance);
+    v("loop_spread", loop_spread);
+    v("stuck_time", stuck_time);
+    v("stuck_progress", stuck_progress);
+    v("spawn_gap", spawn_gap);
+    v("keep_clear_gap", keep_clear_gap);
+    v("max_spawn_tries", max_spawn_tries);
+  }
+  /// Throws core::ConfigError naming the key (nested keys as "social_force.fov_deg").
+  void Validate() const;
+};
+
+/// What one pedestrian is doing and has done, for tests and diagnostics.
+struct PedestrianStatus {
+  int id = 0;                 ///< pedestrian id in the PhysicsWorld (DynamicCircle id)
+  int group = 0;              ///< index into the group list
+  double radius = 0.3;        ///< m
+  double desired_speed = 0.0; ///< m/s
+  Vec2 goal{0.0, 0.0};        ///< current goal (W, m): wander target or loop waypoint
+  std::vector<Vec2> path;     ///< remaining waypoints to the goal (W, m), goal last
+  int goals_reached = 0;      ///< wander goals or loop waypoints reached
+  int waypoints_passed = 0;   ///< intermediate waypoints passed
+  int replans = 0;            ///< pauses and re-plans after making no progress
+  int goals_abandoned = 0;    ///< goals given up after making no progress twice
+};
+
+class Pedestrians {
+ public:
+  /// Spawns every group's pedestrians at random free points of its region, clear of walls
+  /// (by radius + planner margin), of each other (by spawn_gap) and of the `keep_clear`
+  /// circles (the robot's start, by keep_clear_gap), and adds them to `world`.
+  /// `geometry` must outlive this object (the crowd keeps a proximity index over it).
+  /// Throws core::ConfigError on an invalid config or group, core::WorldError when a
+  /// pedestrian cannot be placed (region inside walls or too full) or a loop waypoint is
+  /// unreachable.
+  Pedestrians(const std::vector<PedestrianGroupConfig>& groups, const CrowdConfig& config,
+              const StaticGeometry& geometry, const core::Rng& rng,
+              const std::vector<Circle>& keep_clear, PhysicsWorld& world);
+  ~Pedestrians();
+  Pedestrians(Pedestrians&&) noexcept;
+  Pedestrians& operator=(Pedestrians&&) noexcept;
+
+  /// Advances goals and waypoints, detects lack of progress (re-plan, then a new goal), and
+  /// sets every pedestrian's velocity from the social force (reacting to the robot if the world
+  /// has one). Call once before every PhysicsWorld::Step().
+  void Update(PhysicsWorld& world);
+
+  int size() const { return static_cast<int>(status_.size()); }
+  const std::vector<PedestrianStatus>& status() const { return status_; }
+  const WalkPlanner& planner() const { return *planner_; }
+
+ private:
+  struct Walker;  // per-pedestrian state not worth publishing (rng, progress window)
+
+  void ChooseNextGoal(std::size_t i, const Vec2& position, double time);
+  void Replan(std::size_t i, const Vec2& position);
+
+  CrowdConfig config_;
+  std::vector<PedestrianGroupConfig> groups_;
+  std::unique_ptr<GeometryIndex> index_;
+  std::unique_ptr<WalkPlanner> planner_;
+  std::vector<PedestrianStatus> status_;
+  std::vector<Walker> walkers_;
+  std::optional<SocialAgent> robot_;  // as of the last Update
+  // Scratch buffers reused every step.
+  std::vector<SocialAgent> agents_;
+  std::vector<SocialAgent> neighbours_;
+  std::vector<Vec2> obstacle_points_;
+  std::vector<Vec2> new_velocities_;
+};
+
+}  // namespace retrace::sim

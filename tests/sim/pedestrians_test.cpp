@@ -1,0 +1,318 @@
+#include "sim/pedestrians.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/errors.hpp"
+#include "io/config_yaml.hpp"
+#include "sim/physics_world.hpp"
+#include "sim/robot.hpp"
+
+namespace retrace::sim {
+namespace {
+
+void AddBox(StaticGeometry& g, double x0, double y0, double x1, double y1) {
+  g.AddPolygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
+}
+
+// 24 m x 14 m: two rooms at the bottom, a 2 m corridor across the middle and a hall on top
+// with a pillar and a table; 1.2 m doors.
+StaticGeometry RoomsAndCorridor() {
+  StaticGeometry g;
+  AddBox(g, -0.2, -0.2, 24.2, 0.0);
+  AddBox(g, -0.2, 14.0, 24.2, 14.2);
+  AddBox(g, -0.2, 0.0, 0.0, 14.0);
+  AddBox(g, 24.0, 0.0, 24.2, 14.0);
+  // Between the bottom rooms and the corridor, doors at x in [4.4, 5.6] and [18.4, 19.6].
+  AddBox(g, 0.0, 5.8, 4.4, 6.0);
+  AddBox(g, 5.6, 5.8, 18.4, 6.0);
+  AddBox(g, 19.6, 5.8, 24.0, 6.0);
+  // Between the corridor and the hall, doors at x in [2.4, 3.6] and [20.4, 21.6].
+  AddBox(g, 0.0, 8.0, 2.4, 8.2);
+  AddBox(g, 3.6, 8.0, 20.4, 8.2);
+  AddBox(g, 21.6, 8.0, 24.0, 8.2);
+  AddBox(g, 11.9, 0.0, 12.1, 5.8);  // between the bottom rooms
+  g.AddCircle({{12.0, 11.0}, 0.5});
+  AddBox(g, 6.0, 10.0, 8.0, 11.5);
+  return g;
+}
+
+PedestrianGroupConfig Group(int count, Vec2 lo, Vec2 hi, PedestrianMode mode = PedestrianMode::kWander,
+                            std::vector<Vec2> waypoints = {}) {
+  PedestrianGroupConfig g;
+  g.count = count;
+  g.region_min = lo;
+  g.region_max = hi;
+  g.mode = mode;
+  g.waypoints = std::move(waypoints);
+  return g;
+}
+
+std::vector<PedestrianGroupConfig> RoomsAndCorridorGroups() {
+  return {Group(5, {0.0, 0.0}, {11.9, 5.8}),
+          Group(5, {12.1, 0.0}, {24.0, 5.8}),
+          Group(4, {0.0, 8.2}, {24.0, 14.0}),
+          Group(6, {1.0, 6.2}, {23.0, 7.8}, PedestrianMode::kLoop,
+                {{5.0, 3.0}, {3.0, 11.0}, {21.0, 11.0}, {19.0, 3.0}})};
+}
+
+std::uint64_t HashPositions(const PhysicsWorld& world) {
+  std::uint64_t h = core::HashBytes(nullptr, 0);
+  for (const DynamicCircle& c : world.PedestrianCircles()) {
+    const double xy[2] = {c.center.x(), c.center.y()};
+    h = core::HashBytes(xy, sizeof(xy), h);
+  }
+  return h;
+}
+
+TEST(Pedestrians, LongRunStaysOutOfWallsAndEachOtherAndKeepsReachingGoals) {
+  const StaticGeometry g = RoomsAndCorridor();
+  PhysicsWorld world(g);
+  const auto groups = RoomsAndCorridorGroups();
+  Pedestrians crowd(groups, CrowdConfig{}, g, core::Rng(2024), {}, world);
+  ASSERT_EQ(crowd.size(), 20);
+  const double r = 0.3;
+  double min_clearance = 1e9, min_pair = 1e9;
+  const int steps = static_cast<int>(600.0 / world.time_step());  // 10 simulated minutes
+  for (int step = 0; step < steps; ++step) {
+    crowd.Update(world);
+    world.Step();
+    const auto circles = world.PedestrianCircles();
+    for (std::size_t i = 0; i < circles.size(); ++i) {
+      const double c = g.Clearance(circles[i].center);
+      min_clearance = std::min(min_clearance, c);
+      ASSERT_GE(c, r - 0.01) << "pedestrian " << i << " at step " << step;
+      for (std::size_t j = i + 1; j < circles.size(); ++j) {
+        const double d = (circles[i].center - circles[j].center).norm();
+        min_pair = std::min(min_pair, d);
+        ASSERT_GE(d, 2.0 * r - 0.02) << "pedestrians " << i << ", " << j << " at step " << step;
+      }
+    }
+  }
+  int min_goals = 1 << 30, total_goals = 0, replans = 0, abandoned = 0;
+  for (const auto& s : crowd.status()) {
+    min_goals = std::min(min_goals, s.goals_reached);
+    total_goals += s.goals_reached;
+    replans += s.replans;
+    abandoned += s.goals_abandoned;
+    EXPECT_GE(s.goals_reached, 5) << "pedestrian " << s.id << " (group " << s.group << ")";
+  }
+  RecordProperty("min_clearance", std::to_string(min_clearance));
+  RecordProperty("min_pair_distance", std::to_string(min_pair));
+  RecordProperty("min_goals", std::to_string(min_goals));
+  RecordProperty("total_goals", std::to_string(total_goals));
+  RecordProperty("replans", std::to_string(replans));
+  RecordProperty("abandoned", std::to_string(abandoned));
+  EXPECT_LE(abandoned, total_goals / 10);  // giving up is the exception
+}
+
+TEST(Pedestrians, KeepAwayFromARobotStandingInTheCorridor) {
+  StaticGeometry g;
+  AddBox(g, -0.2, -1.7, 30.2, -1.5);
+  AddBox(g, -0.2, 1.5, 30.2, 1.7);
+  AddBox(g, -0.2, -1.5, 0.0, 1.5);
+  AddBox(g, 30.0, -1.5, 30.2, 1.5);
+  PhysicsWorld world(g);
+  const RobotConfig rc;
+  Robot robot(rc, g, core::Pose2(15.0, 0.0, 0.0), world);
+  const std::vector<PedestrianGroupConfig> groups = {
+      Group(6, {0.5, -1.2}, {10.0, 1.2}, PedestrianMode::kLoop, {{2.0, 0.0}, {28.0, 0.0}}),
+      Group(4, {20.0, -1.2}, {29.5, 1.2}, PedestrianMode::kLoop, {{28.0, 0.5}, {2.0, -0.5}}),
+      Group(4, {0.5, -1.2}, {29.5, 1.2})};
+  Pedestrians crowd(groups, CrowdConfig{}, g, core::Rng(5), {{{15.0, 0.0}, rc.radius}}, world);
+  double min_gap = 1e9;
+  int robot_contacts = 0;
+  for (int step = 0; step < 18000; ++step) {  // 3 minutes
+    robot.SetCommand({0.0, 0.0});
+    robot.Actuate(world);
+    crowd.Update(world);
+    world.Step();
+    for (const auto& e : world.TakeCollisions()) robot_contacts += e.kind == CollisionKind::kPedestrian;
+    for (const auto& c : world.PedestrianCircles()) {
+      min_gap = std::min(min_gap, (c.center - robot.Pose(world).translation()).norm() - c.radius - rc.radius);
+    }
+  }
+  RecordProperty("min_gap_to_robot", std::to_string(min_gap));
+  EXPECT_EQ(robot_contacts, 0);
+  EXPECT_GT(min_gap, 0.1);
+  EXPECT_LT(core::Distance(robot.Pose(world), core::Pose2(15.0, 0.0, 0.0)), 0.01);
+  for (const auto& s : crowd.status()) {
+    if (s.group < 2) {
+      EXPECT_GE(s.goals_reached, 3) << "pedestrian " << s.id << " did not get past the robot";
+    }
+  }
+}
+
+TEST(Pedestrians, SameSeedGivesIdenticalPositions) {
+  const StaticGeometry g = RoomsAndCorridor();
+  auto run = [&](std::uint64_t seed) {
+    PhysicsWorld world(g);
+    Robot robot(RobotConfig{}, g, core::Pose2(12.0, 7.0, 0.0), world);
+    Pedestrians crowd(RoomsAndCorridorGroups(), CrowdConfig{}, g, core::Rng(seed),
+                      {{{12.0, 7.0}, 0.3}}, world);
+    for (int step = 0; step < 6000; ++step) {  // 60 s
+      robot.SetCommand({0.3, 0.05});
+      robot.Actuate(world);
+      crowd.Update(world);
+      world.Step();
+    }
+    return HashPositions(world);
+  };
+  const std::uint64_t a = run(11);
+  EXPECT_EQ(a, run(11));
+  EXPECT_NE(a, run(12));
+}
+
+TEST(Pedestrians, SpawnKeepsClearOfTheRobotWallsAndEachOther) {
+  const StaticGeometry g = RoomsAndCorridor();
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    PhysicsWorld world(g);
+    const Circle robot{{5.0, 3.0}, 0.3};
+    const CrowdConfig config;
+    Pedestrians crowd({Group(15, {0.0, 0.0}, {11.9, 5.8})}, config, g, core::Rng(seed), {robot}, world);
+    const auto circles = world.PedestrianCircles();
+    ASSERT_EQ(circles.size(), 15u);
+    for (std::size_t i = 0; i < circles.size(); ++i) {
+      EXPECT_GE(g.Clearance(circles[i].center), 0.3 + config.planner.margin - 0.0708);
+      EXPECT_GE((circles[i].center - robot.center).norm(), 0.6 + config.keep_clear_gap);
+      EXPECT_LT(circles[i].center.x(), 11.9);
+      for (std::size_t j = i + 1; j < circles.size(); ++j) {
+        EXPECT_GE((circles[i].center - circles[j].center).norm(), 0.6 + config.spawn_gap);
+      }
+    }
+  }
+}
+
+TEST(Pedestrians, DesiredSpeedsFollowTheConfiguredDistribution) {
+  StaticGeometry g;
+  AddBox(g, -1.0, -1.0, 0.0, 0.0);
+  PhysicsWorld world(g);
+  Pedestrians crowd({Group(400, {1.0, 1.0}, {61.0, 61.0})}, CrowdConfig{}, g, core::Rng(3), {}, world);
+  double sum = 0.0, sum2 = 0.0;
+  for (const auto& s : crowd.status()) {
+    EXPECT_GE(s.desired_speed, 1.34 - 2 * 0.26 - 1e-12);
+    EXPECT_LE(s.desired_speed, 1.34 + 2 * 0.26 + 1e-12);
+    sum += s.desired_speed;
+    sum2 += s.desired_speed * s.desired_speed;
+  }
+  const double n = static_cast<double>(crowd.size());
+  const double mean = sum / n, stddev = std::sqrt(sum2 / n - mean * mean);
+  EXPECT_NEAR(mean, 1.34, 0.03);
+  EXPECT_NEAR(stddev, 0.24, 0.03);  // slightly below 0.26 because of the clipping
+}
+
+TEST(Pedestrians, RegionInsideAWallIsAClearWorldError) {
+  StaticGeometry g;
+  AddBox(g, 0.0, 0.0, 10.0, 10.0);
+  PhysicsWorld world(g);
+  try {
+    Pedestrians crowd({Group(1, {2.0, 2.0}, {8.0, 8.0})}, CrowdConfig{}, g, core::Rng(1), {}, world);
+    FAIL() << "expected WorldError";
+  } catch (const core::WorldError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("pedestrian group 0"), std::string::npos) << what;
+    EXPECT_NE(what.find("no free space"), std::string::npos) << what;
+  }
+}
+
+TEST(Pedestrians, OvercrowdedRegionIsAClearWorldError) {
+  StaticGeometry g;
+  AddBox(g, -0.2, -0.2, 2.2, 0.0);
+  AddBox(g, -0.2, 2.0, 2.2, 2.2);
+  AddBox(g, -0.2, 0.0, 0.0, 2.0);
+  AddBox(g, 2.0, 0.0, 2.2, 2.0);
+  PhysicsWorld world(g);
+  CrowdConfig config;
+  config.max_spawn_tries = 500;
+  try {
+    Pedestrians crowd({Group(20, {0.0, 0.0}, {2.0, 2.0})}, config, g, core::Rng(1), {}, world);
+    FAIL() << "expected WorldError";
+  } catch (const core::WorldError& e) {
+    EXPECT_NE(std::string(e.what()).find("too full"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Pedestrians, UnreachableLoopWaypointIsAWorldError) {
+  StaticGeometry g = RoomsAndCorridor();
+  AddBox(g, 14.0, 1.0, 17.0, 1.2);  // a closed box in the bottom-right room
+  AddBox(g, 14.0, 4.0, 17.0, 4.2);
+  AddBox(g, 14.0, 1.2, 14.2, 4.0);
+  AddBox(g, 16.8, 1.2, 17.0, 4.0);
+  PhysicsWorld world(g);
+  EXPECT_THROW(Pedestrians({Group(2, {1.0, 6.2}, {23.0, 7.8}, PedestrianMode::kLoop,
+                                  {{5.0, 7.0}, {15.5, 2.6}})},
+                           CrowdConfig{}, g, core::Rng(1), {}, world),
+               core::WorldError);
+  // Outside the building: walkable, but not from inside.
+  EXPECT_THROW(Pedestrians({Group(2, {1.0, 6.2}, {23.0, 7.8}, PedestrianMode::kLoop,
+                                  {{5.0, 7.0}, {-3.0, 7.0}})},
+                           CrowdConfig{}, g, core::Rng(1), {}, world),
+               core::WorldError);
+}
+
+TEST(PedestrianGroupConfig, ValidateNamesTheKey) {
+  auto key_of = [](const PedestrianGroupConfig& c) -> std::string {
+    try {
+      c.Validate();
+    } catch (const core::ConfigError& e) {
+      return e.key_path();
+    }
+    return "";
+  };
+  PedestrianGroupConfig c;
+  EXPECT_EQ(key_of(c), "");
+  c.count = -1;
+  EXPECT_EQ(key_of(c), "count");
+  c = {};
+  c.region_max = {0.5, 2.0};
+  c.region_min = {0.5, 0.0};
+  EXPECT_EQ(key_of(c), "region_max");
+  c = {};
+  c.mode = PedestrianMode::kLoop;
+  c.waypoints = {{0.0, 0.0}};
+  EXPECT_EQ(key_of(c), "waypoints");
+  c.waypoints.push_back({1.0, 1.0});
+  EXPECT_EQ(key_of(c), "");
+  c = {};
+  c.speed_mean = 0.0;
+  EXPECT_EQ(key_of(c), "speed_mean");
+  c = {};
+  c.speed_std = -0.1;
+  EXPECT_EQ(key_of(c), "speed_std");
+  c = {};
+  c.radius = 0.0;
+  EXPECT_EQ(key_of(c), "radius");
+}
+
+TEST(PedestrianGroupConfig, YamlLoopWithOneWaypointIsRejectedWithTheKey) {
+  const YAML::Node node = YAML::Load("count: 3\nmode: loop\nwaypoints: [[1, 2]]\n");
+  try {
+    io::ReadConfig<PedestrianGroupConfig>(node, "world.yaml");
+    FAIL() << "expected ConfigError";
+  } catch (const core::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("waypoints"), std::string::npos) << e.what();
+  }
+  const auto ok = io::ReadConfig<PedestrianGroupConfig>(
+      YAML::Load("count: 3\nmode: loop\nwaypoints: [[1, 2], [3, 4]]\nspeed_mean: 1.1\n"), "w.yaml");
+  EXPECT_EQ(ok.mode, PedestrianMode::kLoop);
+  EXPECT_EQ(ok.waypoints.size(), 2u);
+}
+
+TEST(Pedestrians, CrowdConfigValidateNamesNestedKeys) {
+  CrowdConfig c;
+  EXPECT_NO_THROW(c.Validate());
+  c.social_force.fov_deg = 0.0;
+  try {
+    c.Validate();
+    FAIL();
+  } catch (const core::ConfigError& e) {
+    EXPECT_EQ(e.key_path(), "social_force.fov_deg");
+  }
+}
+
+}  // namespace
+}  // namespace retrace::sim
