@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "retrace: error: " << e.what() << "\n";
+    std::cerr << "retrace: error: " << e.what() << " (see retrace --help)\n";
     return kExitBadInput;
   }
 

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "core/errors.hpp"
 #include "io/config_yaml.hpp"
 #include "io/route_file.hpp"
 #include "sim/robot.hpp"
@@ -28,7 +29,11 @@ std::string RunWorldCommand(const WorldCommandOptions& options) {
   for (const auto& c : g.circles()) scene.discs.emplace_back(c.center, c.radius);
   if (!options.route_file.empty()) {
     scene.route = io::ReadRouteFile(options.route_file);
-    sim::CheckRouteIsDrivable(g, scene.route, sim::RobotConfig{}.radius);
+    try {
+      sim::CheckRouteIsDrivable(g, scene.route, sim::RobotConfig{}.radius);
+    } catch (const core::WorldError& e) {
+      throw core::WorldError(options.route_file.string() + ": " + e.what());
+    }
   }
 
   viz::SketchOptions sketch;

@@ -18,6 +18,12 @@ inline double WrapAngle(double a) {
 /// Signed smallest difference a - b (rad), in [-pi, pi).
 inline double AngleDiff(double a, double b) { return WrapAngle(a - b); }
 
+/// sin(h) / h, accurate near 0 (the chord factor of an arc).
+inline double Sinc(double h) {
+  if (std::abs(h) < 1e-4) return 1.0 - h * h / 6.0;
+  return std::sin(h) / h;
+}
+
 inline constexpr double DegToRad(double deg) { return deg * kPi / 180.0; }
 inline constexpr double RadToDeg(double rad) { return rad * 180.0 / kPi; }
 

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <concepts>
 #include <optional>
@@ -75,24 +76,31 @@ concept Reflectable = std::is_class_v<T> && requires(T& t, NullVisitor& v) { t.R
 template <class T>
 concept Validatable = requires(const T& t) { t.Validate(); };
 
+/// Shortest decimal text that reads back as the same double ("0.1", "-1", "2.5e-05").
+inline std::string FormatNumber(double v) {
+  char buf[32];
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), v);
+  return ec == std::errc() ? std::string(buf, ptr) : std::string("?");
+}
+
 // Validation helpers for Validate() implementations; each throws ConfigError(key, ...).
 inline void RequireFinite(std::string_view key, double v) {
   if (!std::isfinite(v)) throw ConfigError(std::string(key), "must be a finite number");
 }
 inline void RequirePositive(std::string_view key, double v) {
   if (!(v > 0.0) || !std::isfinite(v)) {
-    throw ConfigError(std::string(key), "must be > 0, got " + std::to_string(v));
+    throw ConfigError(std::string(key), "must be > 0, got " + FormatNumber(v));
   }
 }
 inline void RequireNonNegative(std::string_view key, double v) {
   if (!(v >= 0.0) || !std::isfinite(v)) {
-    throw ConfigError(std::string(key), "must be >= 0, got " + std::to_string(v));
+    throw ConfigError(std::string(key), "must be >= 0, got " + FormatNumber(v));
   }
 }
 inline void RequireInRange(std::string_view key, double v, double lo, double hi) {
   if (!(v >= lo && v <= hi)) {
-    throw ConfigError(std::string(key), "must be in [" + std::to_string(lo) + ", " +
-                                            std::to_string(hi) + "], got " + std::to_string(v));
+    throw ConfigError(std::string(key), "must be in [" + FormatNumber(lo) + ", " + FormatNumber(hi) +
+                                            "], got " + FormatNumber(v));
   }
 }
 

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/pose2.hpp"
+
 namespace retrace::core {
 
 /// A planar body velocity command or measurement in the robot frame R: forward speed v (m/s)
@@ -16,5 +18,10 @@ struct OdometryDelta {
   double distance = 0.0;
   double dtheta = 0.0;
 };
+
+/// Applies one odometry increment to a pose (paper eq. 2), integrated exactly along the arc:
+/// the chord distance·sin(dθ/2)/(dθ/2) along the midpoint heading θ + dθ/2. The simulated
+/// odometry and the navigation stack both integrate with this, so they agree to the bit.
+Pose2 IntegrateOdometry(const Pose2& X_OR, const OdometryDelta& delta);
 
 }  // namespace retrace::core

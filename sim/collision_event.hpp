@@ -15,10 +15,12 @@ enum class CollisionKind { kStatic, kPedestrian };
 
 /// One contact that began between the robot and static geometry or a pedestrian.
 struct CollisionEvent {
-  double time = 0.0;                   ///< simulation time (s) of the step that reported it
+  /// Simulation time (s) at the start of the step in which Box2D reported the contact; the
+  /// bodies began touching within one time step of it.
+  double time = 0.0;
   CollisionKind kind = CollisionKind::kStatic;
-  int pedestrian_id = -1;              ///< DynamicCircle id of the pedestrian; -1 for static
-  core::Vec2 point_W{0.0, 0.0};        ///< contact point in the world frame W (m)
+  int pedestrian_id = -1;        ///< DynamicCircle id of the pedestrian; -1 for static
+  core::Vec2 point_W{0.0, 0.0};  ///< contact point in the world frame W (m)
 };
 
 }  // namespace retrace::sim

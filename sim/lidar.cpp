@@ -46,7 +46,7 @@ void LidarNoiseConfig::Validate() const {
 
 void LidarConfig::Validate() const {
   if (!(fov_deg > 0.0 && fov_deg <= 360.0)) {
-    throw core::ConfigError("fov_deg", "must be in (0, 360], got " + std::to_string(fov_deg));
+    throw core::ConfigError("fov_deg", "must be in (0, 360], got " + core::FormatNumber(fov_deg));
   }
   if (beams < 2 || beams > kMaxBeams) {
     throw core::ConfigError(
@@ -56,8 +56,8 @@ void LidarConfig::Validate() const {
   core::RequirePositive("range_max", range_max);
   if (!(range_max > range_min)) {
     throw core::ConfigError("range_max", "must be greater than range_min (" +
-                                             std::to_string(range_min) + "), got " +
-                                             std::to_string(range_max));
+                                             core::FormatNumber(range_min) + "), got " +
+                                             core::FormatNumber(range_max));
   }
   core::RequirePositive("rate_hz", rate_hz);
   if (!std::isfinite(mount.x) || !std::isfinite(mount.y) || !std::isfinite(mount.theta)) {

@@ -6,15 +6,6 @@
 #include "core/check.hpp"
 
 namespace retrace::sim {
-namespace {
-
-// sin(h) / h, accurate near 0.
-double Sinc(double h) {
-  if (std::abs(h) < 1e-4) return 1.0 - h * h / 6.0;
-  return std::sin(h) / h;
-}
-
-}  // namespace
 
 void OdometryConfig::Validate() const {
   core::RequireInRange("rate_hz", rate_hz, 1e-3, 1000.0);
@@ -40,7 +31,7 @@ core::OdometryDelta Odometry::Update(const core::Pose2& X_WR_prev, const core::P
   const double dtheta = X_RprevRnow.theta;  // in [-pi, pi): steps are short
   const double half = 0.5 * dtheta;
   const double chord = X_RprevRnow.x * std::cos(half) + X_RprevRnow.y * std::sin(half);
-  const double arc = chord / Sinc(half);  // Sinc(half) >= 2/pi for |half| <= pi/2
+  const double arc = chord / core::Sinc(half);  // core::Sinc(half) >= 2/pi for |half| <= pi/2
 
   // True wheel travel, then the encoders' view of it through the miscalibrated radii.
   const double b = config_.wheel_base;
@@ -64,16 +55,9 @@ core::OdometryDelta Odometry::Update(const core::Pose2& X_WR_prev, const core::P
   delta.distance = trans + std::sqrt(var_trans) * n_trans;
   delta.dtheta = rot + std::sqrt(var_rot) * n_rot;
   RETRACE_CHECK(std::isfinite(delta.distance) && std::isfinite(delta.dtheta));
-  X_OR_ = IntegrateOdometry(X_OR_, delta);
+  X_OR_ = core::IntegrateOdometry(X_OR_, delta);
   return delta;
 }
 
-core::Pose2 IntegrateOdometry(const core::Pose2& X_OR, const core::OdometryDelta& delta) {
-  const double half = 0.5 * delta.dtheta;
-  const double chord = delta.distance * Sinc(half);
-  const double heading = X_OR.theta + half;
-  return {X_OR.x + chord * std::cos(heading), X_OR.y + chord * std::sin(heading),
-          X_OR.theta + delta.dtheta};
-}
 
 }  // namespace retrace::sim

@@ -86,7 +86,7 @@ class Odometry {
   /// in W), derives the true wheel travel (the motion projected on the heading: a diff-drive
   /// cannot slip sideways, so lateral slip, e.g. from collisions, is not measured), applies the
   /// systematic errors and the noise, integrates the result into X_OR (exactly, as a circular
-  /// arc: see IntegrateOdometry) and returns the measured increment (m, rad).
+  /// arc: see core::IntegrateOdometry) and returns the measured increment (m, rad).
   core::OdometryDelta Update(const core::Pose2& X_WR_prev, const core::Pose2& X_WR_now);
 
   /// The odometry pose X_OR (m, rad).
@@ -101,10 +101,5 @@ class Odometry {
   core::Rng rng_;
   core::Pose2 X_OR_;
 };
-
-/// Integrates one increment as a circular arc of length delta.distance (m) turning by
-/// delta.dtheta (rad): the chord, of length distance·sin(dθ/2)/(dθ/2), is taken along the
-/// midpoint heading θ + dθ/2 (eq. 2 with the midpoint heading, exact for arcs).
-core::Pose2 IntegrateOdometry(const core::Pose2& X_OR, const core::OdometryDelta& delta);
 
 }  // namespace retrace::sim

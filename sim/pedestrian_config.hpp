@@ -1,5 +1,6 @@
 #pragma once
-// Configuration of pedestrian groups (world files) and of the social-force model.
+// Configuration of pedestrian groups, as listed in world files. Crowd-wide behaviour (social
+// force, walk planner) is CrowdConfig in sim/pedestrians.hpp.
 
 #include <cstdint>
 #include <string_view>

@@ -20,8 +20,10 @@ constexpr int kGoalAttempts = 20;
 constexpr double kIdleTime = 2.0;
 // How far (m) a loop waypoint may be moved to reach free space.
 constexpr double kWaypointSnap = 1.5;
-// Longest pause (s) of a pedestrian that got stuck, to let others through.
-constexpr double kYieldTime = 2.0;
+// Longest pause (s) of a pedestrian that got stuck, to let others through, and how far (m) it
+// steps aside meanwhile.
+constexpr double kYieldTime = 3.0;
+constexpr double kYieldDistance = 0.8;
 // How often (s) each pedestrian checks that it can still walk straight to its next waypoint
 // (after being pushed aside); if not, it re-plans.
 constexpr double kPathCheckPeriod = 0.25;
@@ -66,8 +68,10 @@ struct Pedestrians::Walker {
   PedestrianMode mode = PedestrianMode::kWander;
   std::vector<Vec2> loop;  // loop waypoints, snapped to free space
   std::size_t loop_index = 0;
-  double idle_until = -1.0;   // standing with nowhere to go until then (s)
-  double yield_until = -1.0;  // standing aside after getting stuck until then (s)
+  double idle_until = -1.0;    // standing with nowhere to go until then (s)
+  double yield_until = -1.0;   // stepping aside after getting stuck until then (s)
+  Vec2 yield_point{0.0, 0.0};  // where to stand meanwhile (W)
+  bool line_clear = false;     // the straight line to the next waypoint was clear at last check
   // Progress window: distance to the current waypoint and waypoints passed at its start.
   double window_start = 0.0;
   double window_distance = 0.0;
@@ -80,11 +84,11 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
                          const CrowdConfig& config, const StaticGeometry& geometry,
                          const core::Rng& rng, const std::vector<Circle>& keep_clear,
                          PhysicsWorld& world)
-    : config_(config), groups_(groups) {
+    : config_(config) {
   config_.Validate();
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
+  for (std::size_t g = 0; g < groups.size(); ++g) {
     try {
-      groups_[g].Validate();
+      groups[g].Validate();
     } catch (const core::ConfigError& e) {
       throw core::ConfigError("pedestrians[" + std::to_string(g) + "]." + e.key_path(), e.detail());
     }
@@ -95,10 +99,11 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
   std::vector<Aabb> regions;
   std::vector<Vec2> points;
   double max_radius = 0.0;
-  for (const auto& g : groups_) {
+  for (const auto& g : groups) {
     if (g.count == 0) continue;
     regions.push_back({g.region_min, g.region_max});
-    if (g.mode == PedestrianMode::kLoop) points.insert(points.end(), g.waypoints.begin(), g.waypoints.end());
+    if (g.mode == PedestrianMode::kLoop)
+      points.insert(points.end(), g.waypoints.begin(), g.waypoints.end());
     max_radius = std::max(max_radius, g.radius);
   }
   if (regions.empty()) return;  // nobody to spawn: no planner either
@@ -108,8 +113,8 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
 
   std::vector<Circle> placed;  // spawned pedestrians so far
   std::uint64_t person = 0;
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
-    const PedestrianGroupConfig& group = groups_[g];
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const PedestrianGroupConfig& group = groups[g];
     if (group.count == 0) continue;
     const Aabb region{group.region_min, group.region_max};
 
@@ -118,8 +123,8 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
     if (group.mode == PedestrianMode::kLoop) {
       for (std::size_t k = 0; k < group.waypoints.size(); ++k) {
         const Vec2& w = group.waypoints[k];
-        std::optional<Vec2> snapped = planner_->IsFree(w) ? std::optional<Vec2>(w)
-                                                          : planner_->NearestFree(w, kWaypointSnap);
+        std::optional<Vec2> snapped =
+            planner_->IsFree(w) ? std::optional<Vec2>(w) : planner_->NearestFree(w, kWaypointSnap);
         if (!snapped) {
           throw core::WorldError(Format(
               "pedestrian group %zu: loop waypoint %zu (%.2f, %.2f) is inside or too close to "
@@ -146,7 +151,8 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
       // Desired speed N(mean, std) clipped to two standard deviations and to a walking minimum.
       const double lo = std::max(0.1 * group.speed_mean, group.speed_mean - 2.0 * group.speed_std);
       const double hi = group.speed_mean + 2.0 * group.speed_std;
-      status.desired_speed = std::clamp(walker.rng.Normal(group.speed_mean, group.speed_std), lo, hi);
+      status.desired_speed =
+          std::clamp(walker.rng.Normal(group.speed_mean, group.speed_std), lo, hi);
 
       std::optional<Vec2> spawn;
       for (int t = 0; t < config_.max_spawn_tries && !spawn; ++t) {
@@ -165,7 +171,8 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
       }
       if (!spawn) {
         core::Rng probe = walker.rng.Split("probe");
-        const bool any_free = planner_->SampleFreePoint(region, probe, 10000, loop_component).has_value();
+        const bool any_free =
+            planner_->SampleFreePoint(region, probe, 10000, loop_component).has_value();
         throw core::WorldError(Format(
             "pedestrian group %zu: cannot place pedestrian %d of %d in region [%.2f, %.2f]-[%.2f, "
             "%.2f] after %d tries: %s",
@@ -188,7 +195,8 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
           const double angle = walker.rng.Uniform(0.0, 2.0 * core::kPi);
           const double dist = config_.loop_spread * std::sqrt(walker.rng.Uniform());
           const Vec2 q = w + dist * Vec2(std::cos(angle), std::sin(angle));
-          if (planner_->Component(q) == loop_component && planner_->ClearPath(w, q, group.radius)) w = q;
+          if (planner_->Component(q) == loop_component && planner_->ClearPath(w, q, group.radius))
+            w = q;
         }
       }
       status_.push_back(std::move(status));
@@ -205,9 +213,10 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
       ChooseNextGoal(i, p, world.time());
     }
     // Stagger the progress windows so that two pedestrians blocking each other (in a door,
-    // say) do not give up at the same instant: one re-plans or turns away, the other passes.
+    // say) do not react at the same instant: one steps aside, the other passes.
     walkers_[i].window_start = world.time() - walkers_[i].rng.Uniform(0.0, config_.stuck_time);
-    walkers_[i].window_distance = status_[i].path.empty() ? 0.0 : (status_[i].path.front() - p).norm();
+    walkers_[i].window_distance =
+        status_[i].path.empty() ? 0.0 : (status_[i].path.front() - p).norm();
   }
 }
 
@@ -234,8 +243,8 @@ void Pedestrians::ChooseNextGoal(std::size_t i, const Vec2& position, double tim
   for (int attempt = 0; attempt < kGoalAttempts && !goal && component >= 0; ++attempt) {
     const auto p = planner_->SampleFreePoint(w.region, w.rng, kGoalSamples, component);
     if (!p) break;
-    if (robot_ && (*p - robot_->position).norm() <
-                      robot_->radius + s.radius + config_.keep_clear_gap) {
+    if (robot_ &&
+        (*p - robot_->position).norm() < robot_->radius + s.radius + config_.keep_clear_gap) {
       continue;  // the planner does not know the robot: do not aim at it
     }
     if ((*p - position).norm() >= config_.min_goal_distance) {
@@ -257,12 +266,26 @@ void Pedestrians::ChooseNextGoal(std::size_t i, const Vec2& position, double tim
   Replan(i, position);
 }
 
+Vec2 Pedestrians::YieldPoint(const Vec2& position, const Vec2& waypoint, double radius) const {
+  Vec2 ahead = waypoint - position;
+  if (ahead.norm() < 1e-6) return position;
+  ahead.normalize();
+  const Vec2 right(ahead.y(), -ahead.x());
+  // Keep right, like most people do; else left; else back off.
+  for (const Vec2& dir : {right, Vec2(-right), Vec2(-ahead)}) {
+    const Vec2 q = position + kYieldDistance * dir;
+    if (planner_->IsFree(q) && planner_->ClearPath(position, q, radius)) return q;
+  }
+  return position;
+}
+
 void Pedestrians::Replan(std::size_t i, const Vec2& position) {
   PedestrianStatus& s = status_[i];
   auto path = planner_->Plan(position, s.goal);
   // No walkable path (pushed off the grid, goal cut off): head straight for the goal; the
   // progress check will pick another goal if that does not work either.
   s.path = path ? std::move(*path) : std::vector<Vec2>{s.goal};
+  walkers_[i].line_clear = planner_->ClearPath(position, s.path.front(), s.radius);
 }
 
 void Pedestrians::Update(PhysicsWorld& world) {
@@ -278,8 +301,8 @@ void Pedestrians::Update(PhysicsWorld& world) {
   }
   const bool has_robot = world.has_robot();
   if (has_robot) {
-    robot_ = SocialAgent{world.RobotPose().translation(), world.RobotVelocityW(),
-                         world.robot_radius()};
+    robot_ =
+        SocialAgent{world.RobotPose().translation(), world.RobotVelocityW(), world.robot_radius()};
   }
   const auto check_period =
       static_cast<std::uint64_t>(std::max(1.0, std::round(kPathCheckPeriod / dt)));
@@ -310,13 +333,16 @@ void Pedestrians::Update(PhysicsWorld& world) {
         }
         ++s.waypoints_passed;
         s.path.erase(s.path.begin());
+        w.line_clear = planner_->ClearPath(p, s.path.front(), s.radius);
       }
       // Pushed off the straight line to the next waypoint (behind a corner, say): re-plan.
       // Staggered over pedestrians to spread the cost.
-      if (!s.path.empty() && (world.step_count() + i) % check_period == 0 &&
-          !planner_->ClearPath(p, s.path.front(), s.radius)) {
-        Replan(i, p);
-        w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+      if (!s.path.empty() && (world.step_count() + i) % check_period == 0) {
+        w.line_clear = planner_->ClearPath(p, s.path.front(), s.radius);
+        if (!w.line_clear) {
+          Replan(i, p);
+          w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+        }
       }
       // Progress check: within stuck_time, pass a waypoint or get stuck_progress closer to it.
       if (t - w.window_start >= config_.stuck_time) {
@@ -327,12 +353,12 @@ void Pedestrians::Update(PhysicsWorld& world) {
         if (progressed || s.path.empty()) {
           w.stuck_count = 0;
         } else if (++w.stuck_count == 1) {
-          // Blocked (typically two people meeting in a door): stand for a moment, which lets
-          // the other one through or push us aside, then re-plan. The next check comes a full
-          // window after the pause.
+          // Blocked (typically two people meeting head-on in a door): step aside for a moment
+          // to let the other one through, then re-plan. The next check comes a full window
+          // after the pause.
           ++s.replans;
-          Replan(i, p);
           w.yield_until = t + w.rng.Uniform(0.5 * kYieldTime, kYieldTime);
+          w.yield_point = YieldPoint(p, s.path.empty() ? p : s.path.front(), s.radius);
         } else {
           ++s.goals_abandoned;
           w.stuck_count = 0;
@@ -345,17 +371,25 @@ void Pedestrians::Update(PhysicsWorld& world) {
       }
     }
 
+    if (w.yield_until >= 0.0 && t >= w.yield_until) {
+      w.yield_until = -1.0;
+      Replan(i, p);
+      w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+    }
+
     // Social force.
     Vec2 direction = Vec2::Zero();
-    if (w.idle_until < 0.0 && t >= w.yield_until && !s.path.empty()) {
-      const Vec2 to = s.path.front() - p;
+    const bool yielding = w.yield_until >= 0.0;
+    if (w.idle_until < 0.0 && (yielding || !s.path.empty())) {
+      const Vec2 to = (yielding ? w.yield_point : s.path.front()) - p;
       const double n = to.norm();
-      if (n > 1e-6) direction = to / n;
+      if (n > (yielding ? 0.1 : 1e-6)) direction = to / n;
     }
     neighbours_.clear();
     const double range2 = sf.interaction_range * sf.interaction_range;
     for (std::size_t j = 0; j < agents_.size(); ++j) {
-      if (j != i && (agents_[j].position - p).squaredNorm() < range2) neighbours_.push_back(agents_[j]);
+      if (j != i && (agents_[j].position - p).squaredNorm() < range2)
+        neighbours_.push_back(agents_[j]);
     }
     obstacle_points_.clear();
     index_->NearbyClosestPoints(p, sf.obstacle_cutoff, &obstacle_points_);
@@ -367,6 +401,7 @@ void Pedestrians::Update(PhysicsWorld& world) {
     in.others = neighbours_;
     in.robot = has_robot ? &*robot_ : nullptr;
     in.obstacle_points = obstacle_points_;
+    in.walking_line_clear = w.line_clear && !yielding;
     const Vec2 a = SocialForce(in, sf);
     new_velocities_[i] =
         IntegrateVelocity(agents_[i].velocity, a, dt, sf.max_speed_factor * s.desired_speed);

@@ -31,13 +31,13 @@ struct CrowdConfig {
   /// m: each pedestrian of a loop group aims at its own random point within this distance of
   /// every loop waypoint (so that they do not queue for one spot)
   double loop_spread = 0.5;
-  double stuck_time = 3.0;          ///< s: window of the progress check
-  double stuck_progress = 0.3;      ///< m towards the current waypoint expected per window
-  double spawn_gap = 0.1;           ///< m of free space between spawned pedestrians
+  double stuck_time = 3.0;      ///< s: window of the progress check
+  double stuck_progress = 0.3;  ///< m towards the current waypoint expected per window
+  double spawn_gap = 0.1;       ///< m of free space between spawned pedestrians
   /// m between spawned pedestrians and keep-clear circles, and between wander goals and the
   /// robot
   double keep_clear_gap = 1.0;
-  int max_spawn_tries = 5000;       ///< random samples per pedestrian before giving up
+  int max_spawn_tries = 5000;  ///< random samples per pedestrian before giving up
 
   template <class V>
   void Reflect(V& v) {
@@ -60,16 +60,16 @@ struct CrowdConfig {
 
 /// What one pedestrian is doing and has done, for tests and diagnostics.
 struct PedestrianStatus {
-  int id = 0;                 ///< pedestrian id in the PhysicsWorld (DynamicCircle id)
-  int group = 0;              ///< index into the group list
-  double radius = 0.3;        ///< m
-  double desired_speed = 0.0; ///< m/s
-  Vec2 goal{0.0, 0.0};        ///< current goal (W, m): wander target or loop waypoint
-  std::vector<Vec2> path;     ///< remaining waypoints to the goal (W, m), goal last
-  int goals_reached = 0;      ///< wander goals or loop waypoints reached
-  int waypoints_passed = 0;   ///< intermediate waypoints passed
-  int replans = 0;            ///< pauses and re-plans after making no progress
-  int goals_abandoned = 0;    ///< goals given up after making no progress twice
+  int id = 0;                  ///< pedestrian id in the PhysicsWorld (DynamicCircle id)
+  int group = 0;               ///< index into the group list
+  double radius = 0.3;         ///< m
+  double desired_speed = 0.0;  ///< m/s
+  Vec2 goal{0.0, 0.0};         ///< current goal (W, m): wander target or loop waypoint
+  std::vector<Vec2> path;      ///< remaining waypoints to the goal (W, m), goal last
+  int goals_reached = 0;       ///< wander goals or loop waypoints reached
+  int waypoints_passed = 0;    ///< intermediate waypoints passed
+  int replans = 0;             ///< steps aside and re-plans after making no progress
+  int goals_abandoned = 0;     ///< goals given up after making no progress twice
 };
 
 class Pedestrians {
@@ -88,23 +88,25 @@ class Pedestrians {
   Pedestrians(Pedestrians&&) noexcept;
   Pedestrians& operator=(Pedestrians&&) noexcept;
 
-  /// Advances goals and waypoints, detects lack of progress (re-plan, then a new goal), and
-  /// sets every pedestrian's velocity from the social force (reacting to the robot if the world
-  /// has one). Call once before every PhysicsWorld::Step().
+  /// Advances goals and waypoints, re-plans when pushed off the straight line to the next
+  /// waypoint, handles lack of progress (first step aside for a moment and re-plan, then give
+  /// the goal up), and sets every pedestrian's velocity from the social force (reacting to the
+  /// robot if the world has one). Call once before every PhysicsWorld::Step().
   void Update(PhysicsWorld& world);
 
   int size() const { return static_cast<int>(status_.size()); }
   const std::vector<PedestrianStatus>& status() const { return status_; }
-  const WalkPlanner& planner() const { return *planner_; }
+  /// The walk planner shared by the crowd; nullptr when there are no pedestrians.
+  const WalkPlanner* planner() const { return planner_.get(); }
 
  private:
   struct Walker;  // per-pedestrian state not worth publishing (rng, progress window)
 
   void ChooseNextGoal(std::size_t i, const Vec2& position, double time);
   void Replan(std::size_t i, const Vec2& position);
+  Vec2 YieldPoint(const Vec2& position, const Vec2& waypoint, double radius) const;
 
   CrowdConfig config_;
-  std::vector<PedestrianGroupConfig> groups_;
   std::unique_ptr<GeometryIndex> index_;
   std::unique_ptr<WalkPlanner> planner_;
   std::vector<PedestrianStatus> status_;

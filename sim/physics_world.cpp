@@ -56,7 +56,8 @@ class RobotContactListener final : public b2ContactListener {
       e.point_W = FromB2(sum) / static_cast<double>(n);
     } else {
       // Not reachable for a touching contact; fall back to the robot's centre.
-      const b2Body* robot = (a == kRobotTag ? contact->GetFixtureA() : contact->GetFixtureB())->GetBody();
+      const b2Body* robot =
+          (a == kRobotTag ? contact->GetFixtureA() : contact->GetFixtureB())->GetBody();
       e.point_W = FromB2(robot->GetPosition());
     }
     events.push_back(e);
@@ -70,7 +71,7 @@ class RobotContactListener final : public b2ContactListener {
 
 void PhysicsConfig::Validate() const {
   if (!(time_step > 0.0 && time_step <= 0.1)) {
-    throw core::ConfigError("time_step", "must be in (0, 0.1] s, got " + std::to_string(time_step));
+    throw core::ConfigError("time_step", "must be in (0, 0.1] s, got " + core::FormatNumber(time_step));
   }
   if (velocity_iterations < 1 || velocity_iterations > 100) {
     throw core::ConfigError("velocity_iterations",
@@ -214,7 +215,8 @@ void PhysicsWorld::SetRobotVelocity(const core::Twist& twist_R) {
   RETRACE_CHECK(has_robot());
   RETRACE_CHECK(std::isfinite(twist_R.v) && std::isfinite(twist_R.omega));
   const double theta = static_cast<double>(impl_->robot->GetAngle());
-  impl_->robot->SetLinearVelocity(ToB2(core::Vec2(twist_R.v * std::cos(theta), twist_R.v * std::sin(theta))));
+  impl_->robot->SetLinearVelocity(
+      ToB2(core::Vec2(twist_R.v * std::cos(theta), twist_R.v * std::sin(theta))));
   impl_->robot->SetAngularVelocity(static_cast<float>(twist_R.omega));
 }
 

@@ -3,7 +3,9 @@
 // two-sided edges and circles, the robot and the pedestrians as dynamic circles, advanced with
 // a fixed time step. Contacts that begin between the robot and anything else are recorded as
 // CollisionEvents. Bodies are driven kinematically through their velocities; Box2D resolves
-// contacts, so nothing passes through walls or through each other.
+// contacts, so nothing passes through walls or through each other. Static shapes carry Box2D's
+// 1 cm skin (b2_polygonRadius), so bodies rest about 1 cm outside the geometry; moving bodies
+// may overlap each other by a centimetre or two for a step (Box2D's contact tolerance).
 
 #include <cstdint>
 #include <memory>
@@ -55,8 +57,9 @@ class PhysicsWorld {
   void Step();
 
   // --- Robot -------------------------------------------------------------------------------
-  /// Adds the robot as a dynamic circle (radius m, mass kg) at X_WR, at rest. At most one robot;
-  /// checks that radius and mass are positive (internal invariants).
+  /// Adds the robot as a dynamic circle (radius m, mass kg) at X_WR, at rest, with continuous
+  /// collision against pedestrians as well as static geometry. At most one robot; radius and
+  /// mass must be positive (internal invariants; Robot validates its config first).
   void AddRobot(const core::Pose2& X_WR, double radius, double mass);
   bool has_robot() const;
   double robot_radius() const;

@@ -12,7 +12,6 @@ namespace retrace::sim {
 
 void RobotConfig::Validate() const {
   core::RequirePositive("radius", radius);
-  core::RequirePositive("wheel_base", wheel_base);
   core::RequirePositive("max_speed", max_speed);
   core::RequireNonNegative("max_reverse_speed", max_reverse_speed);
   core::RequirePositive("max_yaw_rate", max_yaw_rate);

@@ -16,7 +16,6 @@ namespace retrace::sim {
 /// (Pioneer/Kobuki class): 0.6 m diameter, walking speed at most, gentle accelerations.
 struct RobotConfig {
   double radius = 0.3;             ///< m, circular footprint
-  double wheel_base = 0.5;         ///< m, distance between the drive wheels (odometry model)
   double max_speed = 1.0;          ///< m/s forward
   double max_reverse_speed = 0.2;  ///< m/s backwards (magnitude); teach-and-repeat rarely reverses
   double max_yaw_rate = 1.5;       ///< rad/s
@@ -27,7 +26,6 @@ struct RobotConfig {
   template <class V>
   void Reflect(V& v) {
     v("radius", radius);
-    v("wheel_base", wheel_base);
     v("max_speed", max_speed);
     v("max_reverse_speed", max_reverse_speed);
     v("max_yaw_rate", max_yaw_rate);
@@ -35,7 +33,7 @@ struct RobotConfig {
     v("max_yaw_accel", max_yaw_accel);
     v("mass", mass);
   }
-  /// Throws core::ConfigError naming the key: radius, wheel_base, max_speed, max_yaw_rate,
+  /// Throws core::ConfigError naming the key: radius, max_speed, max_yaw_rate,
   /// max_accel, max_yaw_accel and mass must be > 0, max_reverse_speed >= 0.
   void Validate() const;
 };

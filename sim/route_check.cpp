@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/config.hpp"
 #include "core/errors.hpp"
 #include "sim/geometry_index.hpp"
 
@@ -26,7 +27,7 @@ void CheckRouteIsDrivable(const StaticGeometry& geometry, const std::vector<Vec2
         msg << "the route is not drivable: at (" << p.x() << ", " << p.y() << "), on route segment "
             << i << " from point " << i << " to " << i + 1 << ", "
             << (clearance <= 0.0 ? "it runs inside an obstacle"
-                                 : "it passes " + std::to_string(clearance).substr(0, 5) +
+                                 : "it passes " + core::FormatNumber(std::round(clearance * 1000) / 1000) +
                                        " m from an obstacle")
             << " (the robot needs " << robot_radius << " m)";
         throw core::WorldError(msg.str());

@@ -10,9 +10,9 @@ std::uint64_t PeriodInSteps(const char* key, double rate_hz, double time_step) {
   const double steps = 1.0 / (rate_hz * time_step);
   const double rounded = std::round(steps);
   if (rounded < 1.0 || std::abs(steps - rounded) > 1e-6 * rounded) {
-    throw core::ConfigError(key, "the period 1/" + std::to_string(rate_hz) +
+    throw core::ConfigError(key, "the period 1/" + core::FormatNumber(rate_hz) +
                                      " s must be an integer multiple of physics.time_step " +
-                                     std::to_string(time_step) + " s");
+                                     core::FormatNumber(time_step) + " s");
   }
   return static_cast<std::uint64_t>(rounded);
 }
@@ -21,11 +21,6 @@ void SimConfig::Validate() const {
   physics.Validate();
   PeriodInSteps("lidar.rate_hz", lidar.rate_hz, physics.time_step);
   PeriodInSteps("odometry.rate_hz", odometry.rate_hz, physics.time_step);
-  if (std::abs(odometry.wheel_base - robot.wheel_base) > 1e-12) {
-    throw core::ConfigError("odometry.wheel_base",
-                            "must equal robot.wheel_base (" + std::to_string(robot.wheel_base) +
-                                " m): the encoders measure the robot's own wheels");
-  }
 }
 
 Simulator::Simulator(const World& world, const SimConfig& config, const core::Pose2& X_WR_start,

@@ -28,12 +28,12 @@ void SocialForceConfig::Validate() const {
   core::RequirePositive("obstacle_range", obstacle_range);
   core::RequireNonNegative("step_time", step_time);
   if (!(fov_deg > 0.0 && fov_deg <= 360.0)) {
-    throw core::ConfigError("fov_deg", "must be in (0, 360], got " + std::to_string(fov_deg));
+    throw core::ConfigError("fov_deg", "must be in (0, 360], got " + core::FormatNumber(fov_deg));
   }
   core::RequireInRange("out_of_view_weight", out_of_view_weight, 0.0, 1.0);
   if (!(max_speed_factor >= 1.0) || !std::isfinite(max_speed_factor)) {
     throw core::ConfigError("max_speed_factor",
-                            "must be >= 1, got " + std::to_string(max_speed_factor));
+                            "must be >= 1, got " + core::FormatNumber(max_speed_factor));
   }
   core::RequirePositive("max_acceleration", max_acceleration);
   core::RequirePositive("interaction_range", interaction_range);
@@ -80,7 +80,8 @@ Vec2 ObstacleRepulsion(const Vec2& position, const Vec2& closest_point,
   return magnitude * (d / dist);
 }
 
-double FieldOfViewWeight(const Vec2& direction, const Vec2& force, const SocialForceConfig& config) {
+double FieldOfViewWeight(const Vec2& direction, const Vec2& force,
+                         const SocialForceConfig& config) {
   const double f_norm = force.norm();
   const double e_norm = direction.norm();
   if (f_norm <= 0.0 || e_norm <= 0.0) return 1.0;
@@ -101,8 +102,10 @@ void SelectObstaclePoints(const Vec2& position, std::vector<Vec2>* points) {
     for (std::size_t k = 0; k < kept && keep; ++k) {
       const Vec2 dk = pts[k] - position;
       const double nk = dk.norm();
-      if ((pts[k] - pts[i]).squaredNorm() < 1e-18) keep = false;  // shared vertex
-      else if (n > 0.0 && nk > 0.0 && d.dot(dk) >= kCosSameObstacle * n * nk) keep = false;
+      if ((pts[k] - pts[i]).squaredNorm() < 1e-18)
+        keep = false;  // shared vertex
+      else if (n > 0.0 && nk > 0.0 && d.dot(dk) >= kCosSameObstacle * n * nk)
+        keep = false;
     }
     if (keep) pts[kept++] = pts[i];
   }
@@ -112,23 +115,32 @@ void SelectObstaclePoints(const Vec2& position, std::vector<Vec2>* points) {
 Vec2 SocialForce(const SocialForceInputs& in, const SocialForceConfig& config) {
   Vec2 total = GoalForce(in.self.velocity, in.direction, in.desired_speed, config);
   for (const SocialAgent& other : in.others) {
-    const Vec2 f = AgentRepulsion(in.self, other, config.pedestrian_strength,
-                                  config.pedestrian_range, config);
+    const Vec2 f =
+        AgentRepulsion(in.self, other, config.pedestrian_strength, config.pedestrian_range, config);
     total += FieldOfViewWeight(in.direction, f, config) * f;
   }
   if (in.robot != nullptr) {
-    const Vec2 f = AgentRepulsion(in.self, *in.robot, config.robot_strength, config.robot_range,
-                                  config);
+    const Vec2 f =
+        AgentRepulsion(in.self, *in.robot, config.robot_strength, config.robot_range, config);
     total += FieldOfViewWeight(in.direction, f, config) * f;
   }
-  // Walls act at full strength whatever the walking direction: people do not back into walls.
-  for (const Vec2& q : in.obstacle_points) total += ObstacleRepulsion(in.self.position, q, config);
+  // Walls act whatever the walking direction (no field-of-view weight): people do not back
+  // into walls either.
+  Vec2 obstacles = Vec2::Zero();
+  for (const Vec2& q : in.obstacle_points)
+    obstacles += ObstacleRepulsion(in.self.position, q, config);
+  if (in.walking_line_clear) {
+    const double braking = obstacles.dot(in.direction);
+    if (braking < 0.0) obstacles -= braking * in.direction;
+  }
+  total += obstacles;
   const double n = total.norm();
   if (n > config.max_acceleration) total *= config.max_acceleration / n;
   return total;
 }
 
-Vec2 IntegrateVelocity(const Vec2& velocity, const Vec2& acceleration, double dt, double max_speed) {
+Vec2 IntegrateVelocity(const Vec2& velocity, const Vec2& acceleration, double dt,
+                       double max_speed) {
   Vec2 v = velocity + acceleration * dt;
   const double n = v.norm();
   if (n > max_speed) v *= max_speed / n;

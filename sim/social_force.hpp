@@ -10,8 +10,10 @@
 // Deviations from the 1995 paper: the ellipse is stretched along the *relative* velocity
 // (Johansson, Helbing & Shukla 2007, "elliptical specification II"), so that people anticipate
 // a collision course with a standing robot too; the potential is evaluated on the gap between
-// the bodies' surfaces (b minus the sum of radii) rather than between point pedestrians; and
-// the total acceleration is capped.
+// the bodies' surfaces (b minus the sum of radii) rather than between point pedestrians; when
+// the straight line to the waypoint is known to be clear, obstacles steer but do not brake
+// (with U0 = 10 m²/s², R = 0.2 m the two jambs of a 1 m door push back harder than the goal
+// pulls, and people would stop in front of every door); and the total acceleration is capped.
 
 #include <span>
 #include <vector>
@@ -110,9 +112,12 @@ struct SocialForceInputs {
   SocialAgent self;
   Vec2 direction{1.0, 0.0};  ///< unit vector towards the current waypoint (zero: stand)
   double desired_speed = 1.34;
-  std::span<const SocialAgent> others;  ///< other pedestrians (not self)
-  const SocialAgent* robot = nullptr;   ///< the robot, if any
+  std::span<const SocialAgent> others;    ///< other pedestrians (not self)
+  const SocialAgent* robot = nullptr;     ///< the robot, if any
   std::span<const Vec2> obstacle_points;  ///< obstacle points, e.g. from SelectObstaclePoints
+  /// The straight line to the waypoint is clear of static geometry (walk planner): obstacle
+  /// repulsion then loses its component against `direction`.
+  bool walking_line_clear = false;
 };
 
 /// Total acceleration (m/s²) on a pedestrian, capped at config.max_acceleration.

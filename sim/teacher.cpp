@@ -34,8 +34,8 @@ void TeacherConfig::Validate() const {
   core::RequirePositive("speed", speed);
   core::RequirePositive("min_turn_speed", min_turn_speed);
   if (min_turn_speed > speed) {
-    throw core::ConfigError("min_turn_speed", "must be <= speed (" + std::to_string(speed) +
-                                                  "), got " + std::to_string(min_turn_speed));
+    throw core::ConfigError("min_turn_speed", "must be <= speed (" + core::FormatNumber(speed) +
+                                                  "), got " + core::FormatNumber(min_turn_speed));
   }
   core::RequirePositive("lookahead", lookahead);
   core::RequireNonNegative("turn_lookahead", turn_lookahead);
@@ -44,7 +44,7 @@ void TeacherConfig::Validate() const {
   core::RequireNonNegative("wobble_amplitude", wobble_amplitude);
   if (wobble_amplitude * kWobbleBound > lookahead) {
     throw core::ConfigError("wobble_amplitude",
-                            "must be <= lookahead / 3, got " + std::to_string(wobble_amplitude));
+                            "must be <= lookahead / 3, got " + core::FormatNumber(wobble_amplitude));
   }
   core::RequirePositive("wobble_time_constant", wobble_time_constant);
   core::RequirePositive("goal_tolerance", goal_tolerance);

@@ -23,8 +23,8 @@ struct Neighbour {
   double cost;
 };
 // Orthogonal moves first: diagonal moves test their two orthogonal cells (no corner cutting).
-constexpr Neighbour kNeighbours[8] = {{1, 0, 1.0},     {-1, 0, 1.0},     {0, 1, 1.0},
-                                      {0, -1, 1.0},    {1, 1, kSqrt2},   {-1, 1, kSqrt2},
+constexpr Neighbour kNeighbours[8] = {{1, 0, 1.0},     {-1, 0, 1.0},    {0, 1, 1.0},
+                                      {0, -1, 1.0},    {1, 1, kSqrt2},  {-1, 1, kSqrt2},
                                       {1, -1, kSqrt2}, {-1, -1, kSqrt2}};
 
 }  // namespace
@@ -48,10 +48,11 @@ WalkPlanner::WalkPlanner(const GeometryIndex& index, const Aabb& area, double pe
   const double cells_y = std::ceil(extent.y() / cell_);
   if (cells_x * cells_y > static_cast<double>(kMaxCells)) {
     char buf[200];
-    std::snprintf(buf, sizeof(buf),
-                  "pedestrian planning area %.0f m x %.0f m needs %.0f cells of %.3f m (limit %lld); "
-                  "use smaller pedestrian regions or a larger cell_size",
-                  extent.x(), extent.y(), cells_x * cells_y, cell_, static_cast<long long>(kMaxCells));
+    std::snprintf(
+        buf, sizeof(buf),
+        "pedestrian planning area %.0f m x %.0f m needs %.0f cells of %.3f m (limit %lld); "
+        "use smaller pedestrian regions or a larger cell_size",
+        extent.x(), extent.y(), cells_x * cells_y, cell_, static_cast<long long>(kMaxCells));
     throw core::WorldError(buf);
   }
   nx_ = std::max(1, static_cast<int>(cells_x));

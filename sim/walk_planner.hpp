@@ -94,7 +94,7 @@ class WalkPlanner {
   int ny_ = 0;
   std::vector<std::uint8_t> free_;
   std::vector<float> clearance_;  // centre clearance (m), capped at inflation_; 0 inside solids
-  std::vector<int> component_;  // -1 for blocked cells
+  std::vector<int> component_;    // -1 for blocked cells
   // A* scratch, reused between calls; a cell's entries are valid when its stamp matches.
   mutable std::vector<double> g_;
   mutable std::vector<int> parent_;

@@ -90,7 +90,7 @@ StaticGeometry BuildGeometry(const WorldConfig& config, const std::filesystem::p
     const std::vector<Segment> edges = MergedBoundaryEdges(mask);
     if (edges.empty()) {
       throw core::WorldError(file.string() + ": the map has no occupied cells (threshold " +
-                             std::to_string(m.occupied_threshold) + ")");
+                             core::FormatNumber(m.occupied_threshold) + ")");
     }
     geometry.AddEdges(edges, std::move(mask));
   }

@@ -21,7 +21,7 @@ using core::Pose2;
 
 // One exact unicycle step: a circular arc of length v·dt turning by omega·dt.
 Pose2 ArcStep(const Pose2& X_WR, double v, double omega, double dt) {
-  return IntegrateOdometry(X_WR, {v * dt, omega * dt});
+  return core::IntegrateOdometry(X_WR, {v * dt, omega * dt});
 }
 
 struct RunResult {

@@ -41,7 +41,8 @@ StaticGeometry RoomsAndCorridor() {
   return g;
 }
 
-PedestrianGroupConfig Group(int count, Vec2 lo, Vec2 hi, PedestrianMode mode = PedestrianMode::kWander,
+PedestrianGroupConfig Group(int count, Vec2 lo, Vec2 hi,
+                            PedestrianMode mode = PedestrianMode::kWander,
                             std::vector<Vec2> waypoints = {}) {
   PedestrianGroupConfig g;
   g.count = count;
@@ -53,8 +54,7 @@ PedestrianGroupConfig Group(int count, Vec2 lo, Vec2 hi, PedestrianMode mode = P
 }
 
 std::vector<PedestrianGroupConfig> RoomsAndCorridorGroups() {
-  return {Group(5, {0.0, 0.0}, {11.9, 5.8}),
-          Group(5, {12.1, 0.0}, {24.0, 5.8}),
+  return {Group(5, {0.0, 0.0}, {11.9, 5.8}), Group(5, {12.1, 0.0}, {24.0, 5.8}),
           Group(4, {0.0, 8.2}, {24.0, 14.0}),
           Group(6, {1.0, 6.2}, {23.0, 7.8}, PedestrianMode::kLoop,
                 {{5.0, 3.0}, {3.0, 11.0}, {21.0, 11.0}, {19.0, 3.0}})};
@@ -71,46 +71,61 @@ std::uint64_t HashPositions(const PhysicsWorld& world) {
 
 TEST(Pedestrians, LongRunStaysOutOfWallsAndEachOtherAndKeepsReachingGoals) {
   const StaticGeometry g = RoomsAndCorridor();
-  PhysicsWorld world(g);
-  const auto groups = RoomsAndCorridorGroups();
-  Pedestrians crowd(groups, CrowdConfig{}, g, core::Rng(2024), {}, world);
-  ASSERT_EQ(crowd.size(), 20);
   const double r = 0.3;
-  double min_clearance = 1e9, min_pair = 1e9;
-  const int steps = static_cast<int>(600.0 / world.time_step());  // 10 simulated minutes
-  for (int step = 0; step < steps; ++step) {
-    crowd.Update(world);
-    world.Step();
-    const auto circles = world.PedestrianCircles();
-    for (std::size_t i = 0; i < circles.size(); ++i) {
-      const double c = g.Clearance(circles[i].center);
-      min_clearance = std::min(min_clearance, c);
-      ASSERT_GE(c, r - 0.01) << "pedestrian " << i << " at step " << step;
-      for (std::size_t j = i + 1; j < circles.size(); ++j) {
-        const double d = (circles[i].center - circles[j].center).norm();
-        min_pair = std::min(min_pair, d);
-        ASSERT_GE(d, 2.0 * r - 0.02) << "pedestrians " << i << ", " << j << " at step " << step;
+  for (const std::uint64_t seed : {1u, 2u, 2024u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    PhysicsWorld world(g);
+    Pedestrians crowd(RoomsAndCorridorGroups(), CrowdConfig{}, g, core::Rng(seed), {}, world);
+    ASSERT_EQ(crowd.size(), 20);
+    double min_clearance = 1e9, min_pair = 1e9;
+    const int steps = static_cast<int>(600.0 / world.time_step());  // 10 simulated minutes
+    for (int step = 0; step < steps; ++step) {
+      crowd.Update(world);
+      world.Step();
+      const auto circles = world.PedestrianCircles();
+      for (std::size_t i = 0; i < circles.size(); ++i) {
+        const double c = g.Clearance(circles[i].center);
+        min_clearance = std::min(min_clearance, c);
+        ASSERT_GE(c, r - 0.01) << "pedestrian " << i << " at step " << step;
+        for (std::size_t j = i + 1; j < circles.size(); ++j) {
+          const double d = (circles[i].center - circles[j].center).norm();
+          min_pair = std::min(min_pair, d);
+          // Box2D lets touching bodies overlap by up to 3 * b2_linearSlop (1.5 cm), and has no
+          // continuous collision between two moving bodies: people meeting at speed overlap
+          // by their closing distance in one step (~2 cm) until the contact pushes them apart.
+          ASSERT_GE(d, 2.0 * r - 0.025) << "pedestrians " << i << ", " << j << " at step " << step;
+        }
       }
     }
+    int min_goals = 1 << 30, total_goals = 0, replans = 0, abandoned = 0;
+    for (const auto& s : crowd.status()) {
+      min_goals = std::min(min_goals, s.goals_reached);
+      total_goals += s.goals_reached;
+      replans += s.replans;
+      abandoned += s.goals_abandoned;
+      EXPECT_GE(s.goals_reached, 5) << "pedestrian " << s.id << " (group " << s.group << ")";
+    }
+    const std::string suffix = "_seed" + std::to_string(seed);
+    RecordProperty("min_clearance" + suffix, std::to_string(min_clearance));
+    RecordProperty("min_pair_distance" + suffix, std::to_string(min_pair));
+    RecordProperty("min_goals" + suffix, std::to_string(min_goals));
+    RecordProperty("total_goals" + suffix, std::to_string(total_goals));
+    RecordProperty("replans" + suffix, std::to_string(replans));
+    RecordProperty("abandoned" + suffix, std::to_string(abandoned));
+    EXPECT_LE(abandoned, total_goals / 20);  // giving up is the exception
   }
-  int min_goals = 1 << 30, total_goals = 0, replans = 0, abandoned = 0;
-  for (const auto& s : crowd.status()) {
-    min_goals = std::min(min_goals, s.goals_reached);
-    total_goals += s.goals_reached;
-    replans += s.replans;
-    abandoned += s.goals_abandoned;
-    EXPECT_GE(s.goals_reached, 5) << "pedestrian " << s.id << " (group " << s.group << ")";
-  }
-  RecordProperty("min_clearance", std::to_string(min_clearance));
-  RecordProperty("min_pair_distance", std::to_string(min_pair));
-  RecordProperty("min_goals", std::to_string(min_goals));
-  RecordProperty("total_goals", std::to_string(total_goals));
-  RecordProperty("replans", std::to_string(replans));
-  RecordProperty("abandoned", std::to_string(abandoned));
-  EXPECT_LE(abandoned, total_goals / 10);  // giving up is the exception
 }
 
-TEST(Pedestrians, KeepAwayFromARobotStandingInTheCorridor) {
+struct CorridorResult {
+  double min_gap = 1e9;  // m between robot and pedestrian surfaces
+  int robot_contacts = 0;
+  double robot_displacement = 0.0;
+  int min_goals_past_robot = 1 << 30;
+};
+
+// A 30 m x 3 m corridor with the robot standing in the middle; 10 pedestrians walk its length
+// both ways and 4 wander, for 3 minutes.
+CorridorResult RunCorridorWithStandingRobot(const CrowdConfig& config) {
   StaticGeometry g;
   AddBox(g, -0.2, -1.7, 30.2, -1.5);
   AddBox(g, -0.2, 1.5, 30.2, 1.7);
@@ -118,32 +133,77 @@ TEST(Pedestrians, KeepAwayFromARobotStandingInTheCorridor) {
   AddBox(g, 30.0, -1.5, 30.2, 1.5);
   PhysicsWorld world(g);
   const RobotConfig rc;
-  Robot robot(rc, g, core::Pose2(15.0, 0.0, 0.0), world);
+  const core::Pose2 X_WR0(15.0, 0.0, 0.0);
+  Robot robot(rc, g, X_WR0, world);
   const std::vector<PedestrianGroupConfig> groups = {
       Group(6, {0.5, -1.2}, {10.0, 1.2}, PedestrianMode::kLoop, {{2.0, 0.0}, {28.0, 0.0}}),
       Group(4, {20.0, -1.2}, {29.5, 1.2}, PedestrianMode::kLoop, {{28.0, 0.5}, {2.0, -0.5}}),
       Group(4, {0.5, -1.2}, {29.5, 1.2})};
-  Pedestrians crowd(groups, CrowdConfig{}, g, core::Rng(5), {{{15.0, 0.0}, rc.radius}}, world);
-  double min_gap = 1e9;
-  int robot_contacts = 0;
-  for (int step = 0; step < 18000; ++step) {  // 3 minutes
+  Pedestrians crowd(groups, config, g, core::Rng(5), {{X_WR0.translation(), rc.radius}}, world);
+  CorridorResult result;
+  for (int step = 0; step < 18000; ++step) {
     robot.SetCommand({0.0, 0.0});
     robot.Actuate(world);
     crowd.Update(world);
     world.Step();
-    for (const auto& e : world.TakeCollisions()) robot_contacts += e.kind == CollisionKind::kPedestrian;
+    for (const auto& e : world.TakeCollisions()) {
+      result.robot_contacts += e.kind == CollisionKind::kPedestrian;
+    }
     for (const auto& c : world.PedestrianCircles()) {
-      min_gap = std::min(min_gap, (c.center - robot.Pose(world).translation()).norm() - c.radius - rc.radius);
+      result.min_gap =
+          std::min(result.min_gap,
+                   (c.center - robot.Pose(world).translation()).norm() - c.radius - rc.radius);
     }
   }
-  RecordProperty("min_gap_to_robot", std::to_string(min_gap));
-  EXPECT_EQ(robot_contacts, 0);
-  EXPECT_GT(min_gap, 0.1);
-  EXPECT_LT(core::Distance(robot.Pose(world), core::Pose2(15.0, 0.0, 0.0)), 0.01);
+  result.robot_displacement = core::Distance(robot.Pose(world), X_WR0);
   for (const auto& s : crowd.status()) {
-    if (s.group < 2) {
-      EXPECT_GE(s.goals_reached, 3) << "pedestrian " << s.id << " did not get past the robot";
-    }
+    if (s.group < 2)
+      result.min_goals_past_robot = std::min(result.min_goals_past_robot, s.goals_reached);
+  }
+  return result;
+}
+
+TEST(Pedestrians, KeepAwayFromARobotStandingInTheCorridor) {
+  const CorridorResult r = RunCorridorWithStandingRobot(CrowdConfig{});
+  RecordProperty("min_gap_to_robot", std::to_string(r.min_gap));
+  RecordProperty("min_goals_past_robot", std::to_string(r.min_goals_past_robot));
+  EXPECT_EQ(r.robot_contacts, 0);
+  EXPECT_GT(r.min_gap, 0.1);
+  EXPECT_LT(r.robot_displacement, 1e-3);
+  EXPECT_GE(r.min_goals_past_robot, 3) << "someone did not get past the robot";
+  // Without the robot term they walk into it: the test above is not passing by luck.
+  CrowdConfig ignoring;
+  ignoring.social_force.robot_strength = 0.0;
+  const CorridorResult blind = RunCorridorWithStandingRobot(ignoring);
+  RecordProperty("contacts_when_ignoring_robot", std::to_string(blind.robot_contacts));
+  EXPECT_GT(blind.robot_contacts, 10);
+}
+
+TEST(Pedestrians, CrossANarrowDoorBothWays) {
+  // A 10 m x 6 m room split by a wall with a 0.9 m door; four people walk a loop through it,
+  // so they meet head-on in the door.
+  StaticGeometry g;
+  AddBox(g, -0.2, -0.2, 10.2, 0.0);
+  AddBox(g, -0.2, 6.0, 10.2, 6.2);
+  AddBox(g, -0.2, 0.0, 0.0, 6.0);
+  AddBox(g, 10.0, 0.0, 10.2, 6.0);
+  AddBox(g, 4.9, 0.0, 5.1, 2.55);
+  AddBox(g, 4.9, 3.45, 5.1, 6.0);
+  PhysicsWorld world(g);
+  Pedestrians crowd(
+      {Group(4, {0.2, 0.2}, {4.5, 5.8}, PedestrianMode::kLoop, {{2.0, 3.0}, {8.0, 3.0}})},
+      CrowdConfig{}, g, core::Rng(1), {}, world);
+  double min_clearance = 1e9;
+  for (int step = 0; step < 12000; ++step) {  // 2 minutes
+    crowd.Update(world);
+    world.Step();
+    for (const auto& c : world.PedestrianCircles())
+      min_clearance = std::min(min_clearance, g.Clearance(c.center));
+  }
+  EXPECT_GE(min_clearance, 0.3 - 0.01);
+  for (const auto& s : crowd.status()) {
+    // One crossing takes about 6 m / 1.34 m/s = 4.5 s; allow for waiting at the door.
+    EXPECT_GE(s.goals_reached, 8) << "pedestrian " << s.id;
   }
 }
 
@@ -173,7 +233,8 @@ TEST(Pedestrians, SpawnKeepsClearOfTheRobotWallsAndEachOther) {
     PhysicsWorld world(g);
     const Circle robot{{5.0, 3.0}, 0.3};
     const CrowdConfig config;
-    Pedestrians crowd({Group(15, {0.0, 0.0}, {11.9, 5.8})}, config, g, core::Rng(seed), {robot}, world);
+    Pedestrians crowd({Group(15, {0.0, 0.0}, {11.9, 5.8})}, config, g, core::Rng(seed), {robot},
+                      world);
     const auto circles = world.PedestrianCircles();
     ASSERT_EQ(circles.size(), 15u);
     for (std::size_t i = 0; i < circles.size(); ++i) {
@@ -191,7 +252,8 @@ TEST(Pedestrians, DesiredSpeedsFollowTheConfiguredDistribution) {
   StaticGeometry g;
   AddBox(g, -1.0, -1.0, 0.0, 0.0);
   PhysicsWorld world(g);
-  Pedestrians crowd({Group(400, {1.0, 1.0}, {61.0, 61.0})}, CrowdConfig{}, g, core::Rng(3), {}, world);
+  Pedestrians crowd({Group(300, {1.0, 1.0}, {41.0, 41.0})}, CrowdConfig{}, g, core::Rng(3), {},
+                    world);
   double sum = 0.0, sum2 = 0.0;
   for (const auto& s : crowd.status()) {
     EXPECT_GE(s.desired_speed, 1.34 - 2 * 0.26 - 1e-12);
@@ -201,8 +263,8 @@ TEST(Pedestrians, DesiredSpeedsFollowTheConfiguredDistribution) {
   }
   const double n = static_cast<double>(crowd.size());
   const double mean = sum / n, stddev = std::sqrt(sum2 / n - mean * mean);
-  EXPECT_NEAR(mean, 1.34, 0.03);
-  EXPECT_NEAR(stddev, 0.24, 0.03);  // slightly below 0.26 because of the clipping
+  EXPECT_NEAR(mean, 1.34, 0.04);    // 3 standard errors
+  EXPECT_NEAR(stddev, 0.24, 0.04);  // slightly below 0.26 because of the clipping
 }
 
 TEST(Pedestrians, RegionInsideAWallIsAClearWorldError) {
@@ -210,7 +272,8 @@ TEST(Pedestrians, RegionInsideAWallIsAClearWorldError) {
   AddBox(g, 0.0, 0.0, 10.0, 10.0);
   PhysicsWorld world(g);
   try {
-    Pedestrians crowd({Group(1, {2.0, 2.0}, {8.0, 8.0})}, CrowdConfig{}, g, core::Rng(1), {}, world);
+    Pedestrians crowd({Group(1, {2.0, 2.0}, {8.0, 8.0})}, CrowdConfig{}, g, core::Rng(1), {},
+                      world);
     FAIL() << "expected WorldError";
   } catch (const core::WorldError& e) {
     const std::string what = e.what();

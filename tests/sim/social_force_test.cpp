@@ -119,18 +119,36 @@ TEST(SocialForce, TotalForceIsCappedAndWallsAlwaysCount) {
   EXPECT_NEAR(g.x(), 1.34 / 0.5 + 10.0 / 0.2 * std::exp(-5.0), 1e-9);
 }
 
+TEST(SocialForce, ClearWalkingLineLetsDoorJambsSteerButNotBrake) {
+  // Walking along +x towards a 1 m door whose jambs are 0.3 m ahead, 0.55 and 0.45 m aside.
+  SocialForceInputs in;
+  in.self = {{0.0, 0.0}, {0.5, 0.0}, 0.3};
+  in.direction = {1.0, 0.0};
+  in.desired_speed = 1.34;
+  const std::vector<Vec2> jambs = {{0.3, 0.55}, {0.3, -0.45}};
+  in.obstacle_points = jambs;
+  const Vec2 blocked = SocialForce(in, kConfig);
+  EXPECT_LT(blocked.x(), 0.0);  // the 1995 potential stops people in front of the door
+  in.walking_line_clear = true;
+  const Vec2 clear = SocialForce(in, kConfig);
+  EXPECT_NEAR(clear.x(), GoalForce(in.self.velocity, in.direction, 1.34, kConfig).x(), 1e-9);
+  EXPECT_NEAR(clear.y(), blocked.y(), 1e-9);  // still centred in the door
+  EXPECT_GT(clear.y(), 0.0);
+}
+
 TEST(SocialForce, RobotRepulsionIsStrongerThanAPedestrians) {
   SocialForceInputs in;
   in.self = {{0.0, 0.0}, {1.0, 0.0}, 0.3};
   in.direction = {1.0, 0.0};
   in.desired_speed = 1.0;
-  const SocialAgent ahead{{1.5, 0.2}, {0.0, 0.0}, 0.3};
+  const SocialAgent ahead{{2.5, 0.3}, {0.0, 0.0}, 0.3};  // far enough not to hit the cap
   const std::vector<SocialAgent> others = {ahead};
   in.others = others;
   const Vec2 with_pedestrian = SocialForce(in, kConfig);
   in.others = {};
   in.robot = &ahead;
   const Vec2 with_robot = SocialForce(in, kConfig);
+  ASSERT_LT(with_robot.norm(), kConfig.max_acceleration);
   EXPECT_LT(with_robot.x(), with_pedestrian.x());
   EXPECT_LT(with_robot.y(), with_pedestrian.y());
   EXPECT_LT(with_robot.y(), 0.0);  // steers away sideways

@@ -53,7 +53,8 @@ TEST(WalkPlanner, PlansThroughTheDoorWithFewWaypointsAndSafeClearance) {
   EXPECT_EQ(path->back(), to);
   // It goes through the door.
   bool through_door = false;
-  for (const Vec2& p : *path) through_door |= p.y() > 1.0 && p.y() < 2.2 && std::abs(p.x() - 5.0) < 1.0;
+  for (const Vec2& p : *path)
+    through_door |= p.y() > 1.0 && p.y() < 2.2 && std::abs(p.x() - 5.0) < 1.0;
   EXPECT_TRUE(through_door);
   const double clearance = MinClearanceAlong(g, from, *path);
   RecordProperty("min_clearance", std::to_string(clearance));
