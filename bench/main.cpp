@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   world_cmd->add_option("--set", world.overrides, "Override a key: a.b.c=value (repeatable)");
   world_cmd->add_option("--pixels-per-meter", world.pixels_per_meter, "Image scale")
       ->check(CLI::PositiveNumber);
+  world_cmd->add_option("--seed", world.seed, "Seed for the pedestrians' spawn points");
 
   try {
     app.parse(argc, argv);

@@ -5,6 +5,9 @@
 #include "core/errors.hpp"
 #include "io/config_yaml.hpp"
 #include "io/route_file.hpp"
+#include "core/rng.hpp"
+#include "sim/pedestrians.hpp"
+#include "sim/physics_world.hpp"
 #include "sim/robot.hpp"
 #include "sim/route_check.hpp"
 #include "sim/world_file.hpp"
@@ -36,6 +39,14 @@ std::string RunWorldCommand(const WorldCommandOptions& options) {
     }
   }
 
+  // Spawning the pedestrians checks that their regions and loops work in this geometry.
+  std::vector<sim::Circle> keep_clear;
+  if (!scene.route.empty()) keep_clear.push_back({scene.route.front(), sim::RobotConfig{}.radius});
+  sim::PhysicsWorld physics(g);
+  const sim::Pedestrians crowd(world.config.pedestrians, sim::CrowdConfig{}, g,
+                               core::Rng(options.seed).Split("pedestrians"), keep_clear, physics);
+  for (const auto& c : physics.PedestrianCircles()) scene.pedestrians.emplace_back(c.center, c.radius);
+
   viz::SketchOptions sketch;
   sketch.pixels_per_meter = options.pixels_per_meter;
   viz::RenderSketchPng(scene, options.png, sketch);
@@ -43,7 +54,7 @@ std::string RunWorldCommand(const WorldCommandOptions& options) {
   const sim::Aabb box = g.Bounds();
   std::ostringstream out;
   out << world.source.string() << ": " << g.segments().size() << " edges, " << g.circles().size()
-      << " circles, " << world.config.pedestrians.size() << " pedestrian groups, extent "
+      << " circles, " << crowd.size() << " pedestrians, extent "
       << (box.max - box.min).x() << " x " << (box.max - box.min).y() << " m -> "
       << options.png.string();
   return out.str();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,8 +13,7 @@ struct WorldCommandOptions {
   std::filesystem::path route_file;  ///< optional route to draw
   std::vector<std::string> overrides;
   double pixels_per_meter = 20.0;
-  bool pedestrians = true;  ///< spawn the world's pedestrians and draw them
-  unsigned long long seed = 1;
+  std::uint64_t seed = 1;  ///< seed of the pedestrians' spawn points
 };
 
 /// `retrace world`: loads and validates a world file and renders it to a PNG.

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Bad input to the retrace program: each case must print exactly one line on stderr that names
+# the problem, exit with code 2, and leave no output file behind.
+# Usage: bad_input_test.sh <retrace binary> <source dir>
+set -uo pipefail
+retrace="$1"
+src="$2"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+
+expect_bad() {  # expect_bad <name> <expected substring> <args...>
+  local name="$1" want="$2"
+  shift 2
+  rm -f "$tmp/out.png"
+  "$retrace" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" && [ ! -e "$tmp/out.png" ]; then
+    pass=$((pass + 1))
+  else
+    fail=$((fail + 1))
+    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
+    cat "$tmp/stderr"
+  fi
+}
+
+world() { printf '%b' "$2" >"$tmp/$1"; }
+
+world malformed.yaml 'name: x\nboxes: [{center: [1, 2}\n'
+world unknown.yaml 'name: x\nbox: []\n'
+world nan.yaml 'name: x\ncircles: [{center: [0, .nan], radius: 1}]\n'
+world negative.yaml 'name: x\ncircles: [{center: [0, 0], radius: -1}]\n'
+world empty.yaml 'name: nothing\n'
+printf 'P5\n100 80\n255\n' >"$tmp/short.pgm"
+head -c 7000 /dev/zero >>"$tmp/short.pgm"
+world short.yaml 'image: short.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n'
+world pgm_world.yaml 'name: x\nmaps: [{file: short.yaml}]\n'
+world yaw.yaml 'image: short.pgm\nresolution: 0.05\norigin: [0, 0, 0.3]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n'
+world yaw_world.yaml 'name: x\nmaps: [{file: yaw.yaml}]\n'
+printf '0 0\n20 0\n' >"$tmp/through_wall.txt"
+printf '8 6.25\n9 abc\n' >"$tmp/garbage_route.txt"
+world crowded.yaml 'name: x\nboxes: [{center: [0, 0], size: [1, 1]}]\npedestrians: [{count: 50, region_min: [2, 2], region_max: [3, 3]}]\n'
+
+expect_bad missing-file "missing.yaml: cannot open file" world "$tmp/missing.yaml" --png "$tmp/out.png"
+expect_bad malformed-yaml "malformed.yaml:2: invalid YAML" world "$tmp/malformed.yaml" --png "$tmp/out.png"
+expect_bad unknown-key "unknown.yaml:2: box: unknown key; did you mean 'boxes'?" world "$tmp/unknown.yaml" --png "$tmp/out.png"
+expect_bad nan "circles[0].center[1]: must be a finite number" world "$tmp/nan.yaml" --png "$tmp/out.png"
+expect_bad negative-radius "circles[0].radius: must be > 0, got -1" world "$tmp/negative.yaml" --png "$tmp/out.png"
+expect_bad empty-world "no static geometry" world "$tmp/empty.yaml" --png "$tmp/out.png"
+expect_bad pgm-wrong-size "PGM has the wrong size" world "$tmp/pgm_world.yaml" --png "$tmp/out.png"
+expect_bad origin-yaw "origin yaw 0.3 rad is not supported" world "$tmp/yaw_world.yaml" --png "$tmp/out.png"
+expect_bad route-through-wall "route is not drivable" world "$src/worlds/office.yaml" --route "$tmp/through_wall.txt" --png "$tmp/out.png"
+expect_bad route-garbage "garbage_route.txt:2" world "$src/worlds/office.yaml" --route "$tmp/garbage_route.txt" --png "$tmp/out.png"
+expect_bad crowded-region "pedestrian" world "$tmp/crowded.yaml" --png "$tmp/out.png"
+expect_bad bad-override "--set walls.0.thickness=-1" world "$src/worlds/office.yaml" --set walls.0.thickness=-1 --png "$tmp/out.png"
+expect_bad bad-override-syntax "--set expects key.path=value" world "$src/worlds/office.yaml" --set nonsense --png "$tmp/out.png"
+expect_bad unwritable-output "cannot create folder" world "$src/worlds/office.yaml" --png /proc/retrace/out.png
+expect_bad no-subcommand "A subcommand is required" 
+expect_bad unknown-option "--bogus" world "$src/worlds/office.yaml" --png "$tmp/out.png" --bogus
+
+# And the good case writes the image.
+if "$retrace" world "$src/worlds/office.yaml" --route "$src/worlds/routes/office_loop.txt" --png "$tmp/ok.png" >/dev/null &&
+   [ -s "$tmp/ok.png" ]; then
+  pass=$((pass + 1))
+else
+  fail=$((fail + 1))
+  echo "FAIL good-world: no image written"
+fi
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
