@@ -140,9 +140,7 @@ std::vector<double> ReadNumbers(const YAML::Node& node, const ReadContext& ctx,
 }
 
 void Emit(YAML::Emitter& out, double v) {
-  char buf[64];
-  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), v);
-  std::string s(buf, ptr);
+  std::string s = core::FormatNumber(v);
   // Keep it a float in YAML's eyes so that round trips do not change the type.
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
   out << s;

@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "core/check.hpp"
+#include "core/config.hpp"
 
 namespace retrace::io {
 namespace {
@@ -28,7 +29,7 @@ std::string ToChars(T value) {
 std::string FormatCsvNumber(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  return ToChars(value);
+  return core::FormatNumber(value);
 }
 
 CsvCell::CsvCell(std::string_view text) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "core/check.hpp"
+#include "core/config.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
@@ -30,13 +30,6 @@ struct DecodedImage {
   int channels = 1;
   std::vector<std::uint8_t> data;
 };
-
-std::string FormatNumber(double v) {
-  char buf[32];
-  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), v);
-  RETRACE_CHECK(ec == std::errc());
-  return std::string(buf, ptr);
-}
 
 std::string ReadBinaryFile(const std::filesystem::path& path) {
   std::error_code ec;
@@ -318,8 +311,8 @@ void RosMapMetadata::Validate() const {
   core::RequireInRange("free_thresh", free_thresh, 0.0, 1.0);
   if (!(free_thresh < occupied_thresh)) {
     throw core::ConfigError("free_thresh", "must be below occupied_thresh (" +
-                                               FormatNumber(occupied_thresh) + "), got " +
-                                               FormatNumber(free_thresh));
+                                               core::FormatNumber(occupied_thresh) + "), got " +
+                                               core::FormatNumber(free_thresh));
   }
 }
 
@@ -333,7 +326,7 @@ core::OccupancyGrid ReadRosMap(const std::filesystem::path& yaml) {
   if (meta.origin[2] != 0.0) {
     const internal::ReadContext ctx{yaml.string(), "origin", nullptr};
     internal::Fail(root["origin"], ctx,
-                   "origin yaw " + FormatNumber(meta.origin[2]) +
+                   "origin yaw " + core::FormatNumber(meta.origin[2]) +
                        " rad is not supported: retrace's occupancy grids are axis-aligned; "
                        "rotate the image and set the yaw to 0");
   }
@@ -405,7 +398,7 @@ void WriteRosMap(const std::filesystem::path& yaml, const core::OccupancyGrid& g
       throw core::IoError((yaml.parent_path() / image_name).string() + ": cannot encode PNG");
     image_bytes.assign(encoded.begin(), encoded.end());
   } else {
-    image_bytes = "P5\n# CREATOR: retrace " + FormatNumber(grid.resolution()) + " m/pix\n" +
+    image_bytes = "P5\n# CREATOR: retrace " + core::FormatNumber(grid.resolution()) + " m/pix\n" +
                   std::to_string(w) + " " + std::to_string(h) + "\n255\n";
     image_bytes.append(pixels.begin(), pixels.end());
   }

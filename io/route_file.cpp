@@ -1,58 +1,20 @@
 #include "io/route_file.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <string>
-#include <string_view>
-#include <system_error>
+#include <utility>
+#include <vector>
 
-#include "core/check.hpp"
+#include "core/config.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/internal/text_lines.hpp"
 
 namespace retrace::io {
 namespace {
 
-[[noreturn]] void FailAt(const std::filesystem::path& path, int line, const std::string& what) {
-  throw core::IoError(path.string() + ":" + std::to_string(line) + ": " + what);
-}
-
-// 'token' (built by appending: GCC 12 warns falsely on "'" + std::string(...)).
-std::string Quoted(std::string_view token) {
-  std::string out;
-  out.reserve(token.size() + 2);
-  out += '\'';
-  out += token;
-  out += '\'';
-  return out;
-}
-
-// Splits a line at spaces and tabs into finite numbers; fails on anything else.
-std::vector<double> ParseNumbers(std::string_view text, const std::filesystem::path& path,
-                                 int line) {
-  std::vector<double> out;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    if (text[i] == ' ' || text[i] == '\t') {
-      ++i;
-      continue;
-    }
-    const std::size_t end = text.find_first_of(" \t", i);
-    const std::string_view token =
-        text.substr(i, end == std::string_view::npos ? std::string_view::npos : end - i);
-    double v = 0.0;
-    const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-    if (ec != std::errc() || ptr != token.data() + token.size()) {
-      FailAt(path, line, Quoted(token) + " is not a number");
-    }
-    if (!std::isfinite(v)) FailAt(path, line, Quoted(token) + " is not finite");
-    out.push_back(v);
-    i += token.size();
-  }
-  return out;
-}
+using internal::FailAt;
 
 struct NumberLine {
   int line = 0;
@@ -61,31 +23,16 @@ struct NumberLine {
 
 // The non-empty lines of a file, comments removed, each with the same column count.
 std::vector<NumberLine> ReadNumberLines(const std::filesystem::path& path) {
-  std::error_code ec;
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path, ec)) {
-    throw core::IoError(path.string() + ": cannot open file");
-  }
   std::vector<NumberLine> lines;
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    std::string_view text(line);
-    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
-    if (const auto hash = text.find('#'); hash != std::string_view::npos) {
-      text = text.substr(0, hash);
-    }
-    std::vector<double> values = ParseNumbers(text, path, line_number);
-    if (values.empty()) continue;
+  for (const internal::TextLine& l : internal::ReadTextLines(path)) {
+    std::vector<double> values = internal::ParseNumbers(l.text, path, l.line);
     if (!lines.empty() && values.size() != lines.front().values.size()) {
-      FailAt(path, line_number,
+      FailAt(path, l.line,
              "expected " + std::to_string(lines.front().values.size()) + " columns as on line " +
                  std::to_string(lines.front().line) + ", got " + std::to_string(values.size()));
     }
-    lines.push_back({line_number, std::move(values)});
+    lines.push_back({l.line, std::move(values)});
   }
-  if (in.bad()) throw core::IoError(path.string() + ": cannot read file");
   return lines;
 }
 
@@ -94,13 +41,6 @@ double YawOf(const NumberLine& l, const std::filesystem::path& path) {
   const double n2 = qx * qx + qy * qy + qz * qz + qw * qw;
   if (!(n2 > 1e-18)) FailAt(path, l.line, "the quaternion is zero");
   return std::atan2(2.0 * (qw * qz + qx * qy) / n2, 1.0 - 2.0 * (qy * qy + qz * qz) / n2);
-}
-
-void AppendNumber(std::string& out, double v) {
-  char buf[32];
-  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), v);
-  RETRACE_CHECK(ec == std::errc());
-  out.append(buf, ptr);
 }
 
 }  // namespace
@@ -149,7 +89,7 @@ void WritePathFile(const std::filesystem::path& path, const core::Path& poses) {
         p.x, p.y, 0.0, 0.0, 0.0, std::sin(0.5 * p.theta), std::cos(0.5 * p.theta)};
     for (std::size_t i = 0; i < values.size(); ++i) {
       if (i > 0) text += ' ';
-      AppendNumber(text, values[i]);
+      text += core::FormatNumber(values[i]);
     }
     text += '\n';
   }

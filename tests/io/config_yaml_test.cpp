@@ -4,7 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
+
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::io {
 namespace {
@@ -76,15 +77,9 @@ struct Top {
 
 class ConfigYamlTest : public ::testing::Test {
  protected:
+  // A new file per call, so that one test can load several.
   std::filesystem::path Write(const std::string& text) {
-    const auto file = std::filesystem::temp_directory_path() /
-                      ("retrace_config_test_" + std::to_string(counter_++) + ".yaml");
-    std::ofstream(file) << text;
-    files_.push_back(file);
-    return file;
-  }
-  ~ConfigYamlTest() override {
-    for (const auto& f : files_) std::filesystem::remove(f);
+    return tmp_.Write("config_" + std::to_string(counter_++) + ".yaml", text);
   }
   std::string ErrorOf(const std::string& text, const std::vector<std::string>& sets = {}) {
     std::vector<ConfigOverride> overrides;
@@ -97,8 +92,8 @@ class ConfigYamlTest : public ::testing::Test {
     }
     return "no error";
   }
+  retrace::testing::TempDir tmp_;
   int counter_ = 0;
-  std::vector<std::filesystem::path> files_;
 };
 
 TEST_F(ConfigYamlTest, ReadsEveryFieldTypeAndKeepsDefaults) {

@@ -1,43 +1,22 @@
 #include "io/csv_writer.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string>
 
 #include "core/errors.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-class CsvWriterTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("retrace_io_" + std::string(info->test_suite_name()) + "_" +
-                                        info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  static std::string Slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
-
-  fs::path dir_;
-};
+using CsvWriterTest = retrace::testing::TempDirTest;
 
 TEST(CsvCell, QuotesOnlyWhereNeeded) {
   EXPECT_EQ(CsvCell("plain").text(), "plain");
@@ -73,7 +52,7 @@ TEST(CsvCell, NonFiniteNumbersAreNanAndInf) {
 }
 
 TEST_F(CsvWriterTest, WritesHeaderAndMixedRowsOnCommit) {
-  const fs::path path = dir_ / "runs" / "events.csv";
+  const fs::path path = tmp_.path() / "runs" / "events.csv";
   CsvWriter csv(path, {"t", "event", "value", "count"});
   csv.AddRow({0.05, "switch, map 1", std::numeric_limits<double>::quiet_NaN(), 3});
   csv.AddRow({1e-3, "goal", -std::numeric_limits<double>::infinity(), std::size_t{0}});
@@ -81,7 +60,7 @@ TEST_F(CsvWriterTest, WritesHeaderAndMixedRowsOnCommit) {
   EXPECT_EQ(csv.columns(), 4u);
   EXPECT_FALSE(fs::exists(path));
   csv.Commit();
-  EXPECT_EQ(Slurp(path),
+  EXPECT_EQ(tmp_.Read(path),
             "t,event,value,count\n"
             "0.05,\"switch, map 1\",nan,3\n"
             "0.001,goal,-inf,0\n");
@@ -89,15 +68,15 @@ TEST_F(CsvWriterTest, WritesHeaderAndMixedRowsOnCommit) {
 
 TEST_F(CsvWriterTest, UncommittedWriterLeavesNoFile) {
   {
-    CsvWriter csv(dir_ / "out.csv", {"a"});
+    CsvWriter csv(tmp_.path() / "out.csv", {"a"});
     csv.AddRow({1});
   }
-  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_TRUE(fs::is_empty(tmp_.path()));
 }
 
 TEST_F(CsvWriterTest, InvalidLocationThrowsIoError) {
-  std::ofstream(dir_ / "file") << "x";
-  EXPECT_THROW(CsvWriter(dir_ / "file" / "out.csv", {"a"}), core::IoError);
+  tmp_.Write("file", "x");
+  EXPECT_THROW(CsvWriter(tmp_.path() / "file" / "out.csv", {"a"}), core::IoError);
 }
 
 }  // namespace

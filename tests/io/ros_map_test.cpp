@@ -1,18 +1,16 @@
 #include "io/ros_map.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/errors.hpp"
 #include "core/occupancy_grid.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::io {
 namespace {
@@ -47,29 +45,11 @@ core::OccupancyGrid PatternGrid() {
 
 class RosMapTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("retrace_io_" + std::string(info->test_suite_name()) + "_" +
-                                        info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path Write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(dir_ / name, std::ios::binary) << bytes;
-    return dir_ / name;
-  }
-  static std::string Slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
   // A map YAML for `image` with extra lines appended.
   fs::path WriteYaml(const std::string& image, const std::string& extra = "",
                      const std::string& name = "map.yaml") const {
-    return Write(name, "image: " + image + "\nresolution: 0.1\norigin: [-2.0, 3.0, 0.0]\n" + extra);
+    return tmp_.Write(name,
+                      "image: " + image + "\nresolution: 0.1\norigin: [-2.0, 3.0, 0.0]\n" + extra);
   }
 
   // The message of the exception ReadRosMap throws (of type E), or "" if none.
@@ -85,7 +65,7 @@ class RosMapTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  retrace::testing::TempDir tmp_;
 };
 
 void ExpectSameGeometry(const core::OccupancyGrid& a, const core::OccupancyGrid& b) {
@@ -110,11 +90,11 @@ void ExpectSameClasses(const core::OccupancyGrid& written, const core::Occupancy
 
 TEST_F(RosMapTest, TrinaryPgmRoundTripKeepsClassesAndGeometry) {
   const core::OccupancyGrid grid = PatternGrid();
-  WriteRosMap(dir_ / "maps" / "ogm_0.yaml", grid);
-  EXPECT_TRUE(fs::exists(dir_ / "maps" / "ogm_0.pgm"));
-  ExpectSameClasses(grid, ReadRosMap(dir_ / "maps" / "ogm_0.yaml"));
+  WriteRosMap(tmp_.path() / "maps" / "ogm_0.yaml", grid);
+  EXPECT_TRUE(fs::exists(tmp_.path() / "maps" / "ogm_0.pgm"));
+  ExpectSameClasses(grid, ReadRosMap(tmp_.path() / "maps" / "ogm_0.yaml"));
 
-  const RosMapMetadata meta = ReadRosMapMetadata(dir_ / "maps" / "ogm_0.yaml");
+  const RosMapMetadata meta = ReadRosMapMetadata(tmp_.path() / "maps" / "ogm_0.yaml");
   EXPECT_EQ(meta.image, "ogm_0.pgm");
   EXPECT_EQ(meta.resolution, 0.05);
   EXPECT_EQ(meta.origin, (std::array<double, 3>{-1.25, 2.5, 0.0}));
@@ -129,8 +109,8 @@ TEST_F(RosMapTest, TrinaryPgmUsesMapSaverValuesAndTopRowFirst) {
   grid.SetProbability({0, 1}, 0.9);  // top-left in the image
   grid.SetProbability({1, 1}, 0.1);
   grid.SetProbability({2, 0}, 0.9);  // bottom-right in the image
-  WriteRosMap(dir_ / "m.yaml", grid);
-  const std::string pgm = Slurp(dir_ / "m.pgm");
+  WriteRosMap(tmp_.path() / "m.yaml", grid);
+  const std::string pgm = tmp_.Read(tmp_.path() / "m.pgm");
   ASSERT_GE(pgm.size(), 6u);
   EXPECT_EQ(pgm.substr(0, 3), "P5\n");
   const std::string pixels = pgm.substr(pgm.size() - 6);
@@ -142,11 +122,11 @@ TEST_F(RosMapTest, TrinaryPngRoundTripKeepsClasses) {
   const core::OccupancyGrid grid = PatternGrid();
   RosMapWriteOptions options;
   options.image_format = RosMapImageFormat::kPng;
-  WriteRosMap(dir_ / "ogm_1.yaml", grid, options);
-  EXPECT_TRUE(fs::exists(dir_ / "ogm_1.png"));
-  EXPECT_FALSE(fs::exists(dir_ / "ogm_1.pgm"));
-  EXPECT_EQ(Slurp(dir_ / "ogm_1.png").substr(1, 3), "PNG");
-  ExpectSameClasses(grid, ReadRosMap(dir_ / "ogm_1.yaml"));
+  WriteRosMap(tmp_.path() / "ogm_1.yaml", grid, options);
+  EXPECT_TRUE(fs::exists(tmp_.path() / "ogm_1.png"));
+  EXPECT_FALSE(fs::exists(tmp_.path() / "ogm_1.pgm"));
+  EXPECT_EQ(tmp_.Read(tmp_.path() / "ogm_1.png").substr(1, 3), "PNG");
+  ExpectSameClasses(grid, ReadRosMap(tmp_.path() / "ogm_1.yaml"));
 }
 
 // A grid whose cells span every probability, for scale mode.
@@ -186,9 +166,9 @@ TEST_F(RosMapTest, ScalePgmRoundTripKeepsProbabilitiesWithinQuantisation) {
   const core::OccupancyGrid grid = GradientGrid();
   RosMapWriteOptions options;
   options.mode = RosMapMode::kScale;
-  WriteRosMap(dir_ / "s.yaml", grid, options);
-  EXPECT_EQ(ReadRosMapMetadata(dir_ / "s.yaml").mode, RosMapMode::kScale);
-  ExpectScaleRoundTrip(grid, ReadRosMap(dir_ / "s.yaml"));
+  WriteRosMap(tmp_.path() / "s.yaml", grid, options);
+  EXPECT_EQ(ReadRosMapMetadata(tmp_.path() / "s.yaml").mode, RosMapMode::kScale);
+  ExpectScaleRoundTrip(grid, ReadRosMap(tmp_.path() / "s.yaml"));
 }
 
 TEST_F(RosMapTest, ScalePngRoundTripKeepsProbabilitiesWithinQuantisation) {
@@ -196,8 +176,8 @@ TEST_F(RosMapTest, ScalePngRoundTripKeepsProbabilitiesWithinQuantisation) {
   RosMapWriteOptions options;
   options.mode = RosMapMode::kScale;
   options.image_format = RosMapImageFormat::kPng;
-  WriteRosMap(dir_ / "s.yaml", grid, options);
-  ExpectScaleRoundTrip(grid, ReadRosMap(dir_ / "s.yaml"));
+  WriteRosMap(tmp_.path() / "s.yaml", grid, options);
+  ExpectScaleRoundTrip(grid, ReadRosMap(tmp_.path() / "s.yaml"));
 }
 
 TEST_F(RosMapTest, NegatedImageReadsLikeTheOriginal) {
@@ -205,30 +185,30 @@ TEST_F(RosMapTest, NegatedImageReadsLikeTheOriginal) {
     const core::OccupancyGrid grid = mode == RosMapMode::kScale ? GradientGrid() : PatternGrid();
     RosMapWriteOptions options;
     options.mode = mode;
-    WriteRosMap(dir_ / "plain.yaml", grid, options);
+    WriteRosMap(tmp_.path() / "plain.yaml", grid, options);
     // Invert the pixels and say so with negate: 1.
-    std::string pgm = Slurp(dir_ / "plain.pgm");
+    std::string pgm = tmp_.Read(tmp_.path() / "plain.pgm");
     const std::size_t n = static_cast<std::size_t>(grid.width() * grid.height());
     for (std::size_t i = pgm.size() - n; i < pgm.size(); ++i) {
       pgm[i] = static_cast<char>(255 - static_cast<unsigned char>(pgm[i]));
     }
-    Write("negated.pgm", pgm);
-    std::string yaml = Slurp(dir_ / "plain.yaml");
+    tmp_.Write("negated.pgm", pgm);
+    std::string yaml = tmp_.Read(tmp_.path() / "plain.yaml");
     const auto at = yaml.find("negate: 0");
     ASSERT_NE(at, std::string::npos) << yaml;
     yaml.replace(at, 9, "negate: 1");
     yaml.replace(yaml.find("plain.pgm"), 9, "negated.pgm");
-    Write("negated.yaml", yaml);
+    tmp_.Write("negated.yaml", yaml);
 
-    const core::OccupancyGrid plain = ReadRosMap(dir_ / "plain.yaml");
-    const core::OccupancyGrid negated = ReadRosMap(dir_ / "negated.yaml");
+    const core::OccupancyGrid plain = ReadRosMap(tmp_.path() / "plain.yaml");
+    const core::OccupancyGrid negated = ReadRosMap(tmp_.path() / "negated.yaml");
     ExpectSameGeometry(plain, negated);
     EXPECT_EQ(plain.log_odds(), negated.log_odds()) << core::EnumName(mode);
   }
 }
 
 TEST_F(RosMapTest, ImageRowZeroIsTheTopOfTheMap) {
-  Write("col.pgm", std::string("P5\n1 2\n255\n\x00\xfe", 13));
+  tmp_.Write("col.pgm", std::string("P5\n1 2\n255\n\x00\xfe", 13));
   const auto grid = ReadRosMap(WriteYaml("col.pgm"));
   ASSERT_EQ(grid.width(), 1);
   ASSERT_EQ(grid.height(), 2);
@@ -242,7 +222,8 @@ TEST_F(RosMapTest, ImageRowZeroIsTheTopOfTheMap) {
 TEST_F(RosMapTest, AsciiPgmWithCommentsAndTrinaryThresholds) {
   // p = (255 - v) / 255: 89 -> 0.651 (occupied), 90 -> 0.647 (unknown),
   // 205 -> 0.19608 (unknown), 206 -> 0.192 (free).
-  Write("a.pgm", "P2\n# made by hand\n4 2\n# max\n255\n89 90 205 206\n0 255 128 # last row\n 1\n");
+  tmp_.Write("a.pgm",
+             "P2\n# made by hand\n4 2\n# max\n255\n89 90 205 206\n0 255 128 # last row\n 1\n");
   const auto grid = ReadRosMap(WriteYaml("a.pgm"));
   EXPECT_EQ(grid.LogOdds({0, 1}), kOccupied);
   EXPECT_EQ(grid.LogOdds({1, 1}), 0.0f);
@@ -255,14 +236,14 @@ TEST_F(RosMapTest, AsciiPgmWithCommentsAndTrinaryThresholds) {
 }
 
 TEST_F(RosMapTest, SmallMaxvalIsStretchedToFullRange) {
-  Write("b.pgm", "P2 2 1 1 0 1");
+  tmp_.Write("b.pgm", "P2 2 1 1 0 1");
   const auto grid = ReadRosMap(WriteYaml("b.pgm"));
   EXPECT_EQ(grid.LogOdds({0, 0}), kOccupied);
   EXPECT_EQ(grid.LogOdds({1, 0}), kFree);
 }
 
 TEST_F(RosMapTest, ScaleModeKeepsInBetweenProbability) {
-  Write("s.pgm", std::string("P5\n3 1\n255\n\x00\x80\xfe", 14));
+  tmp_.Write("s.pgm", std::string("P5\n3 1\n255\n\x00\x80\xfe", 14));
   const auto grid = ReadRosMap(WriteYaml("s.pgm", "mode: scale\n"));
   EXPECT_EQ(grid.LogOdds({0, 0}), kOccupied);
   EXPECT_FLOAT_EQ(grid.LogOdds({1, 0}), static_cast<float>(core::Logit(127.0 / 255.0)));
@@ -270,7 +251,7 @@ TEST_F(RosMapTest, ScaleModeKeepsInBetweenProbability) {
 }
 
 TEST_F(RosMapTest, RawModeReadsPercentagesAndRejectsOtherValues) {
-  Write("r.pgm", std::string("P5\n5 1\n255\n\x00\x64\x32\xff\x41", 16));
+  tmp_.Write("r.pgm", std::string("P5\n5 1\n255\n\x00\x64\x32\xff\x41", 16));
   const auto grid = ReadRosMap(WriteYaml("r.pgm", "mode: raw\n"));
   EXPECT_EQ(grid.LogOdds({0, 0}), kFree);      // 0
   EXPECT_EQ(grid.LogOdds({1, 0}), kOccupied);  // 100
@@ -278,7 +259,7 @@ TEST_F(RosMapTest, RawModeReadsPercentagesAndRejectsOtherValues) {
   EXPECT_EQ(grid.LogOdds({3, 0}), 0.0f);       // 255 unknown
   EXPECT_FLOAT_EQ(grid.LogOdds({4, 0}), static_cast<float>(core::Logit(0.65)));
 
-  Write("bad.pgm", std::string("P5\n2 1\n255\n\x00\x96", 13));
+  tmp_.Write("bad.pgm", std::string("P5\n2 1\n255\n\x00\x96", 13));
   const std::string msg = ErrorOf<core::IoError>(WriteYaml("bad.pgm", "mode: raw\n", "bad.yaml"));
   EXPECT_NE(msg.find("pixel (1, 0) has value 150"), std::string::npos) << msg;
 }
@@ -308,29 +289,29 @@ TEST_F(RosMapTest, SixteenBitImageIsRefused) {
 }
 
 TEST_F(RosMapTest, WrongSizePgmSaysSo) {
-  Write("short.pgm", "P5\n4 3\n255\n" + std::string(11, '\xfe'));
+  tmp_.Write("short.pgm", "P5\n4 3\n255\n" + std::string(11, '\xfe'));
   std::string msg = ErrorOf<core::IoError>(WriteYaml("short.pgm"));
-  EXPECT_NE(msg.find((dir_ / "short.pgm").string() +
+  EXPECT_NE(msg.find((tmp_.path() / "short.pgm").string() +
                      ": PGM has the wrong size: its pixel data "
                      "holds 11 bytes but the header says 4 x 3 = 12 pixels (the file is "
                      "truncated"),
             std::string::npos)
       << msg;
 
-  Write("long.pgm", "P5\n4 3\n255\n" + std::string(13, '\xfe'));
+  tmp_.Write("long.pgm", "P5\n4 3\n255\n" + std::string(13, '\xfe'));
   msg = ErrorOf<core::IoError>(WriteYaml("long.pgm"));
   EXPECT_NE(msg.find("PGM has the wrong size: its pixel data holds 13 bytes but the header "
                      "says 4 x 3 = 12 pixels (there is extra data"),
             std::string::npos)
       << msg;
 
-  Write("ascii.pgm", "P2\n2 2\n255\n0 0 0\n");
+  tmp_.Write("ascii.pgm", "P2\n2 2\n255\n0 0 0\n");
   msg = ErrorOf<core::IoError>(WriteYaml("ascii.pgm"));
   EXPECT_NE(msg.find("wrong size: its pixel data holds 3 values but the header says 2 x 2 = 4"),
             std::string::npos)
       << msg;
 
-  Write("ascii_long.pgm", "P2\n2 2\n255\n0 0 0 0 0\n");
+  tmp_.Write("ascii_long.pgm", "P2\n2 2\n255\n0 0 0 0 0\n");
   msg = ErrorOf<core::IoError>(WriteYaml("ascii_long.pgm"));
   EXPECT_NE(msg.find("holds 5 values"), std::string::npos) << msg;
 }
@@ -353,32 +334,33 @@ TEST_F(RosMapTest, MalformedPgmHeadersAreIoErrors) {
       {"P5\n99999999999 1 255\n", "PGM width is too large"},
   };
   for (const auto& c : cases) {
-    Write("h.pgm", c.bytes);
+    tmp_.Write("h.pgm", c.bytes);
     const std::string msg = ErrorOf<core::IoError>(WriteYaml("h.pgm"));
-    EXPECT_NE(msg.find((dir_ / "h.pgm").string() + ": "), std::string::npos) << msg;
+    EXPECT_NE(msg.find((tmp_.path() / "h.pgm").string() + ": "), std::string::npos) << msg;
     EXPECT_NE(msg.find(c.expected), std::string::npos) << c.bytes << " -> " << msg;
   }
 }
 
 TEST_F(RosMapTest, MissingOrUndecodableFilesAreIoErrors) {
-  EXPECT_NE(ErrorOf<core::IoError>(dir_ / "nope.yaml").find("cannot open"), std::string::npos);
+  EXPECT_NE(ErrorOf<core::IoError>(tmp_.path() / "nope.yaml").find("cannot open"),
+            std::string::npos);
 
   std::string msg = ErrorOf<core::IoError>(WriteYaml("missing.pgm"));
   EXPECT_NE(msg.find("map.yaml: image 'missing.pgm' not found"), std::string::npos) << msg;
 
-  Write("garbage.png", "hello, not an image");
+  tmp_.Write("garbage.png", "hello, not an image");
   msg = ErrorOf<core::IoError>(WriteYaml("garbage.png"));
   EXPECT_NE(msg.find("cannot decode image"), std::string::npos) << msg;
 
-  Write("empty.pgm", "");
+  tmp_.Write("empty.pgm", "");
   msg = ErrorOf<core::IoError>(WriteYaml("empty.pgm"));
   EXPECT_NE(msg.find("the image file is empty"), std::string::npos) << msg;
 }
 
 TEST_F(RosMapTest, OriginYawIsRefusedWithLine) {
-  Write("m.pgm", std::string("P5\n1 1\n255\n\x00", 12));
+  tmp_.Write("m.pgm", std::string("P5\n1 1\n255\n\x00", 12));
   const fs::path yaml =
-      Write("m.yaml", "image: m.pgm\nresolution: 0.05\norigin: [1.0, 2.0, 0.3]\n");
+      tmp_.Write("m.yaml", "image: m.pgm\nresolution: 0.05\norigin: [1.0, 2.0, 0.3]\n");
   const std::string msg = ErrorOf<core::ConfigError>(yaml);
   EXPECT_NE(msg.find(yaml.string() + ":3: origin: origin yaw 0.3 rad is not supported: "),
             std::string::npos)
@@ -388,7 +370,7 @@ TEST_F(RosMapTest, OriginYawIsRefusedWithLine) {
 }
 
 TEST_F(RosMapTest, BadMetadataIsConfigErrorWithLine) {
-  Write("m.pgm", std::string("P5\n1 1\n255\n\x00", 12));
+  tmp_.Write("m.pgm", std::string("P5\n1 1\n255\n\x00", 12));
   const struct {
     std::string yaml;
     std::string expected;
@@ -418,7 +400,7 @@ TEST_F(RosMapTest, BadMetadataIsConfigErrorWithLine) {
       {"- just a list\n", "expected a mapping"},
   };
   for (const auto& c : cases) {
-    const fs::path yaml = Write("bad.yaml", c.yaml);
+    const fs::path yaml = tmp_.Write("bad.yaml", c.yaml);
     const std::string msg = ErrorOf<core::ConfigError>(yaml);
     EXPECT_NE(msg.find(yaml.string()), std::string::npos) << msg;
     EXPECT_NE(msg.find(c.expected), std::string::npos) << c.yaml << "-> " << msg;
@@ -429,28 +411,28 @@ TEST_F(RosMapTest, WriteRejectsRawModeBadThresholdsAndEmptyGrid) {
   const core::OccupancyGrid grid = PatternGrid();
   RosMapWriteOptions raw;
   raw.mode = RosMapMode::kRaw;
-  EXPECT_THROW(WriteRosMap(dir_ / "a.yaml", grid, raw), core::ConfigError);
+  EXPECT_THROW(WriteRosMap(tmp_.path() / "a.yaml", grid, raw), core::ConfigError);
   RosMapWriteOptions inverted;
   inverted.free_thresh = 0.7;
-  EXPECT_THROW(WriteRosMap(dir_ / "a.yaml", grid, inverted), core::ConfigError);
-  EXPECT_THROW(WriteRosMap(dir_ / "a.yaml", core::OccupancyGrid()), core::IoError);
-  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_THROW(WriteRosMap(tmp_.path() / "a.yaml", grid, inverted), core::ConfigError);
+  EXPECT_THROW(WriteRosMap(tmp_.path() / "a.yaml", core::OccupancyGrid()), core::IoError);
+  EXPECT_TRUE(fs::is_empty(tmp_.path()));
 }
 
 TEST_F(RosMapTest, WriteIntoInvalidLocationLeavesNothing) {
-  Write("blocker", "x");
-  EXPECT_THROW(WriteRosMap(dir_ / "blocker" / "ogm_0.yaml", PatternGrid()), core::IoError);
-  std::vector<fs::path> entries(fs::directory_iterator(dir_), fs::directory_iterator{});
+  tmp_.Write("blocker", "x");
+  EXPECT_THROW(WriteRosMap(tmp_.path() / "blocker" / "ogm_0.yaml", PatternGrid()), core::IoError);
+  std::vector<fs::path> entries(fs::directory_iterator(tmp_.path()), fs::directory_iterator{});
   ASSERT_EQ(entries.size(), 1u);
   EXPECT_EQ(entries[0].filename(), "blocker");
 }
 
 TEST_F(RosMapTest, RewritingAMapReplacesBothFiles) {
-  WriteRosMap(dir_ / "ogm.yaml", GradientGrid());
+  WriteRosMap(tmp_.path() / "ogm.yaml", GradientGrid());
   const core::OccupancyGrid small = PatternGrid();
-  WriteRosMap(dir_ / "ogm.yaml", small);
-  ExpectSameClasses(small, ReadRosMap(dir_ / "ogm.yaml"));
-  std::vector<fs::path> entries(fs::directory_iterator(dir_), fs::directory_iterator{});
+  WriteRosMap(tmp_.path() / "ogm.yaml", small);
+  ExpectSameClasses(small, ReadRosMap(tmp_.path() / "ogm.yaml"));
+  std::vector<fs::path> entries(fs::directory_iterator(tmp_.path()), fs::directory_iterator{});
   EXPECT_EQ(entries.size(), 2u);
 }
 

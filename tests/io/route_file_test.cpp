@@ -1,7 +1,6 @@
 #include "io/route_file.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 
 #include "core/angle.hpp"
 #include "core/errors.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::io {
 namespace {
@@ -20,23 +20,9 @@ namespace fs = std::filesystem;
 
 class RouteFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("retrace_io_" + std::string(info->test_suite_name()) + "_" +
-                                        info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path Write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return dir_ / name;
-  }
-
   // The IoError message of ReadRouteFile on `text`, or "" if it did not throw.
   std::string RouteErrorFor(const std::string& text) const {
-    const fs::path p = Write("bad.txt", text);
+    const fs::path p = tmp_.Write("bad.txt", text);
     try {
       ReadRouteFile(p);
     } catch (const core::IoError& e) {
@@ -45,16 +31,16 @@ class RouteFileTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  retrace::testing::TempDir tmp_;
 };
 
 TEST_F(RouteFileTest, ReadsTwoColumnWaypointsWithComments) {
-  const auto route = ReadRouteFile(Write("route.txt",
-                                         "# x y\n"
-                                         "0 0\n"
-                                         "\n"
-                                         "10.5 -2   # corner\r\n"
-                                         "\t20 1e1\n"));
+  const auto route = ReadRouteFile(tmp_.Write("route.txt",
+                                              "# x y\n"
+                                              "0 0\n"
+                                              "\n"
+                                              "10.5 -2   # corner\r\n"
+                                              "\t20 1e1\n"));
   ASSERT_EQ(route.size(), 3u);
   EXPECT_EQ(route[0], core::Vec2(0, 0));
   EXPECT_EQ(route[1], core::Vec2(10.5, -2));
@@ -62,15 +48,15 @@ TEST_F(RouteFileTest, ReadsTwoColumnWaypointsWithComments) {
 }
 
 TEST_F(RouteFileTest, ReadsAutoNaviSevenColumnPositions) {
-  const auto route = ReadRouteFile(Write("path_0.txt",
-                                         "0 0 0 0 0 0 1\n"
-                                         "0.5 0.1 0 0 0 0.0499792 0.99875\n"));
+  const auto route = ReadRouteFile(tmp_.Write("path_0.txt",
+                                              "0 0 0 0 0 0 1\n"
+                                              "0.5 0.1 0 0 0 0.0499792 0.99875\n"));
   ASSERT_EQ(route.size(), 2u);
   EXPECT_EQ(route[1], core::Vec2(0.5, 0.1));
 }
 
 TEST_F(RouteFileTest, BadRoutesNameFileAndLine) {
-  const std::string where = (dir_ / "bad.txt").string();
+  const std::string where = (tmp_.path() / "bad.txt").string();
   std::string msg = RouteErrorFor("0 0\n1 1\n# c\n2 2 0 0 0 0 1\n");
   EXPECT_NE(msg.find(where + ":4:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("expected 2 columns as on line 1, got 7"), std::string::npos) << msg;
@@ -99,8 +85,8 @@ TEST_F(RouteFileTest, BadRoutesNameFileAndLine) {
 }
 
 TEST_F(RouteFileTest, MissingRouteFileIsIoError) {
-  EXPECT_THROW(ReadRouteFile(dir_ / "missing.txt"), core::IoError);
-  EXPECT_THROW(ReadRouteFile(dir_), core::IoError);
+  EXPECT_THROW(ReadRouteFile(tmp_.path() / "missing.txt"), core::IoError);
+  EXPECT_THROW(ReadRouteFile(tmp_.path()), core::IoError);
 }
 
 TEST_F(RouteFileTest, PathFileRoundTrip) {
@@ -109,7 +95,7 @@ TEST_F(RouteFileTest, PathFileRoundTrip) {
     poses.emplace_back(0.1 * i, std::sin(0.3 * i) / 7.0, -core::kPi + 0.16 * i);
   }
   const core::Path path(poses);
-  const fs::path file = dir_ / "teach" / "paths" / "path_0.txt";
+  const fs::path file = tmp_.path() / "teach" / "paths" / "path_0.txt";
   WritePathFile(file, path);
   const core::Path back = ReadPathFile(file);
   ASSERT_EQ(back.size(), path.size());
@@ -122,8 +108,8 @@ TEST_F(RouteFileTest, PathFileRoundTrip) {
 }
 
 TEST_F(RouteFileTest, PathFileIsSevenColumnsWithZeroZ) {
-  WritePathFile(dir_ / "p.txt", core::Path({core::Pose2(1.0, 2.0, core::kPi / 2.0)}));
-  std::ifstream in(dir_ / "p.txt");
+  WritePathFile(tmp_.path() / "p.txt", core::Path({core::Pose2(1.0, 2.0, core::kPi / 2.0)}));
+  std::ifstream in(tmp_.path() / "p.txt");
   std::string line;
   std::getline(in, line);
   std::istringstream ss(line);
@@ -138,10 +124,10 @@ TEST_F(RouteFileTest, PathFileIsSevenColumnsWithZeroZ) {
 }
 
 TEST_F(RouteFileTest, BadPathFilesAreIoErrors) {
-  const std::string where = (dir_ / "bad.txt").string();
+  const std::string where = (tmp_.path() / "bad.txt").string();
   auto error_for = [&](const std::string& text) -> std::string {
     try {
-      ReadPathFile(Write("bad.txt", text));
+      ReadPathFile(tmp_.Write("bad.txt", text));
     } catch (const core::IoError& e) {
       return e.what();
     }
@@ -153,7 +139,7 @@ TEST_F(RouteFileTest, BadPathFilesAreIoErrors) {
   EXPECT_NE(msg.find(where + ":2: the quaternion is zero"), std::string::npos) << msg;
   msg = error_for("# nothing\n");
   EXPECT_NE(msg.find("holds no poses"), std::string::npos) << msg;
-  EXPECT_THROW(ReadPathFile(dir_ / "missing.txt"), core::IoError);
+  EXPECT_THROW(ReadPathFile(tmp_.path() / "missing.txt"), core::IoError);
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "io/tum.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 
 #include "core/angle.hpp"
 #include "core/errors.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::io {
 namespace {
@@ -20,23 +20,9 @@ namespace fs = std::filesystem;
 
 class TumTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("retrace_io_" + std::string(info->test_suite_name()) + "_" +
-                                        info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path Write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return dir_ / name;
-  }
-
   // The IoError message of ReadTum on `text`, or "" if it did not throw.
   std::string ErrorFor(const std::string& text) const {
-    const fs::path p = Write("bad.tum", text);
+    const fs::path p = tmp_.Write("bad.tum", text);
     try {
       ReadTum(p);
     } catch (const core::IoError& e) {
@@ -45,7 +31,7 @@ class TumTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  retrace::testing::TempDir tmp_;
 };
 
 TEST_F(TumTest, RoundTripKeepsTimesPositionsAndHeadings) {
@@ -54,7 +40,7 @@ TEST_F(TumTest, RoundTripKeepsTimesPositionsAndHeadings) {
     const double theta = -core::kPi + 0.1283 * i;  // covers the whole circle, including -pi
     poses.push_back({0.05 * i + 1e-9, core::Pose2(1.0 / 3.0 * i, -2.0e-7 * i, theta)});
   }
-  const fs::path path = dir_ / "runs" / "0" / "gt.tum";
+  const fs::path path = tmp_.path() / "runs" / "0" / "gt.tum";
   WriteTum(path, poses);
   const std::vector<StampedPose> back = ReadTum(path);
   ASSERT_EQ(back.size(), poses.size());
@@ -67,8 +53,8 @@ TEST_F(TumTest, RoundTripKeepsTimesPositionsAndHeadings) {
 }
 
 TEST_F(TumTest, WritesEightColumnsWithPlanarQuaternion) {
-  WriteTum(dir_ / "a.tum", {{1.5, core::Pose2(2.0, 3.0, core::kPi / 2.0)}});
-  std::ifstream in(dir_ / "a.tum");
+  WriteTum(tmp_.path() / "a.tum", {{1.5, core::Pose2(2.0, 3.0, core::kPi / 2.0)}});
+  std::ifstream in(tmp_.path() / "a.tum");
   std::string header, line;
   std::getline(in, header);
   std::getline(in, line);
@@ -88,12 +74,12 @@ TEST_F(TumTest, WritesEightColumnsWithPlanarQuaternion) {
 }
 
 TEST_F(TumTest, ReadsCommentsBlankLinesCrlfAndUnnormalisedQuaternions) {
-  const fs::path p = Write("in.tum",
-                           "# timestamp tx ty tz qx qy qz qw\r\n"
-                           "\r\n"
-                           "0.0 1 2 0.5 0 0 0 1\r\n"
-                           "   \t\n"
-                           "1.0\t3 4 0 0 0 2 0   # half turn, quaternion not normalised\n");
+  const fs::path p = tmp_.Write("in.tum",
+                                "# timestamp tx ty tz qx qy qz qw\r\n"
+                                "\r\n"
+                                "0.0 1 2 0.5 0 0 0 1\r\n"
+                                "   \t\n"
+                                "1.0\t3 4 0 0 0 2 0   # half turn, quaternion not normalised\n");
   const auto poses = ReadTum(p);
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_EQ(poses[0].t, 0.0);
@@ -111,13 +97,13 @@ TEST_F(TumTest, ReadsYawOfTiltedQuaternion) {
   std::ostringstream line;
   line.precision(17);
   line << "0 0 0 0 " << sr * cy << " " << sr * sy << " " << cr * sy << " " << cr * cy << "\n";
-  const auto poses = ReadTum(Write("tilt.tum", line.str()));
+  const auto poses = ReadTum(tmp_.Write("tilt.tum", line.str()));
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_NEAR(poses[0].pose.theta, yaw, 1e-12);
 }
 
 TEST_F(TumTest, MalformedLinesNameFileAndLine) {
-  const std::string where = (dir_ / "bad.tum").string();
+  const std::string where = (tmp_.path() / "bad.tum").string();
   std::string msg = ErrorFor("0 0 0 0 0 0 0 1\n# comment\n1 0 0 0 0 0 1\n");
   EXPECT_NE(msg.find(where + ":3:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("expected 8 numbers"), std::string::npos) << msg;
@@ -142,12 +128,12 @@ TEST_F(TumTest, MalformedLinesNameFileAndLine) {
 }
 
 TEST_F(TumTest, EmptyFileGivesEmptyTrajectory) {
-  EXPECT_TRUE(ReadTum(Write("empty.tum", "# only a comment\n")).empty());
+  EXPECT_TRUE(ReadTum(tmp_.Write("empty.tum", "# only a comment\n")).empty());
 }
 
 TEST_F(TumTest, MissingFileIsIoError) {
   try {
-    ReadTum(dir_ / "missing.tum");
+    ReadTum(tmp_.path() / "missing.tum");
     FAIL() << "expected IoError";
   } catch (const core::IoError& e) {
     EXPECT_NE(std::string(e.what()).find("missing.tum"), std::string::npos);

@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "core/errors.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -18,26 +18,16 @@ const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
 
 class WorldFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("retrace_world_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::filesystem::path Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return dir_ / name;
-  }
   template <class E>
   std::string ErrorOf(const std::string& text) {
     try {
-      LoadWorld(Write("w.yaml", text));
+      LoadWorld(tmp_.Write("w.yaml", text));
     } catch (const E& e) {
       return e.what();
     }
     return "no error";
   }
-  std::filesystem::path dir_;
+  retrace::testing::TempDir tmp_;
 };
 
 TEST_F(WorldFileTest, EveryShippedWorldLoadsAndHasGeometry) {
@@ -54,12 +44,12 @@ TEST_F(WorldFileTest, EveryShippedWorldLoadsAndHasGeometry) {
 }
 
 TEST_F(WorldFileTest, BuildsSolidsFromBoxesWallsPolygonsAndCircles) {
-  const World w = LoadWorld(Write("w.yaml",
-                                  "name: t\n"
-                                  "boxes: [{center: [5, 5], size: [2, 1], yaw: 1.5707963267948966}]\n"
-                                  "walls: [{points: [[0, 0], [10, 0], [10, 10]], thickness: 0.2}]\n"
-                                  "polygons: [{points: [[20, 0], [22, 0], [21, 2]]}]\n"
-                                  "circles: [{center: [-3, 0], radius: 0.5}]\n"));
+  const World w = LoadWorld(tmp_.Write("w.yaml",
+                                       "name: t\n"
+                                       "boxes: [{center: [5, 5], size: [2, 1], yaw: 1.5707963267948966}]\n"
+                                       "walls: [{points: [[0, 0], [10, 0], [10, 10]], thickness: 0.2}]\n"
+                                       "polygons: [{points: [[20, 0], [22, 0], [21, 2]]}]\n"
+                                       "circles: [{center: [-3, 0], radius: 0.5}]\n"));
   const auto& g = w.geometry;
   EXPECT_EQ(g.polygons().size(), 4u);  // box + two wall pieces + triangle
   EXPECT_EQ(g.circles().size(), 1u);
@@ -75,7 +65,7 @@ TEST_F(WorldFileTest, BuildsSolidsFromBoxesWallsPolygonsAndCircles) {
 }
 
 TEST_F(WorldFileTest, BadInputGivesOneClearMessage) {
-  EXPECT_THROW(LoadWorld(dir_ / "missing.yaml"), core::IoError);
+  EXPECT_THROW(LoadWorld(tmp_.path() / "missing.yaml"), core::IoError);
   EXPECT_THAT(ErrorOf<core::ConfigError>("name: x\nboxes: [{center: [1, 2}\n"), HasSubstr("invalid YAML"));
   EXPECT_THAT(ErrorOf<core::ConfigError>("name: x\ncircles:\n  - {center: [0, 0], radius: 1}\n  - {centre: [1, 1]}\n"),
               AllOf(HasSubstr("w.yaml:4:"), HasSubstr("circles[1].centre"), HasSubstr("did you mean 'center'")));
@@ -98,10 +88,10 @@ TEST_F(WorldFileTest, ImportsARosMapAsMergedEdges) {
       pgm.push_back(static_cast<char>(wall ? 0 : 254));
     }
   }
-  std::ofstream(dir_ / "m.pgm", std::ios::binary) << pgm;
-  Write("m.yaml", "image: m.pgm\nresolution: 0.1\norigin: [-1.0, 2.0, 0.0]\nnegate: 0\n"
-                  "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
-  const World w = LoadWorld(Write("w.yaml", "name: imported\nmaps: [{file: m.yaml}]\n"));
+  tmp_.Write("m.pgm", pgm);
+  tmp_.Write("m.yaml", "image: m.pgm\nresolution: 0.1\norigin: [-1.0, 2.0, 0.0]\nnegate: 0\n"
+                       "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const World w = LoadWorld(tmp_.Write("w.yaml", "name: imported\nmaps: [{file: m.yaml}]\n"));
   // Outer border: 4 outside + 4 inside faces; the block: 4.
   EXPECT_EQ(w.geometry.segments().size(), 12u);
   EXPECT_TRUE(w.geometry.IsInside({-0.95, 2.05}));
