@@ -6,6 +6,9 @@
 #include <filesystem>
 
 #include "core/errors.hpp"
+#include "core/rng.hpp"
+#include "sim/pedestrians.hpp"
+#include "sim/physics_world.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace retrace::sim {
@@ -38,6 +41,13 @@ TEST_F(WorldFileTest, EveryShippedWorldLoadsAndHasGeometry) {
     const World world = LoadWorld(entry.path());
     EXPECT_FALSE(world.geometry.empty());
     EXPECT_FALSE(world.config.name.empty());
+    // Its pedestrian groups can be placed, and their loops are walkable.
+    PhysicsWorld physics(world.geometry);
+    const Pedestrians crowd(world.config.pedestrians, CrowdConfig{}, world.geometry, core::Rng(1),
+                            {}, physics);
+    int expected = 0;
+    for (const auto& g : world.config.pedestrians) expected += g.count;
+    EXPECT_EQ(crowd.size(), expected);
     ++n;
   }
   EXPECT_GE(n, 2);
