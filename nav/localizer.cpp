@@ -1,1 +1,440 @@
-// Placeholder: filled in by its owner.
+#include "nav/localizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <tuple>
+#include <span>
+#include <string>
+#include <unordered_set>
+#include <utility>
+
+#include "core/angle.hpp"
+#include "core/check.hpp"
+#include "core/errors.hpp"
+#include "nav/resampling.hpp"
+
+namespace retrace::nav {
+namespace {
+
+// Runs a nested Validate() and prefixes the key path of its ConfigError.
+template <class T>
+void ValidateNested(const std::string& prefix, const T& nested) {
+  try {
+    nested.Validate();
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError(prefix + "." + e.key_path(), e.detail());
+  }
+}
+
+void RequireInt(const char* key, int v, int lo, int hi) {
+  if (v < lo || v > hi) {
+    throw core::ConfigError(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                     "], got " + std::to_string(v));
+  }
+}
+
+// KLD bound (Fox 2003, eq. 12) for k occupied bins.
+double KldBound(int k, double epsilon, double z) {
+  if (k <= 1) return 1.0;
+  const double km1 = k - 1;
+  const double a = 2.0 / (9.0 * km1);
+  const double b = 1.0 - a + std::sqrt(a) * z;
+  return km1 / (2.0 * epsilon) * b * b * b;
+}
+
+}  // namespace
+
+void DynamicRejectionConfig::Validate() const {
+  core::RequireInRange("chi", chi, 0.0, 1.0);
+  ValidateNested("beam_model", beam_model);
+}
+
+void AugmentedMclConfig::Validate() const {
+  core::RequireInRange("alpha_slow", alpha_slow, 0.0, 1.0);
+  if (!(alpha_slow > 0.0)) throw core::ConfigError("alpha_slow", "must be > 0");
+  core::RequireInRange("alpha_fast", alpha_fast, 0.0, 1.0);
+  if (!(alpha_fast > alpha_slow)) {
+    throw core::ConfigError("alpha_fast", "must be greater than alpha_slow (" +
+                                              core::FormatNumber(alpha_slow) + "), got " +
+                                              core::FormatNumber(alpha_fast));
+  }
+  core::RequireInRange("near_fraction", near_fraction, 0.0, 1.0);
+  core::RequireNonNegative("near_sigma_xy", near_sigma_xy);
+  core::RequireNonNegative("near_sigma_theta", near_sigma_theta);
+  core::RequireInRange("free_threshold", free_threshold, 0.0, 0.5);
+  if (!(free_threshold < 0.5)) {
+    throw core::ConfigError("free_threshold", "must be < 0.5 (unknown cells are 0.5)");
+  }
+}
+
+void KldConfig::Validate() const {
+  RequireInt("min_particles", min_particles, 1, 10'000'000);
+  RequireInt("max_particles", max_particles, min_particles, 10'000'000);
+  core::RequirePositive("epsilon", epsilon);
+  core::RequirePositive("z_quantile", z_quantile);
+  core::RequirePositive("bin_xy", bin_xy);
+  core::RequirePositive("bin_theta_deg", bin_theta_deg);
+}
+
+void LocalizerConfig::Validate() const {
+  RequireInt("particles", particles, 1, 10'000'000);
+  RequireInt("beam_step", beam_step, 1, 1'000'000);
+  core::RequireNonNegative("range_min", range_min);
+  core::RequirePositive("range_max", range_max);
+  if (!(range_max > range_min)) {
+    throw core::ConfigError("range_max", "must be greater than range_min (" +
+                                             core::FormatNumber(range_min) + "), got " +
+                                             core::FormatNumber(range_max));
+  }
+  if (!std::isfinite(lidar_mount.x) || !std::isfinite(lidar_mount.y) ||
+      !std::isfinite(lidar_mount.theta)) {
+    throw core::ConfigError("lidar_mount", "must be finite [x, y, theta]");
+  }
+  core::RequireNonNegative("update_distance", update_distance);
+  core::RequireNonNegative("update_angle_deg", update_angle_deg);
+  core::RequireInRange("resample_ess_ratio", resample_ess_ratio, 0.0, 1.0);
+  ValidateNested("motion", motion);
+  ValidateNested("likelihood_field", likelihood_field);
+  ValidateNested("rejection", rejection);
+  ValidateNested("augmented", augmented);
+  ValidateNested("kld", kld);
+}
+
+Localizer::Localizer(const LocalizerConfig& config, core::Rng rng)
+    : config_(config), rng_(rng) {
+  config_.Validate();
+}
+
+Localizer::~Localizer() = default;
+Localizer::Localizer(Localizer&&) noexcept = default;
+Localizer& Localizer::operator=(Localizer&&) noexcept = default;
+
+const LikelihoodField& Localizer::likelihood_field() const {
+  RETRACE_CHECK(field_ != nullptr);
+  return *field_;
+}
+
+void Localizer::ResetAverages() {
+  averages_started_ = false;
+  w_slow_ = 0.0;
+  w_fast_ = 0.0;
+}
+
+void Localizer::SetMap(const core::OccupancyGrid& map) {
+  // Build the new field before dropping the caster that points into the old one.
+  auto field = std::make_unique<LikelihoodField>(map, config_.likelihood_field, config_.range_max);
+  caster_ = std::make_unique<GridRayCaster>(*field);
+  field_ = std::move(field);
+  beam_model_ = std::make_unique<BeamModel>(config_.rejection.beam_model, config_.range_max);
+  free_cells_.clear();
+  RETRACE_CHECK(map.log_odds().size() <= std::numeric_limits<std::uint32_t>::max());
+  const double free_log_odds = core::Logit(config_.augmented.free_threshold);
+  const std::vector<float>& l = map.log_odds();
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    if (static_cast<double>(l[i]) <= free_log_odds) free_cells_.push_back(static_cast<std::uint32_t>(i));
+  }
+  ResetAverages();
+  force_update_ = true;
+}
+
+void Localizer::Initialize(const core::Pose2& X_MR, double sigma_xy, double sigma_theta) {
+  core::RequireNonNegative("sigma_xy", sigma_xy);
+  core::RequireNonNegative("sigma_theta", sigma_theta);
+  int n = config_.particles;
+  if (config_.kld.enabled) n = std::clamp(n, config_.kld.min_particles, config_.kld.max_particles);
+  particles_.assign(static_cast<std::size_t>(n), Particle{});
+  injected_.assign(static_cast<std::size_t>(n), 0);
+  const double w = 1.0 / n;
+  for (Particle& p : particles_) {
+    const double x = X_MR.x + sigma_xy * rng_.Normal();
+    const double y = X_MR.y + sigma_xy * rng_.Normal();
+    const double theta = X_MR.theta + sigma_theta * rng_.Normal();
+    p = {core::Pose2(x, y, theta), w};
+  }
+  odometry_since_update_ = core::Pose2::Identity();
+  force_update_ = true;
+  ResetAverages();
+}
+
+void Localizer::Predict(const core::OdometryDelta& delta) {
+  odometry_since_update_ = core::IntegrateOdometry(odometry_since_update_, delta);
+  if (delta.distance == 0.0 && delta.dtheta == 0.0) return;
+  const MotionNoise noise = MotionNoiseOf(delta, config_.motion);
+  for (Particle& p : particles_) p.X_MR = SampleMotion(p.X_MR, delta, noise, rng_);
+}
+
+LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
+  LocalizerUpdate out;
+  out.particles = static_cast<int>(particles_.size());
+  if (field_ == nullptr || particles_.empty()) return out;
+  const bool moved =
+      std::hypot(odometry_since_update_.x, odometry_since_update_.y) >= config_.update_distance ||
+      std::abs(odometry_since_update_.theta) >= core::DegToRad(config_.update_angle_deg);
+  if (!moved && !force_update_) return out;
+
+  // Select every beam_step-th valid finite reading inside the configured limits.
+  const double lo = std::max(scan.range_min, config_.range_min);
+  const double hi = std::min(scan.range_max, config_.range_max);
+  std::vector<int> tested;
+  for (std::size_t i = 0; i < scan.size(); i += static_cast<std::size_t>(config_.beam_step)) {
+    if (!scan.Valid(i)) continue;
+    const double r = scan.ranges[i];
+    if (r < lo || r > hi) continue;
+    tested.push_back(static_cast<int>(i));
+  }
+  if (tested.empty()) return out;  // keep the gate open for the next scan
+  out.ran = true;
+  out.beams_tested = static_cast<int>(tested.size());
+  force_update_ = false;
+  odometry_since_update_ = core::Pose2::Identity();
+
+  const std::size_t n = particles_.size();
+  std::vector<core::Pose2> X_ML(n);
+  for (std::size_t j = 0; j < n; ++j) X_ML[j] = particles_[j].X_MR * config_.lidar_mount;
+
+  // Dynamic scan point rejection (eq. 7-9).
+  out.beams.assign(scan.size(), BeamUse::kUnused);
+  std::vector<std::uint8_t> dynamic(tested.size(), 0);
+  if (config_.rejection.enabled) {
+    DynamicBeamResult result;
+    // Particles injected by the last resampling are hypotheses, not yet part of the belief:
+    // they join the sums of eq. (9) once they have been weighted (one random particle that
+    // happens to explain an unmapped return as a hit would otherwise veto its rejection).
+    std::vector<double> prior(n);
+    for (std::size_t j = 0; j < n; ++j) prior[j] = injected_[j] != 0 ? 0.0 : particles_[j].weight;
+    TestDynamicBeams(*beam_model_, *caster_, X_ML, prior, scan, tested, config_.rejection.chi,
+                     RayCastMethod::kSphereTracing, &result);
+    dynamic = std::move(result.dynamic);
+  }
+  std::vector<double> xs, ys;
+  for (std::size_t b = 0; b < tested.size(); ++b) {
+    const std::size_t i = static_cast<std::size_t>(tested[b]);
+    if (dynamic[b] != 0) {
+      out.beams[i] = BeamUse::kRejected;
+      ++out.beams_rejected;
+      continue;
+    }
+    out.beams[i] = BeamUse::kUsed;
+    const double r = scan.ranges[i];
+    const double a = scan.Angle(i);
+    xs.push_back(r * std::cos(a));
+    ys.push_back(r * std::sin(a));
+  }
+  out.beams_used = static_cast<int>(xs.size());
+
+  // Weighting in log space (eq. 5-6); weights carry over between updates until resampled.
+  std::vector<double> log_w(n), w(n);
+  double w_avg = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double ll = field_->SumLogLikelihood(X_ML[j], xs.data(), ys.data(), xs.size());
+    log_w[j] = std::log(particles_[j].weight) + ll;
+    // The belief's expected likelihood: prior weight times the per-beam geometric mean.
+    if (!xs.empty()) w_avg += particles_[j].weight * std::exp(ll / static_cast<double>(xs.size()));
+  }
+  NormalizeLogWeights(log_w, w);
+  for (std::size_t j = 0; j < n; ++j) particles_[j].weight = w[j];
+  out.n_eff = EffectiveSampleSize(w);
+
+  // Augmented MCL: short- and long-term averages of the measurement likelihood.
+  const AugmentedMclConfig& aug = config_.augmented;
+  if (!xs.empty()) {
+    if (!averages_started_) {
+      w_slow_ = w_fast_ = w_avg;
+      averages_started_ = true;
+    } else {
+      w_slow_ += aug.alpha_slow * (w_avg - w_slow_);
+      w_fast_ += aug.alpha_fast * (w_avg - w_fast_);
+    }
+  }
+  out.w_avg = w_avg;
+  out.w_slow = w_slow_;
+  out.w_fast = w_fast_;
+  const double p_inject =
+      aug.enabled && w_slow_ > 0.0 ? std::max(0.0, 1.0 - w_fast_ / w_slow_) : 0.0;
+  out.inject_probability = p_inject;
+
+  int inject_count = 0;
+  if (p_inject > 0.0 && !config_.kld.enabled) {
+    for (std::size_t j = 0; j < n; ++j) inject_count += rng_.Bernoulli(p_inject) ? 1 : 0;
+  }
+  const bool resample = out.n_eff < config_.resample_ess_ratio * static_cast<double>(n) ||
+                        inject_count > 0 || (config_.kld.enabled && p_inject > 0.0);
+  if (resample) {
+    const core::Pose2 estimate = Estimate();
+    std::vector<Particle> next;
+    std::vector<std::uint8_t> next_injected;
+    if (config_.kld.enabled) {
+      next = ResampleKld(w);
+      next_injected.assign(next.size(), 0);
+      for (std::size_t m = 0; m < next.size(); ++m) {
+        if (p_inject > 0.0 && rng_.Bernoulli(p_inject)) {
+          next[m].X_MR = RandomPose(estimate, rng_.Bernoulli(aug.near_fraction));
+          next_injected[m] = 1;
+          ++inject_count;
+        }
+      }
+    } else {
+      next = ResampleFixed(w, inject_count);
+      // The first injected half goes near the estimate, the rest over the free cells.
+      const int near = static_cast<int>(std::lround(aug.near_fraction * inject_count));
+      for (int k = 0; k < inject_count; ++k) {
+        next[n - static_cast<std::size_t>(inject_count) + static_cast<std::size_t>(k)].X_MR =
+            RandomPose(estimate, k < near);
+      }
+    }
+    injected_.assign(next.size(), 0);
+    if (config_.kld.enabled) {
+      for (std::size_t m = 0; m < next.size(); ++m) injected_[m] = next_injected[m];
+    } else {
+      for (int k = 0; k < inject_count; ++k) injected_[n - 1 - static_cast<std::size_t>(k)] = 1;
+    }
+    const double wn = 1.0 / static_cast<double>(next.size());
+    for (Particle& p : next) p.weight = wn;
+    particles_ = std::move(next);
+    out.resampled = true;
+  }
+  if (!out.resampled) std::fill(injected_.begin(), injected_.end(), 0);
+  out.injected = inject_count;
+  out.particles = static_cast<int>(particles_.size());
+  return out;
+}
+
+std::vector<Particle> Localizer::ResampleFixed(const std::vector<double>& weights,
+                                               int inject_count) {
+  const std::size_t n = weights.size();
+  const std::size_t keep = n - static_cast<std::size_t>(inject_count);
+  std::vector<Particle> next(n);
+  const std::vector<std::size_t> idx = LowVarianceResample(weights, keep, rng_);
+  for (std::size_t m = 0; m < keep; ++m) next[m] = particles_[idx[m]];
+  return next;
+}
+
+std::vector<Particle> Localizer::ResampleKld(const std::vector<double>& weights) {
+  const KldConfig& kld = config_.kld;
+  std::vector<double> cdf(weights.size());
+  double c = 0.0;
+  for (std::size_t j = 0; j < weights.size(); ++j) cdf[j] = (c += weights[j]);
+  const double bin_theta = core::DegToRad(kld.bin_theta_deg);
+  std::unordered_set<std::uint64_t> bins;
+  std::vector<Particle> next;
+  double bound = kld.min_particles;
+  while (static_cast<int>(next.size()) < kld.max_particles &&
+         (static_cast<double>(next.size()) < bound ||
+          static_cast<int>(next.size()) < kld.min_particles)) {
+    const double u = rng_.Uniform() * c;
+    const std::size_t j = std::min<std::size_t>(
+        static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()),
+        cdf.size() - 1);
+    const core::Pose2& X = particles_[j].X_MR;
+    next.push_back(particles_[j]);
+    // 21 bits per coordinate (offset to stay non-negative) make one 63-bit key.
+    const auto key_of = [](double v) {
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v)) + (1 << 20)) &
+             0x1fffffULL;
+    };
+    const std::uint64_t key = key_of(X.x / kld.bin_xy) << 42 | key_of(X.y / kld.bin_xy) << 21 |
+                              key_of(X.theta / bin_theta);
+    if (bins.insert(key).second) {
+      bound = std::max<double>(kld.min_particles,
+                               KldBound(static_cast<int>(bins.size()), kld.epsilon, kld.z_quantile));
+    }
+  }
+  return next;
+}
+
+core::Pose2 Localizer::RandomPose(const core::Pose2& around, bool near) {
+  const AugmentedMclConfig& aug = config_.augmented;
+  if (near || free_cells_.empty()) {
+    return {around.x + aug.near_sigma_xy * rng_.Normal(), around.y + aug.near_sigma_xy * rng_.Normal(),
+            around.theta + aug.near_sigma_theta * rng_.Normal()};
+  }
+  const std::uint32_t cell = free_cells_[rng_.UniformIndex(free_cells_.size())];
+  const int w = field_->width();
+  const double res = field_->resolution();
+  const double x = field_->origin().x() + (static_cast<double>(cell % static_cast<std::uint32_t>(w)) + rng_.Uniform()) * res;
+  const double y = field_->origin().y() + (static_cast<double>(cell / static_cast<std::uint32_t>(w)) + rng_.Uniform()) * res;
+  return {x, y, rng_.Uniform(-core::kPi, core::kPi)};
+}
+
+namespace {
+
+// Weighted mean (circular for θ) of the particles within radius (m) and angle (rad) of
+// `around`, or nullopt when none has weight there.
+std::optional<core::Pose2> LocalMean(const std::vector<Particle>& particles,
+                                     const core::Pose2& around, double radius, double angle) {
+  double x = 0.0, y = 0.0, s = 0.0, c = 0.0, total = 0.0;
+  for (const Particle& p : particles) {
+    const double dx = p.X_MR.x - around.x, dy = p.X_MR.y - around.y;
+    if (dx * dx + dy * dy > radius * radius ||
+        std::abs(core::AngleDiff(p.X_MR.theta, around.theta)) > angle) {
+      continue;
+    }
+    x += p.weight * p.X_MR.x;
+    y += p.weight * p.X_MR.y;
+    s += p.weight * std::sin(p.X_MR.theta);
+    c += p.weight * std::cos(p.X_MR.theta);
+    total += p.weight;
+  }
+  if (!(total > 0.0)) return std::nullopt;
+  return core::Pose2(x / total, y / total, std::atan2(s, c));
+}
+
+}  // namespace
+
+core::Pose2 Localizer::Estimate() const {
+  if (particles_.empty()) return core::Pose2::Identity();
+  // The heaviest cell of a 3-D histogram seeds the estimate, then two mean-shift steps refine
+  // it within kClusterRadius / kClusterAngle: particles of other modes and freshly injected
+  // random particles do not drag the estimate away from the main cluster.
+  constexpr double kBinXy = 0.5;
+  const double bin_theta = core::DegToRad(30.0);
+  struct Bin {
+    double weight = 0.0;
+    std::size_t first = 0;  // a particle of the bin, for the seed
+  };
+  std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t>, Bin> bins;
+  for (std::size_t j = 0; j < particles_.size(); ++j) {
+    const core::Pose2& X = particles_[j].X_MR;
+    const auto key = std::make_tuple(static_cast<std::int64_t>(std::floor(X.x / kBinXy)),
+                                     static_cast<std::int64_t>(std::floor(X.y / kBinXy)),
+                                     static_cast<std::int64_t>(std::floor(X.theta / bin_theta)));
+    auto [it, inserted] = bins.try_emplace(key, Bin{0.0, j});
+    it->second.weight += particles_[j].weight;
+  }
+  const Bin* best = nullptr;
+  for (const auto& [key, bin] : bins) {
+    if (best == nullptr || bin.weight > best->weight) best = &bin;
+  }
+  core::Pose2 estimate = particles_[best->first].X_MR;
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    const std::optional<core::Pose2> m =
+        LocalMean(particles_, estimate, kClusterRadius, kClusterAngle);
+    if (!m) break;
+    estimate = *m;
+  }
+  return estimate;
+}
+
+Eigen::Matrix3d Localizer::Covariance() const {
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  if (particles_.empty()) return cov;
+  const core::Pose2 mean = Estimate();
+  double total = 0.0;
+  for (const Particle& p : particles_) {
+    const Eigen::Vector3d d(p.X_MR.x - mean.x, p.X_MR.y - mean.y,
+                            core::AngleDiff(p.X_MR.theta, mean.theta));
+    cov += p.weight * (d * d.transpose());
+    total += p.weight;
+  }
+  return total > 0.0 ? Eigen::Matrix3d(cov / total) : cov;
+}
+
+void Localizer::ApplyMapSwitch(const core::OccupancyGrid& next_map, const core::Pose2& X_new_old) {
+  for (Particle& p : particles_) p.X_MR = X_new_old * p.X_MR;  // eq. (1)
+  SetMap(next_map);
+}
+
+}  // namespace retrace::nav

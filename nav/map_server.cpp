@@ -1,1 +1,35 @@
-// Placeholder: filled in by its owner.
+#include "nav/map_server.hpp"
+
+#include <utility>
+
+#include "core/check.hpp"
+#include "core/errors.hpp"
+
+namespace retrace::nav {
+
+MapServer::MapServer(TeachBundle bundle) : bundle_(std::move(bundle)) {
+  if (bundle_.maps.empty()) throw core::ConfigError("maps", "the teach bundle holds no partial map");
+}
+
+void MapServer::Start(Localizer& localizer, PathFollower& follower) {
+  index_ = 0;
+  localizer.SetMap(current().grid);
+  follower.SetPath(current().path);
+}
+
+MapSwitch MapServer::SwitchToNext(Localizer& localizer, PathFollower& follower) {
+  RETRACE_CHECK(!IsLast());
+  MapSwitch s;
+  s.from = index_;
+  s.to = index_ + 1;
+  s.X_MkR = localizer.Estimate();
+  // X_{M_{k+1} M_k} = inverse(X_{M_k S}); applied to X_{M_k R} it is eq. (1).
+  const core::Pose2 X_next_prev = current().X_MS.Inverse();
+  ++index_;
+  localizer.ApplyMapSwitch(current().grid, X_next_prev);
+  follower.SetPath(current().path);
+  s.X_MnR = localizer.Estimate();
+  return s;
+}
+
+}  // namespace retrace::nav

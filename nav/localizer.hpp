@@ -1,0 +1,248 @@
+#pragma once
+// Monte Carlo localization in one partial map (paper §4.2): augmented MCL with the sample
+// motion model, the likelihood-field measurement model over a subsampled scan summed in log
+// space, motion-gated updates, low-variance resampling when the effective sample size drops,
+// random-particle injection driven by w_slow / w_fast, optional KLD-sampling, and dynamic scan
+// point rejection (eq. 7-9) that leaves beams hitting unmapped objects out of the weights.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/config.hpp"
+#include "core/laser_scan.hpp"
+#include "core/occupancy_grid.hpp"
+#include "core/pose2.hpp"
+#include "core/rng.hpp"
+#include "core/twist.hpp"
+#include "nav/beam_model.hpp"
+#include "nav/grid_ray_caster.hpp"
+#include "nav/likelihood_field.hpp"
+#include "nav/motion_model.hpp"
+
+namespace retrace::nav {
+
+/// Dynamic scan point rejection (eq. 7-9).
+struct DynamicRejectionConfig {
+  bool enabled = true;
+  double chi = 0.9;  ///< a beam is dynamic when its short-reading ratio exceeds chi
+  BeamModelConfig beam_model;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("enabled", enabled);
+    v("chi", chi);
+    v("beam_model", beam_model);
+  }
+  /// Throws core::ConfigError naming the key (e.g. "chi", "beam_model.sigma_hit").
+  void Validate() const;
+};
+
+/// Augmented MCL (Probabilistic Robotics Table 8.3): w_slow and w_fast follow the average
+/// measurement likelihood with rates alpha_slow << alpha_fast; each resampled particle is
+/// replaced by a random one with probability max(0, 1 - w_fast / w_slow).
+///
+/// The average likelihood of an update is the expectation over the belief (prior weights) of
+/// the per-beam geometric mean exp(Σ_i log p_i / n) (1/m): with about a hundred beams the plain
+/// product would underflow, and the per-beam mean keeps the rates independent of the beam count. Both
+/// averages start at the first update's value after Initialize, SetMap or ApplyMapSwitch
+/// (starting at 0 as in the book would make w_slow lag for thousands of updates). With updates
+/// every 0.2 m, alpha_slow = 1e-3 remembers about 200 m of route and alpha_fast = 0.1 about 2 m.
+/// Random particles: near_fraction of them around the current estimate (Gaussian), the rest
+/// uniformly over the map's free cells (uniform heading).
+struct AugmentedMclConfig {
+  bool enabled = true;
+  double alpha_slow = 1e-3;
+  double alpha_fast = 0.1;
+  double near_fraction = 0.5;
+  double near_sigma_xy = 0.5;     ///< m
+  double near_sigma_theta = 0.2;  ///< rad
+  double free_threshold = 0.25;   ///< a cell is free when its probability <= this
+
+  template <class V>
+  void Reflect(V& v) {
+    v("enabled", enabled);
+    v("alpha_slow", alpha_slow);
+    v("alpha_fast", alpha_fast);
+    v("near_fraction", near_fraction);
+    v("near_sigma_xy", near_sigma_xy);
+    v("near_sigma_theta", near_sigma_theta);
+    v("free_threshold", free_threshold);
+  }
+  /// Throws core::ConfigError naming the key.
+  void Validate() const;
+};
+
+/// KLD-sampling (Fox 2003): when resampling, draw particles until their number exceeds the
+/// bound for the number k of occupied bins of a 3-D (x, y, θ) histogram,
+/// n = (k - 1) / (2ε) · (1 - 2/(9(k-1)) + sqrt(2/(9(k-1))) z)³, within [min, max]. The draws
+/// are then multinomial (binary search on the cumulative weights, O(N log N)).
+struct KldConfig {
+  bool enabled = false;
+  int min_particles = 100;
+  int max_particles = 5000;
+  double epsilon = 0.05;      ///< bound on the KL divergence
+  double z_quantile = 2.326;  ///< upper 1 - δ quantile of the standard normal (δ = 0.01)
+  double bin_xy = 0.5;        ///< m
+  double bin_theta_deg = 10.0;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("enabled", enabled);
+    v("min_particles", min_particles);
+    v("max_particles", max_particles);
+    v("epsilon", epsilon);
+    v("z_quantile", z_quantile);
+    v("bin_xy", bin_xy);
+    v("bin_theta_deg", bin_theta_deg);
+  }
+  /// Throws core::ConfigError naming the key.
+  void Validate() const;
+};
+
+/// Localizer configuration. Defaults follow the original implementation where sound
+/// (reference/method.md): every 10th beam (108 of 1081), z_hit 0.9 / z_short 0.1 / z_max 0.05,
+/// λ_short 0.05, χ 0.9, updates after 0.2 m or 2°, resampling when n_eff < 0.5 N; 500 particles
+/// instead of 200. The weighting (likelihood_field, z_rand 0.05, σ 0.2 m) and the rejection test
+/// (rejection.beam_model, z_rand 0.01, σ 0.1 m) are separate models with separate parameters,
+/// as in the paper; see BeamModelConfig for why its z_rand and σ differ.
+///
+/// Dynamic rejection: the sums of eq. (9) run over the particles weighted by their prior
+/// weights (Table 8.5's plain sum right after resampling), leaving out particles injected by the
+/// last resampling until they have been weighted once: a random particle that happens to explain
+/// an unmapped return as a hit would otherwise veto its rejection (with injection feeding back
+/// through the lower likelihood of unrejected beams, this made the filter diverge in tests).
+struct LocalizerConfig {
+  int particles = 500;  ///< fixed count (the initial count with KLD-sampling)
+  int beam_step = 10;   ///< use scan beams 0, step, 2 step, ...
+  double range_min = 0.05;  ///< m: readings below are ignored
+  double range_max = 30.0;  ///< m: readings above are ignored; the models' maximum range
+  core::Pose2 lidar_mount;  ///< X_RL: the LiDAR frame L in the robot frame R
+  double update_distance = 0.2;    ///< m of motion before a measurement update
+  double update_angle_deg = 2.0;   ///< or this much rotation
+  double resample_ess_ratio = 0.5; ///< resample when n_eff < ratio · N
+  MotionModelConfig motion;
+  LikelihoodFieldConfig likelihood_field;
+  DynamicRejectionConfig rejection;
+  AugmentedMclConfig augmented;
+  KldConfig kld;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("particles", particles);
+    v("beam_step", beam_step);
+    v("range_min", range_min);
+    v("range_max", range_max);
+    v("lidar_mount", lidar_mount);
+    v("update_distance", update_distance);
+    v("update_angle_deg", update_angle_deg);
+    v("resample_ess_ratio", resample_ess_ratio);
+    v("motion", motion);
+    v("likelihood_field", likelihood_field);
+    v("rejection", rejection);
+    v("augmented", augmented);
+    v("kld", kld);
+  }
+  /// Throws core::ConfigError naming the key path (e.g. "particles", "rejection.chi").
+  void Validate() const;
+};
+
+/// One hypothesis: the robot pose X_MR in the map frame M and its normalised weight.
+struct Particle {
+  core::Pose2 X_MR;
+  double weight = 0.0;
+};
+
+/// How a scan beam was used by an update.
+enum class BeamUse : std::uint8_t {
+  kUnused,    ///< not selected (beam_step), or not a valid finite reading within the limits
+  kUsed,      ///< weighted
+  kRejected,  ///< classified dynamic (eq. 9) and left out of the weights
+};
+
+/// Diagnostics of one Update call (no timings: nav has no clock).
+struct LocalizerUpdate {
+  bool ran = false;          ///< false: gated (no motion since the last update) or no usable beam
+  int beams_tested = 0;      ///< selected valid beams
+  int beams_used = 0;        ///< beams in the weights
+  int beams_rejected = 0;    ///< beams classified dynamic
+  std::vector<BeamUse> beams;  ///< per scan beam (size of the scan when ran, else empty)
+  double n_eff = 0.0;        ///< effective sample size after weighting, before resampling
+  bool resampled = false;
+  double w_avg = 0.0;        ///< average per-beam likelihood of this update (1/m)
+  double w_slow = 0.0;
+  double w_fast = 0.0;
+  double inject_probability = 0.0;
+  int injected = 0;          ///< random particles added by this update's resampling
+  int particles = 0;         ///< particle count after the update
+};
+
+/// Augmented Monte Carlo localization with dynamic scan point rejection in a map frame M.
+class Localizer {
+ public:
+  static constexpr double kClusterRadius = 1.0;  ///< m
+  static constexpr double kClusterAngle = 0.5;   ///< rad
+  /// Validates the config (throws core::ConfigError naming the key); all randomness comes from
+  /// rng. No map and no particles until SetMap and Initialize.
+  Localizer(const LocalizerConfig& config, core::Rng rng);
+  ~Localizer();
+  Localizer(Localizer&&) noexcept;
+  Localizer& operator=(Localizer&&) noexcept;
+
+  /// Uses `map` (copied into the likelihood field, distance field and free-cell list) from now
+  /// on; the next scan is used even without motion, and w_slow / w_fast restart.
+  void SetMap(const core::OccupancyGrid& map);
+  /// Draws the particles around X_MR (M) with independent Gaussians of std sigma_xy (m) on x
+  /// and y and sigma_theta (rad) on the heading. Throws core::ConfigError on a negative or
+  /// non-finite sigma. The next scan is used even without motion.
+  void Initialize(const core::Pose2& X_MR, double sigma_xy, double sigma_theta);
+  /// Moves every particle by one odometry increment (robot frame) with the sample motion
+  /// model; call on every odometry tick. Also feeds the motion gate of Update.
+  void Predict(const core::OdometryDelta& delta);
+  /// Measurement update with a scan in the LiDAR frame L (mounted at config.lidar_mount), run
+  /// only after update_distance or update_angle_deg of odometry since the last update (or once
+  /// after Initialize, SetMap, ApplyMapSwitch): standing still never reuses a scan.
+  LocalizerUpdate Update(const core::LaserScan& scan);
+
+  /// The robot pose X_MR in M: the weighted mean (circular mean for θ) of the main cluster, the
+  /// particles within kClusterRadius and kClusterAngle of the heaviest cell of a (0.5 m, 0.5 m,
+  /// 30°) histogram, refined by mean shift. The identity before Initialize. Injected random
+  /// particles and minor modes do not drag it; the spread of all particles is Covariance().
+  core::Pose2 Estimate() const;
+  /// Weighted covariance of all particles' (x, y, θ) around Estimate() (m², m·rad, rad²); θ
+  /// differences wrapped to [-π, π).
+  Eigen::Matrix3d Covariance() const;
+  /// Paper eq. (1) at a map switch: every particle becomes X_new_old * X_old_R (so does the
+  /// estimate, a function of the particles), then next_map replaces the map as in SetMap.
+  /// X_new_old is the old map frame in the new one, i.e. inverse(X_{M_k S}) (DESIGN §2).
+  void ApplyMapSwitch(const core::OccupancyGrid& next_map, const core::Pose2& X_new_old);
+
+  const std::vector<Particle>& particles() const { return particles_; }
+  const LocalizerConfig& config() const { return config_; }
+  bool has_map() const { return field_ != nullptr; }
+  /// The current map's likelihood field (requires has_map()).
+  const LikelihoodField& likelihood_field() const;
+
+ private:
+  void ResetAverages();
+  std::vector<Particle> ResampleFixed(const std::vector<double>& weights, int inject_count);
+  std::vector<Particle> ResampleKld(const std::vector<double>& weights);
+  core::Pose2 RandomPose(const core::Pose2& around, bool near);
+
+  LocalizerConfig config_;
+  core::Rng rng_;
+  std::unique_ptr<LikelihoodField> field_;
+  std::unique_ptr<GridRayCaster> caster_;
+  std::unique_ptr<BeamModel> beam_model_;
+  std::vector<std::uint32_t> free_cells_;  // row-major indices of free cells
+  std::vector<Particle> particles_;
+  std::vector<std::uint8_t> injected_;  // 1: injected by the last resampling, not yet weighted
+  core::Pose2 odometry_since_update_;
+  bool force_update_ = false;
+  bool averages_started_ = false;
+  double w_slow_ = 0.0;
+  double w_fast_ = 0.0;
+};
+
+}  // namespace retrace::nav

@@ -1,0 +1,114 @@
+#pragma once
+// The occupancy-grid mapper of the teaching run (paper §4.1): given the robot's pose in the
+// map frame M (from odometry, eq. 2) and LiDAR scans, it integrates a scan at every keyframe
+// by casting each beam through the grid cell by cell and applying the inverse sensor model in
+// log-odds (eq. 3-4, nav/inverse_sensor_model.hpp). The grid grows as the robot travels.
+// Keyframe poses make up the map's path.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/config.hpp"
+#include "core/laser_scan.hpp"
+#include "core/occupancy_grid.hpp"
+#include "core/path.hpp"
+#include "core/pose2.hpp"
+#include "nav/inverse_sensor_model.hpp"
+
+namespace retrace::nav {
+
+/// Mapper parameters; defaults follow the original implementation where it had one.
+struct MapperConfig {
+  double resolution = 0.1;          ///< m per cell
+  double initial_size = 20.0;       ///< m, side of the square grid centred on M's origin
+  double keyframe_distance = 0.5;   ///< m travelled since the last keyframe
+  double keyframe_angle_deg = 5.0;  ///< heading change since the last keyframe
+  /// Clamp of every cell's log-odds. Wide, so that a wall seen head-on from many keyframes
+  /// outlasts the few beams that graze its cells' free part, and a pedestrian crossing cells
+  /// that are already saturated free during teaching leaves no trace.
+  double log_odds_min = -8.0;
+  double log_odds_max = 8.0;
+  /// m: finite readings longer than this mark no hit; they only clear free space, like +inf.
+  double hit_range_max = 30.0;
+  /// m: no-return (+inf) beams clear free cells up to this range, without marking a hit.
+  double no_return_range = 10.0;
+  core::Pose2 lidar_mount;  ///< X_RL: the LiDAR frame L in the robot frame R
+  InverseSensorModelConfig inverse_model;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("resolution", resolution);
+    v("initial_size", initial_size);
+    v("keyframe_distance", keyframe_distance);
+    v("keyframe_angle_deg", keyframe_angle_deg);
+    v("log_odds_min", log_odds_min);
+    v("log_odds_max", log_odds_max);
+    v("hit_range_max", hit_range_max);
+    v("no_return_range", no_return_range);
+    v("lidar_mount", lidar_mount);
+    v("inverse_model", inverse_model);
+  }
+  /// Throws core::ConfigError naming the key path (e.g. "resolution",
+  /// "inverse_model.sigma"): non-positive sizes or ranges, negative keyframe thresholds,
+  /// log_odds_min >= 0 or log_odds_max <= 0, a non-finite mount.
+  void Validate() const;
+};
+
+/// What the last integrated scan did, for diagnostics.
+struct MapperStats {
+  std::size_t keyframes = 0;      ///< scans integrated so far
+  std::size_t beams_hit = 0;      ///< beams of the last keyframe that marked an end point
+  std::size_t beams_cleared = 0;  ///< beams of the last keyframe that only cleared (no return)
+  std::size_t beams_skipped = 0;  ///< invalid beams (NaN, -inf, below range_min) skipped
+  std::size_t cells_updated = 0;  ///< distinct cells updated by the last keyframe
+};
+
+/// Builds one occupancy grid and its keyframe path in the frame M where it was started.
+class Mapper {
+ public:
+  /// An empty map with the robot at the origin of M. Throws core::ConfigError for an invalid
+  /// config.
+  explicit Mapper(const MapperConfig& config);
+
+  /// Sets the robot's current pose X_MR (m, rad, in M).
+  void SetPose(const core::Pose2& X_MR) { X_MR_ = X_MR; }
+
+  /// Integrates `scan` (taken at the current pose) if a keyframe is due: for the first scan,
+  /// and once the robot has moved keyframe_distance or turned keyframe_angle_deg since the
+  /// last keyframe. Records the pose in the path. Returns whether the scan was integrated.
+  bool OnScan(const core::LaserScan& scan);
+
+  /// Integrates `scan` taken from X_MR now, without keyframe gating and without recording a
+  /// path pose. Each cell is updated at most once per scan: a cell holding a beam's end point
+  /// takes the hit, any other cell the mean of the inverse-model values of the beams that
+  /// meet it.
+  void Integrate(const core::LaserScan& scan, const core::Pose2& X_MR);
+
+  const core::OccupancyGrid& grid() const { return grid_; }
+  /// Keyframe poses X_MR (in M), in the order they were taken.
+  const core::Path& path() const { return path_; }
+  /// The current pose X_MR (in M).
+  const core::Pose2& pose() const { return X_MR_; }
+  const MapperStats& stats() const { return stats_; }
+  const MapperConfig& config() const { return config_; }
+
+ private:
+  bool KeyframeDue() const;
+  void ProposeUpdate(core::CellIndex c, float delta, bool end_cell);
+
+  MapperConfig config_;
+  core::OccupancyGrid grid_;
+  core::Path path_;
+  core::Pose2 X_MR_;
+  MapperStats stats_;
+  // Per-scan scratch, valid for cells whose stamp is scan_id_: the sum and number of the
+  // beams' log-odds updates, and whether a beam ended in the cell.
+  std::vector<float> sum_;
+  std::vector<std::uint32_t> count_;
+  std::vector<std::uint8_t> end_cell_;
+  std::vector<std::uint32_t> stamp_;
+  std::vector<std::size_t> touched_;
+  std::uint32_t scan_id_ = 0;
+};
+
+}  // namespace retrace::nav

@@ -1,0 +1,122 @@
+#include "nav/grid_ray_caster.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdio>
+
+#include "core/angle.hpp"
+#include "core/rng.hpp"
+
+namespace retrace::nav {
+namespace {
+
+using core::Vec2;
+
+// A 20 m x 15 m grid at 0.1 m with a room outline (open on one side, so rays leave the map)
+// and random blobs.
+core::OccupancyGrid RandomMap(std::uint64_t seed) {
+  core::OccupancyGrid g(200, 150, 0.1, Vec2(-3.3, -1.7));
+  core::Rng rng(seed);
+  for (int y = 0; y < 150; ++y) {
+    for (int x = 0; x < 200; ++x) {
+      const bool wall = (y == 10 || y == 140 || x == 10) && !(y > 60 && y < 80);
+      g.SetProbability({x, y}, wall ? 0.95 : 0.05);
+    }
+  }
+  for (int k = 0; k < 40; ++k) {
+    const int cx = static_cast<int>(rng.UniformIndex(200)), cy = static_cast<int>(rng.UniformIndex(150));
+    const int r = static_cast<int>(rng.UniformIndex(6));
+    for (int y = cy - r; y <= cy + r; ++y) {
+      for (int x = cx - r; x <= cx + r; ++x) {
+        if (g.Contains({x, y}) && (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) {
+          g.SetProbability({x, y}, 0.95);
+        }
+      }
+    }
+  }
+  return g;
+}
+
+TEST(GridRayCaster, SphereTracingIsBitIdenticalToDdaOnRandomRays) {
+  int hits = 0, misses = 0, outside_starts = 0, total = 0;
+  for (std::uint64_t seed = 0; seed < 5; ++seed) {
+    const core::OccupancyGrid g = RandomMap(seed);
+    const LikelihoodField f(g, {}, 30.0);
+    const GridRayCaster caster(f);
+    core::Rng rng(seed + 100);
+    for (int i = 0; i < 2000; ++i) {
+      // Starts anywhere in and around the map (some outside), some on exact cell boundaries,
+      // some along the axes.
+      double x = rng.Uniform(-6.0, 20.0), y = rng.Uniform(-4.0, 16.0);
+      if (i % 7 == 0) x = -3.3 + 0.1 * static_cast<double>(rng.UniformIndex(200));
+      double a = rng.Uniform(-core::kPi, core::kPi);
+      if (i % 11 == 0) a = core::kPi / 2.0 * static_cast<double>(rng.UniformIndex(4)) - core::kPi;
+      if (i % 13 == 0) a = core::kPi / 4.0;
+      const double range_max = i % 5 == 0 ? rng.Uniform(0.0, 5.0) : 30.0;
+      const double dx = std::cos(a), dy = std::sin(a);
+      const double fast = caster.Cast(x, y, dx, dy, range_max);
+      const double ref = caster.CastDda(x, y, dx, dy, range_max);
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(fast), std::bit_cast<std::uint64_t>(ref))
+          << "seed " << seed << " ray " << i << " from (" << x << ", " << y << ") angle " << a;
+      ++total;
+      (std::isinf(ref) ? misses : hits) += 1;
+      outside_starts += g.Contains(g.WorldToCell(Vec2(x, y))) ? 0 : 1;
+      if (!std::isinf(ref)) {
+        EXPECT_LE(ref, range_max);
+      }
+    }
+  }
+  std::printf("[ report ] %d rays: %d hits, %d no-hit, %d starting outside the map; all identical\n",
+              total, hits, misses, outside_starts);
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(misses, 500);
+  EXPECT_GT(outside_starts, 1000);
+}
+
+core::OccupancyGrid BoxRoom() {
+  // 10 m x 10 m at 0.1 m, origin (0, 0); wall cells at x = 80 (x in [8, 8.1)).
+  core::OccupancyGrid g(100, 100, 0.1, Vec2(0.0, 0.0));
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 0; x < 100; ++x) g.SetProbability({x, y}, x == 80 ? 0.95 : 0.05);
+  }
+  return g;
+}
+
+TEST(GridRayCaster, DistanceToWhereTheRayEntersTheOccupiedCell) {
+  const core::OccupancyGrid g = BoxRoom();
+  const LikelihoodField f(g, {}, 30.0);
+  const GridRayCaster caster(f);
+  EXPECT_NEAR(caster.Cast(Vec2(2.05, 5.05), Vec2(1.0, 0.0), 30.0), 5.95, 1e-9);
+  const double a = 0.5;
+  EXPECT_NEAR(caster.Cast(Vec2(2.05, 1.05), Vec2(std::cos(a), std::sin(a)), 30.0),
+              (8.0 - 2.05) / std::cos(a), 1e-9);
+  // Starting inside an occupied cell: 0.
+  EXPECT_EQ(caster.Cast(Vec2(8.05, 5.0), Vec2(1.0, 0.0), 30.0), 0.0);
+  // A ray starting left of the map enters it and still finds the wall.
+  EXPECT_NEAR(caster.Cast(Vec2(-2.0, 5.05), Vec2(1.0, 0.0), 30.0), 10.0, 1e-9);
+}
+
+TEST(GridRayCaster, NoObstacleOnTheRayIsInfinityNotZero) {
+  const core::OccupancyGrid g = BoxRoom();
+  const LikelihoodField f(g, {}, 30.0);
+  const GridRayCaster caster(f);
+  // Leaves the map without meeting an occupied cell.
+  EXPECT_EQ(caster.Cast(Vec2(2.0, 5.0), Vec2(-1.0, 0.0), 30.0), kNoHit);
+  EXPECT_EQ(caster.CastDda(Vec2(2.0, 5.0), Vec2(-1.0, 0.0), 30.0), kNoHit);
+  EXPECT_EQ(caster.Cast(Vec2(2.0, 5.0), Vec2(0.0, 1.0), 30.0), kNoHit);
+  // The wall is beyond range_max.
+  EXPECT_EQ(caster.Cast(Vec2(2.05, 5.0), Vec2(1.0, 0.0), 5.0), kNoHit);
+  EXPECT_NEAR(caster.Cast(Vec2(2.05, 5.0), Vec2(1.0, 0.0), 5.95), 5.95, 1e-9);
+  // A ray that misses the map entirely.
+  EXPECT_EQ(caster.Cast(Vec2(-5.0, -5.0), Vec2(-1.0, 0.0), 30.0), kNoHit);
+  EXPECT_TRUE(std::isinf(kNoHit) && kNoHit > 0.0);
+  // An empty map.
+  const core::OccupancyGrid empty(50, 50, 0.1, Vec2(0.0, 0.0));
+  const LikelihoodField fe(empty, {}, 30.0);
+  EXPECT_EQ(GridRayCaster(fe).Cast(Vec2(2.0, 2.0), Vec2(0.6, 0.8), 30.0), kNoHit);
+}
+
+}  // namespace
+}  // namespace retrace::nav

@@ -1,0 +1,101 @@
+#include "nav/map_server.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/errors.hpp"
+#include "core/rng.hpp"
+
+namespace retrace::nav {
+namespace {
+
+void ExpectPoseNear(const core::Pose2& a, const core::Pose2& b, double tol) {
+  EXPECT_NEAR(a.x, b.x, tol);
+  EXPECT_NEAR(a.y, b.y, tol);
+  EXPECT_NEAR(core::AngleDiff(a.theta, b.theta), 0.0, tol);
+}
+
+// A 20 m x 20 m map with a wall around it, origin at (-10, -10).
+core::OccupancyGrid RoomMap() {
+  core::OccupancyGrid grid(200, 200, 0.1, core::Vec2(-10.0, -10.0));
+  for (int y = 0; y < 200; ++y) {
+    for (int x = 0; x < 200; ++x) {
+      const bool wall = x < 2 || y < 2 || x >= 198 || y >= 198;
+      grid.SetProbability({x, y}, wall ? 0.95 : 0.05);
+    }
+  }
+  return grid;
+}
+
+TeachBundle TwoMaps(const core::Pose2& X_M0S) {
+  TeachBundle bundle;
+  PartialMap m0;
+  m0.grid = RoomMap();
+  m0.path = core::Path({{0, 0, 0}, {2, 0, 0}, X_M0S});
+  m0.X_MS = X_M0S;
+  PartialMap m1;
+  m1.grid = RoomMap();
+  m1.path = core::Path({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}});
+  m1.X_MS = core::Pose2(2, 0, 0);
+  bundle.maps = {m0, m1};
+  return bundle;
+}
+
+TEST(MapServer, EquationOneMapsTheSwitchPoseToIdentityAndKeepsRelativePoses) {
+  const core::Pose2 X_MS(12.0, -3.0, 2.5);
+  ExpectPoseNear(TransformToNextMap(X_MS, X_MS), core::Pose2::Identity(), 1e-12);
+  // A pose 1 m ahead of the switch pose (along its heading) is (1, 0, 0) in the next map.
+  ExpectPoseNear(TransformToNextMap(X_MS, X_MS * core::Pose2(1.0, 0.0, 0.0)),
+                 core::Pose2(1.0, 0.0, 0.0), 1e-12);
+  // Relative poses between two robots are preserved.
+  const core::Pose2 a(11.0, -2.0, 2.0), b(13.0, -4.0, -1.0);
+  ExpectPoseNear(core::Between(TransformToNextMap(X_MS, a), TransformToNextMap(X_MS, b)),
+                 core::Between(a, b), 1e-12);
+}
+
+TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
+  const core::Pose2 X_M0S(4.0, 1.0, 0.7);
+  MapServer server(TwoMaps(X_M0S));
+  Localizer localizer(LocalizerConfig{}, core::Rng(3));
+  PathFollower follower(PathFollowerConfig{});
+  server.Start(localizer, follower);
+  EXPECT_EQ(server.index(), 0u);
+  EXPECT_FALSE(server.IsLast());
+
+  // The robot stopped 0.2 m short of the switch pose, slightly off to the side.
+  const core::Pose2 X_M0R = X_M0S * core::Pose2(-0.2, 0.05, 0.03);
+  localizer.Initialize(X_M0R, 0.05, 0.02);
+  const std::vector<Particle> before = localizer.particles();
+  const core::Pose2 estimate_before = localizer.Estimate();
+
+  const MapSwitch s = server.SwitchToNext(localizer, follower);
+  EXPECT_EQ(s.from, 0u);
+  EXPECT_EQ(s.to, 1u);
+  EXPECT_TRUE(server.IsLast());
+  ExpectPoseNear(s.X_MkR, estimate_before, 1e-12);
+  ExpectPoseNear(s.X_MnR, TransformToNextMap(X_M0S, estimate_before), 1e-9);
+  ExpectPoseNear(localizer.Estimate(), core::Pose2(-0.2, 0.05, 0.03), 0.05);
+  const std::vector<Particle>& after = localizer.particles();
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    ExpectPoseNear(after[i].X_MR, TransformToNextMap(X_M0S, before[i].X_MR), 1e-9);
+    EXPECT_DOUBLE_EQ(after[i].weight, before[i].weight);
+  }
+  // The follower now tracks path 1 from its first point.
+  const FollowerOutput out = follower.Compute(localizer.Estimate(), 0.05);
+  EXPECT_EQ(out.index, 0u);
+  EXPECT_FALSE(out.goal_reached);
+  EXPECT_NEAR(out.remaining, 2.0, 0.25);
+}
+
+TEST(MapServer, SwitchIsDueOnlyAtTheEndOfANonLastPath) {
+  MapServer server(TwoMaps(core::Pose2(4.0, 0.0, 0.0)));
+  FollowerOutput out;
+  out.goal_reached = false;
+  EXPECT_FALSE(server.SwitchDue(out));
+  out.goal_reached = true;
+  EXPECT_TRUE(server.SwitchDue(out));
+  EXPECT_THROW(MapServer(TeachBundle{}), core::ConfigError);
+}
+
+}  // namespace
+}  // namespace retrace::nav
