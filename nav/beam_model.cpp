@@ -116,26 +116,40 @@ void TestDynamicBeams(const BeamModel& model, const GridRayCaster& caster,
     uy[b] = std::sin(a);
   }
   const double range_max = model.range_max();
+  // The particles that take part (zero weights add nothing to either sum), in order.
+  std::vector<std::size_t> used;
+  used.reserve(np);
   for (std::size_t j = 0; j < np; ++j) {
     pc[j] = std::cos(X_ML[j].theta);  // one rotation per particle
     ps[j] = std::sin(X_ML[j].theta);
     pw[j] = weights.empty() ? 1.0 : weights[j];
+    if (pw[j] > 0.0) used.push_back(j);
+  }
+  const std::size_t nu = used.size();
+  std::vector<double> px(nu), py(nu), rx(nu), ry(nu), z_star(nu);
+  for (std::size_t u = 0; u < nu; ++u) {
+    px[u] = X_ML[used[u]].x;
+    py[u] = X_ML[used[u]].y;
   }
   // Beam-major order: the particles' rays of one beam run side by side over the same cells,
   // so consecutive casts hit the cache.
   for (std::size_t b = 0; b < nb; ++b) {
+    for (std::size_t u = 0; u < nu; ++u) {
+      const std::size_t j = used[u];
+      rx[u] = pc[j] * ux[b] - ps[j] * uy[b];
+      ry[u] = ps[j] * ux[b] + pc[j] * uy[b];
+    }
+    if (method == RayCastMethod::kSphereTracing) {
+      caster.CastMany(px, py, rx, ry, range_max, z_star);
+    } else {
+      for (std::size_t u = 0; u < nu; ++u) z_star[u] = caster.CastDda(px[u], py[u], rx[u], ry[u], range_max);
+    }
     double sum_short = 0.0, sum_total = 0.0;
-    for (std::size_t j = 0; j < np; ++j) {
-      if (!(pw[j] > 0.0)) continue;
-      const core::Pose2& X = X_ML[j];
-      const double dx = pc[j] * ux[b] - ps[j] * uy[b];
-      const double dy = ps[j] * ux[b] + pc[j] * uy[b];
-      const double z_star = method == RayCastMethod::kSphereTracing
-                                ? caster.Cast(X.x, X.y, dx, dy, range_max)
-                                : caster.CastDda(X.x, X.y, dx, dy, range_max);
-      const BeamModel::Terms t = model.EvaluateFast(z[b], decay[b], z_star);
-      sum_short += pw[j] * t.short_part;
-      sum_total += pw[j] * t.total;
+    for (std::size_t u = 0; u < nu; ++u) {
+      const double w = pw[used[u]];
+      const BeamModel::Terms t = model.EvaluateFast(z[b], decay[b], z_star[u]);
+      sum_short += w * t.short_part;
+      sum_total += w * t.total;
     }
     num[b] = sum_short;
     den[b] = sum_total;

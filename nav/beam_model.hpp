@@ -103,7 +103,7 @@ class BeamModel {
 
 /// How the dynamic-point test computes the expected ranges.
 enum class RayCastMethod {
-  kSphereTracing,  ///< GridRayCaster::Cast
+  kSphereTracing,  ///< GridRayCaster::CastMany (all particles of a beam at once)
   kDda,            ///< GridRayCaster::CastDda (the reference; same results, slower)
 };
 

@@ -13,14 +13,21 @@ namespace {
 // that axis); for a unit direction the neglected drift is below 1e-10 m over 100 m.
 constexpr double kTinyComponent = 1e-12;
 
+// Sphere tracing hands over to the exact traversal when a step would gain less than this many
+// cells.
+constexpr double kMinStepCells = 0.5;
+
 }  // namespace
 
-// One ray, with the closed-form boundary crossings of both axes.
+// One ray, with the closed-form boundary crossings of both axes and its clipped extent.
 struct GridRayCaster::Ray {
   double px, py, dx, dy;
   double inv_dx, inv_dy;
   int step_x, step_y;
   double ox, oy, res;
+  double range_max;
+  double t_lo;   // m, where the ray enters the map (0 when it starts inside)
+  double t_end;  // m, min(range_max, where it leaves the map)
 
   // t (m) at which the ray crosses the grid line x = ox + i * res (only if step_x != 0).
   double TX(int i) const { return (ox + static_cast<double>(i) * res - px) * inv_dx; }
@@ -35,8 +42,9 @@ struct GridRayCaster::Ray {
       const double g = std::floor((p - o) / r);
       return g < 0.0 ? -1 : (g >= n ? n : static_cast<int>(g));
     }
-    // Only a guess (the loops below settle the cell by the crossings), so a product will do.
-    const double g = std::floor((p + t * d - o) * (1.0 / r));
+    // Only a guess (the loops below settle the cell by the crossings from any start in
+    // [-1, n]), so a product and truncation toward 0 (off by one below the map) will do.
+    const double g = (p + t * d - o) * (1.0 / r);
     int i = g < -1.0 ? -1 : (g > n ? n : static_cast<int>(g));
     if (step > 0) {  // cell i spans crossings [cross(i), cross(i + 1))
       while (i >= 0 && cross(i) > t) --i;
@@ -61,66 +69,91 @@ GridRayCaster::GridRayCaster(const LikelihoodField& field)
       // the nearest occupied centre stays clear of every occupied cell. The extra 1e-3 res
       // absorbs rounding of positions and crossings.
       margin_(res_ * (std::sqrt(2.0) + 1e-3)) {
+  // The clearance byte of a free cell encodes a lower bound of D, the distance (cells) from its
+  // centre to the nearest occupied centre: 1/16-cell steps up to 9 cells, where the sphere steps
+  // decide how close to an obstacle the exact traversal takes over, then 2-cell steps up to 263
+  // cells. kFineCodes codes v = 1..kFineCodes stand for D >= 1 + (v - 1) / 16.
+  constexpr int kFineCodes = 128;
+  constexpr double kFinePerCell = 16.0;
+  constexpr double kCoarseStart = 1.0 + (kFineCodes - 1) / kFinePerCell + 1.0 / kFinePerCell;
+  constexpr double kCoarseCells = 2.0;
+  const auto lower_bound_cells = [&](int v) {
+    return v <= kFineCodes ? 1.0 + (v - 1) / kFinePerCell
+                           : kCoarseStart + (v - kFineCodes - 1) * kCoarseCells;
+  };
   const std::vector<float>& d = field.distance();
   const std::vector<std::uint8_t>& occupied = field.occupied();
   clearance_.resize(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) {
-    // A lower bound of the distance in cells: floor never rounds up, and a distance to an
-    // occupied centre is the root of an integer, never within float error below an integer
-    // it does not equal.
-    const double cells = static_cast<double>(d[i]) / res_;
-    clearance_[i] = occupied[i] != 0 ? 0
-                                     : static_cast<std::uint8_t>(std::clamp(std::floor(cells), 1.0, 255.0));
+    if (occupied[i] != 0) {
+      clearance_[i] = 0;
+      continue;
+    }
+    // The float distance (m) carries a relative error of about 1e-7, so 1e-4 cells below it is
+    // a lower bound of D; D >= 1 on every free cell.
+    const double cells = std::max(1.0, static_cast<double>(d[i]) / res_ - 1e-4);
+    const double v = cells < kCoarseStart
+                         ? 1.0 + std::floor((cells - 1.0) * kFinePerCell)
+                         : kFineCodes + 1.0 + std::floor((cells - kCoarseStart) / kCoarseCells);
+    clearance_[i] = static_cast<std::uint8_t>(std::clamp(v, 1.0, 255.0));
+  }
+  step_[0] = 0.0;
+  for (int v = 255; v >= 1; --v) {
+    step_[static_cast<std::size_t>(v)] = res_ * lower_bound_cells(v) * (1.0 - 1e-6) - margin_;
+    if (step_[static_cast<std::size_t>(v)] >= kMinStepCells * res_) min_step_clearance_ = v;
+  }
+  // Resume sphere tracing from a traversed cell only when it gains at least two cells.
+  const double resume_distance = margin_ + 2.0 * res_;
+  for (int v = 255; v >= 1; --v) {
+    if (res_ * lower_bound_cells(v) >= resume_distance) min_resume_clearance_ = v;
   }
 }
 
-double GridRayCaster::Cast(double x, double y, double dx, double dy, double range_max) const {
-  return CastImpl<true>(x, y, dx, dy, range_max);
-}
+inline bool GridRayCaster::Setup(double x, double y, double dx, double dy, double range_max,
+                          Ray* ray) const {
+  if (width_ == 0 || height_ == 0 || !(range_max >= 0.0)) return false;
+  ray->px = x;
+  ray->py = y;
+  ray->dx = dx;
+  ray->dy = dy;
+  ray->ox = ox_;
+  ray->oy = oy_;
+  ray->res = res_;
+  ray->range_max = range_max;
+  ray->step_x = dx > kTinyComponent ? 1 : (dx < -kTinyComponent ? -1 : 0);
+  ray->step_y = dy > kTinyComponent ? 1 : (dy < -kTinyComponent ? -1 : 0);
+  RETRACE_CHECK(std::isfinite(x) && std::isfinite(y));
+  RETRACE_CHECK(ray->step_x != 0 || ray->step_y != 0);
+  ray->inv_dx = ray->step_x != 0 ? 1.0 / dx : 0.0;
+  ray->inv_dy = ray->step_y != 0 ? 1.0 / dy : 0.0;
 
-double GridRayCaster::CastDda(double x, double y, double dx, double dy, double range_max) const {
-  return CastImpl<false>(x, y, dx, dy, range_max);
+  // Clip to the map: the ray is inside for t in [t_lo, t_exit).
+  double t_lo = 0.0;
+  double t_exit = std::numeric_limits<double>::infinity();
+  if (ray->step_x == 0) {
+    if (!(x >= ox_ && x < ox_ + width_ * res_)) return false;
+  } else {
+    const double a = ray->TX(0), b = ray->TX(width_);
+    t_lo = std::max(t_lo, ray->step_x > 0 ? a : b);
+    t_exit = std::min(t_exit, ray->step_x > 0 ? b : a);
+  }
+  if (ray->step_y == 0) {
+    if (!(y >= oy_ && y < oy_ + height_ * res_)) return false;
+  } else {
+    const double a = ray->TY(0), b = ray->TY(height_);
+    t_lo = std::max(t_lo, ray->step_y > 0 ? a : b);
+    t_exit = std::min(t_exit, ray->step_y > 0 ? b : a);
+  }
+  if (t_lo > range_max || t_lo >= t_exit) return false;
+  ray->t_lo = t_lo;
+  ray->t_end = std::min(range_max, t_exit);
+  return true;
 }
 
 template <bool kSphere>
-double GridRayCaster::CastImpl(double x, double y, double dx, double dy, double range_max) const {
-  if (width_ == 0 || height_ == 0 || !(range_max >= 0.0)) return kNoHit;
-  Ray ray{};
-  ray.px = x;
-  ray.py = y;
-  ray.dx = dx;
-  ray.dy = dy;
-  ray.ox = ox_;
-  ray.oy = oy_;
-  ray.res = res_;
-  ray.step_x = dx > kTinyComponent ? 1 : (dx < -kTinyComponent ? -1 : 0);
-  ray.step_y = dy > kTinyComponent ? 1 : (dy < -kTinyComponent ? -1 : 0);
-  RETRACE_CHECK(std::isfinite(x) && std::isfinite(y));
-  RETRACE_CHECK(ray.step_x != 0 || ray.step_y != 0);
-  ray.inv_dx = ray.step_x != 0 ? 1.0 / dx : 0.0;
-  ray.inv_dy = ray.step_y != 0 ? 1.0 / dy : 0.0;
-
-  // Clip to the map: the ray is inside for t in [t_lo, t_exit).
+double GridRayCaster::Trace(const Ray& ray, double t, bool sphere_now) const {
   const double inf = std::numeric_limits<double>::infinity();
-  double t_lo = 0.0;
-  double t_exit = inf;
-  if (ray.step_x == 0) {
-    if (!(x >= ox_ && x < ox_ + width_ * res_)) return kNoHit;
-  } else {
-    const double a = ray.TX(0), b = ray.TX(width_);
-    t_lo = std::max(t_lo, ray.step_x > 0 ? a : b);
-    t_exit = std::min(t_exit, ray.step_x > 0 ? b : a);
-  }
-  if (ray.step_y == 0) {
-    if (!(y >= oy_ && y < oy_ + height_ * res_)) return kNoHit;
-  } else {
-    const double a = ray.TY(0), b = ray.TY(height_);
-    t_lo = std::max(t_lo, ray.step_y > 0 ? a : b);
-    t_exit = std::min(t_exit, ray.step_y > 0 ? b : a);
-  }
-  if (t_lo > range_max || t_lo >= t_exit) return kNoHit;
-  const double t_end = std::min(range_max, t_exit);
-
+  const double x = ray.px, y = ray.py, dx = ray.dx, dy = ray.dy;
   // The reference tests the field's occupancy mask; sphere tracing the clearance bytes
   // (clearance 0 exactly on the occupied cells, so both see the same obstacles).
   const std::uint8_t* occupied = kSphere ? clearance_.data() : field_->occupied().data();
@@ -129,27 +162,22 @@ double GridRayCaster::CastImpl(double x, double y, double dx, double dy, double 
   const auto tx = [&ray](int i) { return ray.TX(i); };
   const auto ty = [&ray](int i) { return ray.TY(i); };
   const double inv_res = 1.0 / res_;
-  // Resume sphere tracing from a traversed cell only when it gains at least two cells.
-  const double resume_distance = margin_ + 2.0 * res_;
   const auto is_occupied = [occupied](std::size_t idx) {
     return kSphere ? occupied[idx] == 0 : occupied[idx] != 0;
   };
 
-  double t = t_lo;
   while (true) {
     if constexpr (kSphere) {
       // Sphere tracing: every segment [t, t + step] is clear of occupied cells.
-      while (true) {
+      while (sphere_now) {
         const double gx = (x + t * dx - ox_) * inv_res;
         const double gy = (y + t * dy - oy_) * inv_res;
         const int cx = gx < 0.0 ? 0 : (gx >= width_ ? width_ - 1 : static_cast<int>(gx));
         const int cy = gy < 0.0 ? 0 : (gy >= height_ ? height_ - 1 : static_cast<int>(gy));
-        const double d =
-            res_ * clearance[static_cast<std::size_t>(cy) * w + static_cast<std::size_t>(cx)];
-        const double step = d * (1.0 - 1e-6) - margin_;
-        if (!(step >= res_)) break;
-        t += step;
-        if (t >= t_end) return kNoHit;
+        const int c = clearance[static_cast<std::size_t>(cy) * w + static_cast<std::size_t>(cx)];
+        if (c < min_step_clearance_) break;
+        t += step_[static_cast<std::size_t>(c)];
+        if (t >= ray.t_end) return kNoHit;
       }
     }
     // Exact traversal from t: the state after every crossing up to t has been made.
@@ -159,30 +187,134 @@ double GridRayCaster::CastImpl(double x, double y, double dx, double dy, double 
     double next_x = ray.step_x > 0 ? ray.TX(ix + 1) : (ray.step_x < 0 ? ray.TX(ix) : inf);
     double next_y = ray.step_y > 0 ? ray.TY(iy + 1) : (ray.step_y < 0 ? ray.TY(iy) : inf);
     double t_enter = t;
+    // The crossing that leaves cell i is grid line i + 1 going up, i going down.
+    const int x_ahead = ray.step_x > 0 ? 1 : 0, y_ahead = ray.step_y > 0 ? 1 : 0;
     while (true) {
       const std::size_t idx = static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix);
       if (is_occupied(idx)) return t_enter;
       if constexpr (kSphere) {
-        if (res_ * clearance[idx] >= resume_distance && t_enter > t) break;
+        if (clearance[idx] >= min_resume_clearance_ && t_enter > t) break;
       }
-      if (next_x < next_y) {
-        t_enter = next_x;
-        ix += ray.step_x;
-        if (ix < 0 || ix >= width_) return kNoHit;
-        next_x = ray.step_x > 0 ? ray.TX(ix + 1) : ray.TX(ix);
-      } else {
-        t_enter = next_y;
-        iy += ray.step_y;
-        if (iy < 0 || iy >= height_) return kNoHit;
-        next_y = ray.step_y > 0 ? ray.TY(iy + 1) : ray.TY(iy);
+      if constexpr (!kSphere) {  // the reference: the textbook loop
+        if (next_x < next_y) {
+          t_enter = next_x;
+          ix += ray.step_x;
+          if (ix < 0 || ix >= width_) return kNoHit;
+          next_x = ray.step_x > 0 ? ray.TX(ix + 1) : ray.TX(ix);
+        } else {
+          t_enter = next_y;
+          iy += ray.step_y;
+          if (iy < 0 || iy >= height_) return kNoHit;
+          next_y = ray.step_y > 0 ? ray.TY(iy + 1) : ray.TY(iy);
+        }
+        if (t_enter > ray.range_max) return kNoHit;
+        continue;
       }
-      if (t_enter > range_max) return kNoHit;
+      // Select rather than branch: which boundary comes next is a coin toss for the branch
+      // predictor over the few cells left after sphere tracing. The same crossings as the
+      // reference's; a zero step never crosses (its next crossing stays +inf).
+      const bool cross_x = next_x < next_y;
+      t_enter = cross_x ? next_x : next_y;
+      ix += cross_x ? ray.step_x : 0;
+      iy += cross_x ? 0 : ray.step_y;
+      if (static_cast<unsigned>(ix) >= static_cast<unsigned>(width_) ||
+          static_cast<unsigned>(iy) >= static_cast<unsigned>(height_)) {
+        return kNoHit;
+      }
+      const double new_x = ray.TX(ix + x_ahead), new_y = ray.TY(iy + y_ahead);
+      next_x = cross_x ? new_x : next_x;
+      next_y = cross_x ? next_y : new_y;
+      if (t_enter > ray.range_max) return kNoHit;
     }
     t = t_enter;  // only reached by sphere tracing resuming in open space
+    sphere_now = true;
   }
 }
 
-template double GridRayCaster::CastImpl<true>(double, double, double, double, double) const;
-template double GridRayCaster::CastImpl<false>(double, double, double, double, double) const;
+double GridRayCaster::Cast(double x, double y, double dx, double dy, double range_max) const {
+  Ray ray;
+  return Setup(x, y, dx, dy, range_max, &ray) ? Trace<true>(ray, ray.t_lo, true) : kNoHit;
+}
+
+double GridRayCaster::CastDda(double x, double y, double dx, double dy, double range_max) const {
+  Ray ray;
+  return Setup(x, y, dx, dy, range_max, &ray) ? Trace<false>(ray, ray.t_lo, false) : kNoHit;
+}
+
+void GridRayCaster::CastMany(std::span<const double> x, std::span<const double> y,
+                             std::span<const double> dx, std::span<const double> dy,
+                             double range_max, std::span<double> out) const {
+  const std::size_t n = x.size();
+  RETRACE_CHECK(y.size() == n && dx.size() == n && dy.size() == n && out.size() == n);
+  // The lanes: rays being sphere-traced side by side. Each lane's step is the same safe step
+  // as Cast's, from the lane's position in cell units (gx0 + t ux, gy0 + t uy); those differ
+  // from Cast's positions by rounding only (1e-12 cells), far inside the 1e-3 cell margin, and
+  // the steps' results need not match Cast's: only the final traversal decides the range, and it
+  // is exact from any t before which the ray is clear.
+  struct Lane {
+    double t, t_end, gx0, gy0, ux, uy;
+    std::size_t ray;
+  };
+  constexpr int kLanes = 16;
+  std::array<Lane, kLanes> lanes;
+  std::array<Ray, kLanes> rays;
+  const double inv_res = 1.0 / res_;
+  const double max_gx = width_ - 1, max_gy = height_ - 1;
+  const std::uint8_t* clearance = clearance_.data();
+  const std::size_t w = static_cast<std::size_t>(width_);
+  std::size_t next = 0;
+  // Loads the next ray that needs tracing into lane k; false when none is left.
+  const auto fill = [&](int k) {
+    for (; next < n; ++next) {
+      Ray& ray = rays[static_cast<std::size_t>(k)];
+      if (!Setup(x[next], y[next], dx[next], dy[next], range_max, &ray)) {
+        out[next] = kNoHit;
+        continue;
+      }
+      Lane& lane = lanes[static_cast<std::size_t>(k)];
+      lane.t = ray.t_lo;
+      lane.t_end = ray.t_end;
+      lane.gx0 = (ray.px - ox_) * inv_res;
+      lane.gy0 = (ray.py - oy_) * inv_res;
+      lane.ux = ray.dx * inv_res;
+      lane.uy = ray.dy * inv_res;
+      lane.ray = next++;
+      return true;
+    }
+    return false;
+  };
+  int active = 0;
+  while (active < kLanes && fill(active)) ++active;
+  while (active > 0) {
+    for (int k = 0; k < active;) {
+      Lane& lane = lanes[static_cast<std::size_t>(k)];
+      const double gx = std::min(std::max(lane.gx0 + lane.t * lane.ux, 0.0), max_gx);
+      const double gy = std::min(std::max(lane.gy0 + lane.t * lane.uy, 0.0), max_gy);
+      const int c = clearance[static_cast<std::size_t>(static_cast<int>(gy)) * w +
+                              static_cast<std::size_t>(static_cast<int>(gx))];
+      bool done = false;
+      if (c < min_step_clearance_) {  // close to an obstacle: finish with the exact traversal
+        out[lane.ray] = Trace<true>(rays[static_cast<std::size_t>(k)], lane.t, false);
+        done = true;
+      } else {
+        lane.t += step_[static_cast<std::size_t>(c)];
+        if (lane.t >= lane.t_end) {
+          out[lane.ray] = kNoHit;
+          done = true;
+        }
+      }
+      if (!done) {
+        ++k;
+      } else if (!fill(k)) {  // no ray left: move the last lane here
+        --active;
+        lanes[static_cast<std::size_t>(k)] = lanes[static_cast<std::size_t>(active)];
+        rays[static_cast<std::size_t>(k)] = rays[static_cast<std::size_t>(active)];
+      }
+    }
+  }
+}
+
+template double GridRayCaster::Trace<true>(const Ray&, double, bool) const;
+template double GridRayCaster::Trace<false>(const Ray&, double, bool) const;
 
 }  // namespace retrace::nav
