@@ -83,24 +83,29 @@ GridRayCaster::GridRayCaster(const LikelihoodField& field)
   };
   const std::vector<float>& d = field.distance();
   const std::vector<std::uint8_t>& occupied = field.occupied();
-  clearance_.resize(d.size());
+  // Rows of width + 1 bytes and one extra row, the padding 0 (the lanes of CastMany index the
+  // cell of a position up to one cell past the far edges without a bounds check).
+  stride_ = static_cast<std::size_t>(width_) + 1;
+  clearance_.assign(stride_ * (static_cast<std::size_t>(height_) + 1), 0);
   for (std::size_t i = 0; i < d.size(); ++i) {
-    if (occupied[i] != 0) {
-      clearance_[i] = 0;
-      continue;
-    }
+    if (occupied[i] != 0) continue;
     // The float distance (m) carries a relative error of about 1e-7, so 1e-4 cells below it is
     // a lower bound of D; D >= 1 on every free cell.
     const double cells = std::max(1.0, static_cast<double>(d[i]) / res_ - 1e-4);
     const double v = cells < kCoarseStart
                          ? 1.0 + std::floor((cells - 1.0) * kFinePerCell)
                          : kFineCodes + 1.0 + std::floor((cells - kCoarseStart) / kCoarseCells);
-    clearance_[i] = static_cast<std::uint8_t>(std::clamp(v, 1.0, 255.0));
+    const std::size_t row = i / static_cast<std::size_t>(width_);
+    clearance_[i + row] = static_cast<std::uint8_t>(std::clamp(v, 1.0, 255.0));
   }
-  step_[0] = 0.0;
   for (int v = 255; v >= 1; --v) {
     step_[static_cast<std::size_t>(v)] = res_ * lower_bound_cells(v) * (1.0 - 1e-6) - margin_;
     if (step_[static_cast<std::size_t>(v)] >= kMinStepCells * res_) min_step_clearance_ = v;
+  }
+  // Codes too small for a step get NaN, so that one comparison (t + step < t_end) tells a lane
+  // both that it may step and that it stays in range.
+  for (int v = 0; v < min_step_clearance_ && v < 256; ++v) {
+    step_[static_cast<std::size_t>(v)] = std::numeric_limits<double>::quiet_NaN();
   }
   // Resume sphere tracing from a traversed cell only when it gains at least two cells.
   const double resume_distance = margin_ + 2.0 * res_;
@@ -158,7 +163,7 @@ double GridRayCaster::Trace(const Ray& ray, double t, bool sphere_now) const {
   // (clearance 0 exactly on the occupied cells, so both see the same obstacles).
   const std::uint8_t* occupied = kSphere ? clearance_.data() : field_->occupied().data();
   const std::uint8_t* clearance = clearance_.data();
-  const std::size_t w = static_cast<std::size_t>(width_);
+  const std::size_t w = kSphere ? stride_ : static_cast<std::size_t>(width_);
   const auto tx = [&ray](int i) { return ray.TX(i); };
   const auto ty = [&ray](int i) { return ray.TY(i); };
   const double inv_res = 1.0 / res_;
@@ -250,35 +255,47 @@ void GridRayCaster::CastMany(std::span<const double> x, std::span<const double> 
   // as Cast's, from the lane's position in cell units (gx0 + t ux, gy0 + t uy); those differ
   // from Cast's positions by rounding only (1e-12 cells), far inside the 1e-3 cell margin, and
   // the steps' results need not match Cast's: only the final traversal decides the range, and it
-  // is exact from any t before which the ray is clear.
-  struct Lane {
-    double t, t_end, gx0, gy0, ux, uy;
-    std::size_t ray;
-  };
-  constexpr int kLanes = 16;
-  std::array<Lane, kLanes> lanes;
+  // is exact from any t before which the ray is clear. A lane's position stays within
+  // [t_lo, t_end], inside the map up to that rounding, so its cell index needs no clamping: the
+  // truncation of a coordinate a hair below 0 is 0, and one a hair past the far edge lands in
+  // the padding (code 0: the exact traversal takes over). Rays starting farther than kFarCells
+  // from the map, where the rounding could grow to a cell, are traced by Cast instead.
+  constexpr double kFarCells = 1 << 20;
+  // Structure of arrays, and rounds without a data-dependent branch: every round steps all
+  // active lanes, a lane whose step fails (too close to an obstacle, or past t_end) is listed,
+  // and the listed lanes are finished and refilled after the round. A ray's end is then no
+  // longer a mispredicted branch in the middle of the other lanes' work.
+  constexpr int kLanes = 32;
+  std::array<double, kLanes> lane_t, lane_t_prev, lane_t_end, lane_gx0, lane_gy0, lane_ux, lane_uy;
+  std::array<std::size_t, kLanes> lane_ray;
+  std::array<int, kLanes> ended;
   std::array<Ray, kLanes> rays;
   const double inv_res = 1.0 / res_;
-  const double max_gx = width_ - 1, max_gy = height_ - 1;
   const std::uint8_t* clearance = clearance_.data();
-  const std::size_t w = static_cast<std::size_t>(width_);
+  const double* step = step_.data();
+  const std::size_t w = stride_;
   std::size_t next = 0;
   // Loads the next ray that needs tracing into lane k; false when none is left.
   const auto fill = [&](int k) {
+    const std::size_t kk = static_cast<std::size_t>(k);
     for (; next < n; ++next) {
-      Ray& ray = rays[static_cast<std::size_t>(k)];
+      Ray& ray = rays[kk];
       if (!Setup(x[next], y[next], dx[next], dy[next], range_max, &ray)) {
         out[next] = kNoHit;
         continue;
       }
-      Lane& lane = lanes[static_cast<std::size_t>(k)];
-      lane.t = ray.t_lo;
-      lane.t_end = ray.t_end;
-      lane.gx0 = (ray.px - ox_) * inv_res;
-      lane.gy0 = (ray.py - oy_) * inv_res;
-      lane.ux = ray.dx * inv_res;
-      lane.uy = ray.dy * inv_res;
-      lane.ray = next++;
+      const double gx0 = (ray.px - ox_) * inv_res, gy0 = (ray.py - oy_) * inv_res;
+      if (!(std::abs(gx0) < kFarCells && std::abs(gy0) < kFarCells)) {
+        out[next] = Trace<true>(ray, ray.t_lo, true);
+        continue;
+      }
+      lane_t[kk] = ray.t_lo;
+      lane_t_end[kk] = ray.t_end;
+      lane_gx0[kk] = gx0;
+      lane_gy0[kk] = gy0;
+      lane_ux[kk] = ray.dx * inv_res;
+      lane_uy[kk] = ray.dy * inv_res;
+      lane_ray[kk] = next++;
       return true;
     }
     return false;
@@ -286,29 +303,42 @@ void GridRayCaster::CastMany(std::span<const double> x, std::span<const double> 
   int active = 0;
   while (active < kLanes && fill(active)) ++active;
   while (active > 0) {
-    for (int k = 0; k < active;) {
-      Lane& lane = lanes[static_cast<std::size_t>(k)];
-      const double gx = std::min(std::max(lane.gx0 + lane.t * lane.ux, 0.0), max_gx);
-      const double gy = std::min(std::max(lane.gy0 + lane.t * lane.uy, 0.0), max_gy);
-      const int c = clearance[static_cast<std::size_t>(static_cast<int>(gy)) * w +
-                              static_cast<std::size_t>(static_cast<int>(gx))];
-      bool done = false;
-      if (c < min_step_clearance_) {  // close to an obstacle: finish with the exact traversal
-        out[lane.ray] = Trace<true>(rays[static_cast<std::size_t>(k)], lane.t, false);
-        done = true;
+    int num_ended = 0;
+    for (int k = 0; k < active; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const double t = lane_t[kk];
+      const int cx = static_cast<int>(lane_gx0[kk] + t * lane_ux[kk]);
+      const int cy = static_cast<int>(lane_gy0[kk] + t * lane_uy[kk]);
+      const int c = clearance[static_cast<std::size_t>(cy) * w + static_cast<std::size_t>(cx)];
+      const double t_next = t + step[c];  // NaN when c is too small to step
+      lane_t_prev[kk] = t;
+      lane_t[kk] = t_next;
+      ended[static_cast<std::size_t>(num_ended)] = k;
+      num_ended += t_next < lane_t_end[kk] ? 0 : 1;
+    }
+    // Finish the listed lanes, highest first, so that moving the last lane into a lane that
+    // has no ray left to take only moves lanes that are done with this round.
+    for (int e = num_ended - 1; e >= 0; --e) {
+      const int k = ended[static_cast<std::size_t>(e)];
+      const std::size_t kk = static_cast<std::size_t>(k);
+      // Past t_end after a step is no hit; a failed step (NaN) is close to an obstacle: the
+      // exact traversal finishes from where the lane stood.
+      if (std::isnan(lane_t[kk])) {
+        out[lane_ray[kk]] = Trace<true>(rays[kk], lane_t_prev[kk], false);
       } else {
-        lane.t += step_[static_cast<std::size_t>(c)];
-        if (lane.t >= lane.t_end) {
-          out[lane.ray] = kNoHit;
-          done = true;
-        }
+        out[lane_ray[kk]] = kNoHit;
       }
-      if (!done) {
-        ++k;
-      } else if (!fill(k)) {  // no ray left: move the last lane here
+      if (!fill(k)) {  // no ray left: move the last lane here
         --active;
-        lanes[static_cast<std::size_t>(k)] = lanes[static_cast<std::size_t>(active)];
-        rays[static_cast<std::size_t>(k)] = rays[static_cast<std::size_t>(active)];
+        const std::size_t last = static_cast<std::size_t>(active);
+        lane_t[kk] = lane_t[last];
+        lane_t_end[kk] = lane_t_end[last];
+        lane_gx0[kk] = lane_gx0[last];
+        lane_gy0[kk] = lane_gy0[last];
+        lane_ux[kk] = lane_ux[last];
+        lane_uy[kk] = lane_uy[last];
+        lane_ray[kk] = lane_ray[last];
+        rays[kk] = rays[last];
       }
     }
   }

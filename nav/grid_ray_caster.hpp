@@ -43,7 +43,8 @@ class GridRayCaster {
 
   /// Cast for a batch of rays: out[i] = Cast(x[i], y[i], dx[i], dy[i], range_max), bit for bit.
   /// The sphere-tracing steps of several rays are interleaved so that their dependent chains
-  /// (position, cell, clearance load, step) overlap instead of running one after the other.
+  /// (position, cell, clearance load, step) overlap instead of running one after the other,
+  /// in rounds whose only data-dependent branch is once per round, not once per ray's end.
   /// All spans must have the same size (checked).
   void CastMany(std::span<const double> x, std::span<const double> y, std::span<const double> dx,
                 std::span<const double> dy, double range_max, std::span<double> out) const;
@@ -74,11 +75,12 @@ class GridRayCaster {
   // Per cell: a code for a lower bound of the distance field (1/16 cell up to 9 cells, then 2
   // cells, saturated at 255); 0 exactly on occupied cells. One byte per cell serves both the
   // occupancy test and the sphere steps, so tracing a ray touches a quarter of the memory of the
-  // float field.
+  // float field. Rows of stride_ = width + 1 bytes, plus one row: the padding is 0.
   std::vector<std::uint8_t> clearance_;
+  std::size_t stride_ = 1;
   // Per clearance code c: the sphere step D_c res (1 - 1e-6) - margin (m), D_c the code's lower
-  // bound (cells), that is safe from any point of the cell; and the smallest code whose step
-  // gains enough to be worth taking.
+  // bound (cells), that is safe from any point of the cell (NaN below min_step_clearance_); and
+  // the smallest code whose step gains enough to be worth taking.
   std::array<double, 256> step_{};
   int min_step_clearance_ = 256;
   // The smallest clearance from which the traversal resumes sphere tracing (gains two cells).

@@ -142,6 +142,57 @@ TEST(GridRayCaster, GrazingRaysAlongWallsAreBitIdenticalToDda) {
   }
 }
 
+TEST(GridRayCaster, CastManyIsBitIdenticalToDdaAtTheMapEdgesAndFromFarAway) {
+  // CastMany indexes the clearance of a lane's position without clamping it to the map (a
+  // padding row and column catch positions a hair past the far edges) and leaves rays from
+  // farther than 2^20 cells to Cast. Rays entering across every edge, running along the edges
+  // just inside them, and starting 10^6 km away must all agree with CastDda.
+  const core::OccupancyGrid g = RandomMap(3);  // x in [-3.3, 16.7), y in [-1.7, 13.3)
+  const LikelihoodField f(g, {}, 30.0);
+  const GridRayCaster caster(f);
+  const double x0 = -3.3, x1 = 16.7, y0 = -1.7, y1 = 13.3;
+  core::Rng rng(21);
+  std::vector<double> x, y, dx, dy;
+  const auto add = [&](double px, double py, double a) {
+    x.push_back(px);
+    y.push_back(py);
+    dx.push_back(std::cos(a));
+    dy.push_back(std::sin(a));
+  };
+  for (int i = 0; i < 400; ++i) {
+    const double u = rng.Uniform(0.0, 1.0), a = rng.Uniform(-core::kPi, core::kPi);
+    // On each edge, exactly and a hair inside or outside it.
+    const double eps = (i % 3 - 1) * 1e-9;
+    add(x0 + eps, y0 + u * (y1 - y0), a);
+    add(x1 + eps, y0 + u * (y1 - y0), a);
+    add(x0 + u * (x1 - x0), y0 + eps, a);
+    add(x0 + u * (x1 - x0), y1 + eps, a);
+    // Along the far edges, just inside, nearly parallel to them.
+    const double along = rng.Uniform(-1e-3, 1e-3);
+    add(x0 + u * (x1 - x0), y1 - 1e-7, (i % 2 == 0 ? 0.0 : core::kPi) + along);
+    add(x1 - 1e-7, y0 + u * (y1 - y0), (i % 2 == 0 ? 0.5 : -0.5) * core::kPi + along);
+    // From far outside, aimed at the map (and some missing it).
+    const double far = i % 2 == 0 ? 1e9 : 5.0e4;
+    const double tx = x0 + u * (x1 - x0), ty = y0 + rng.Uniform(-2.0, 17.0);
+    add(tx - far * std::cos(a), ty - far * std::sin(a), a);
+  }
+  int hits = 0;
+  for (const double range_max : {30.0, 2e9}) {
+    std::vector<double> out(x.size());
+    caster.CastMany(x, y, dx, dy, range_max, out);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double ref = caster.CastDda(x[i], y[i], dx[i], dy[i], range_max);
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(out[i]), std::bit_cast<std::uint64_t>(ref))
+          << "ray " << i << " from (" << x[i] << ", " << y[i] << ") range_max " << range_max;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(caster.Cast(x[i], y[i], dx[i], dy[i], range_max)),
+                std::bit_cast<std::uint64_t>(ref))
+          << "ray " << i;
+      hits += std::isinf(ref) ? 0 : 1;
+    }
+  }
+  EXPECT_GT(hits, 1000);
+}
+
 core::OccupancyGrid BoxRoom() {
   // 10 m x 10 m at 0.1 m, origin (0, 0); wall cells at x = 80 (x in [8, 8.1)).
   core::OccupancyGrid g(100, 100, 0.1, Vec2(0.0, 0.0));
