@@ -103,6 +103,20 @@ inline void RequireInRange(std::string_view key, double v, double lo, double hi)
                                             "], got " + FormatNumber(v));
   }
 }
+inline void RequireIntInRange(std::string_view key, long long v, long long lo, long long hi) {
+  if (v < lo || v > hi) {
+    throw ConfigError(std::string(key), "must be in [" + std::to_string(lo) + ", " +
+                                            std::to_string(hi) + "], got " + std::to_string(v));
+  }
+}
+/// Requires v > other, where other is the value of the key named other_key.
+inline void RequireGreater(std::string_view key, double v, std::string_view other_key,
+                           double other) {
+  if (!(v > other)) {
+    throw ConfigError(std::string(key), "must be greater than " + std::string(other_key) + " (" +
+                                            FormatNumber(other) + "), got " + FormatNumber(v));
+  }
+}
 
 /// Levenshtein distance, for "did you mean" suggestions.
 inline std::size_t EditDistance(std::string_view a, std::string_view b) {

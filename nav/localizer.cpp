@@ -29,13 +29,6 @@ void ValidateNested(const std::string& prefix, const T& nested) {
   }
 }
 
-void RequireInt(const char* key, int v, int lo, int hi) {
-  if (v < lo || v > hi) {
-    throw core::ConfigError(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                                     "], got " + std::to_string(v));
-  }
-}
-
 // KLD bound (Fox 2003, eq. 12) for k occupied bins.
 double KldBound(int k, double epsilon, double z) {
   if (k <= 1) return 1.0;
@@ -56,11 +49,7 @@ void AugmentedMclConfig::Validate() const {
   core::RequireInRange("alpha_slow", alpha_slow, 0.0, 1.0);
   if (!(alpha_slow > 0.0)) throw core::ConfigError("alpha_slow", "must be > 0");
   core::RequireInRange("alpha_fast", alpha_fast, 0.0, 1.0);
-  if (!(alpha_fast > alpha_slow)) {
-    throw core::ConfigError("alpha_fast", "must be greater than alpha_slow (" +
-                                              core::FormatNumber(alpha_slow) + "), got " +
-                                              core::FormatNumber(alpha_fast));
-  }
+  core::RequireGreater("alpha_fast", alpha_fast, "alpha_slow", alpha_slow);
   core::RequireInRange("near_fraction", near_fraction, 0.0, 1.0);
   core::RequireNonNegative("near_sigma_xy", near_sigma_xy);
   core::RequireNonNegative("near_sigma_theta", near_sigma_theta);
@@ -71,8 +60,8 @@ void AugmentedMclConfig::Validate() const {
 }
 
 void KldConfig::Validate() const {
-  RequireInt("min_particles", min_particles, 1, 10'000'000);
-  RequireInt("max_particles", max_particles, min_particles, 10'000'000);
+  core::RequireIntInRange("min_particles", min_particles, 1, 10'000'000);
+  core::RequireIntInRange("max_particles", max_particles, min_particles, 10'000'000);
   core::RequirePositive("epsilon", epsilon);
   core::RequirePositive("z_quantile", z_quantile);
   core::RequirePositive("bin_xy", bin_xy);
@@ -80,15 +69,11 @@ void KldConfig::Validate() const {
 }
 
 void LocalizerConfig::Validate() const {
-  RequireInt("particles", particles, 1, 10'000'000);
-  RequireInt("beam_step", beam_step, 1, 1'000'000);
+  core::RequireIntInRange("particles", particles, 1, 10'000'000);
+  core::RequireIntInRange("beam_step", beam_step, 1, 1'000'000);
   core::RequireNonNegative("range_min", range_min);
   core::RequirePositive("range_max", range_max);
-  if (!(range_max > range_min)) {
-    throw core::ConfigError("range_max", "must be greater than range_min (" +
-                                             core::FormatNumber(range_min) + "), got " +
-                                             core::FormatNumber(range_max));
-  }
+  core::RequireGreater("range_max", range_max, "range_min", range_min);
   if (!std::isfinite(lidar_mount.x) || !std::isfinite(lidar_mount.y) ||
       !std::isfinite(lidar_mount.theta)) {
     throw core::ConfigError("lidar_mount", "must be finite [x, y, theta]");

@@ -48,17 +48,10 @@ void LidarConfig::Validate() const {
   if (!(fov_deg > 0.0 && fov_deg <= 360.0)) {
     throw core::ConfigError("fov_deg", "must be in (0, 360], got " + core::FormatNumber(fov_deg));
   }
-  if (beams < 2 || beams > kMaxBeams) {
-    throw core::ConfigError(
-        "beams", "must be in [2, " + std::to_string(kMaxBeams) + "], got " + std::to_string(beams));
-  }
+  core::RequireIntInRange("beams", beams, 2, kMaxBeams);
   core::RequireNonNegative("range_min", range_min);
   core::RequirePositive("range_max", range_max);
-  if (!(range_max > range_min)) {
-    throw core::ConfigError("range_max", "must be greater than range_min (" +
-                                             core::FormatNumber(range_min) + "), got " +
-                                             core::FormatNumber(range_max));
-  }
+  core::RequireGreater("range_max", range_max, "range_min", range_min);
   core::RequirePositive("rate_hz", rate_hz);
   if (!std::isfinite(mount.x) || !std::isfinite(mount.y) || !std::isfinite(mount.theta)) {
     throw core::ConfigError("mount", "must be finite [x, y, theta]");

@@ -73,14 +73,8 @@ void PhysicsConfig::Validate() const {
   if (!(time_step > 0.0 && time_step <= 0.1)) {
     throw core::ConfigError("time_step", "must be in (0, 0.1] s, got " + core::FormatNumber(time_step));
   }
-  if (velocity_iterations < 1 || velocity_iterations > 100) {
-    throw core::ConfigError("velocity_iterations",
-                            "must be in [1, 100], got " + std::to_string(velocity_iterations));
-  }
-  if (position_iterations < 1 || position_iterations > 100) {
-    throw core::ConfigError("position_iterations",
-                            "must be in [1, 100], got " + std::to_string(position_iterations));
-  }
+  core::RequireIntInRange("velocity_iterations", velocity_iterations, 1, 100);
+  core::RequireIntInRange("position_iterations", position_iterations, 1, 100);
 }
 
 struct PhysicsWorld::Impl {

@@ -26,6 +26,7 @@
 #include <limits>
 #include <vector>
 
+#include "bench/micro/campus_map.hpp"
 #include "core/angle.hpp"
 #include "core/laser_scan.hpp"
 #include "core/occupancy_grid.hpp"
@@ -34,11 +35,6 @@
 #include "nav/beam_model.hpp"
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
-
-namespace retrace_bench {
-// Defined in likelihood_bench.cpp.
-retrace::core::OccupancyGrid CampusMap();
-}  // namespace retrace_bench
 
 namespace {
 
@@ -51,7 +47,7 @@ using retrace::nav::RayCastMethod;
 constexpr int kParticles = 500;
 
 struct Fixture {
-  retrace::core::OccupancyGrid map = retrace_bench::CampusMap();
+  retrace::core::OccupancyGrid map = retrace::bench_micro::CampusMap();
   retrace::nav::LikelihoodField field{map, {}, 30.0};
   retrace::nav::GridRayCaster caster{field};
   BeamModel model{{}, 30.0};
@@ -62,11 +58,7 @@ struct Fixture {
 
   Fixture() {
     Rng rng(11);
-    Pose2 truth;
-    while (true) {
-      truth = Pose2(rng.Uniform(-50, 50), rng.Uniform(-50, 50), rng.Uniform(-3, 3));
-      if (field.Distance(map.WorldToCell(truth.translation())) > 1.5f) break;
-    }
+    const Pose2 truth = retrace::bench_micro::FreeCampusPose(map, field, rng);
     scan.angle_min = -retrace::core::DegToRad(135.0);
     scan.angle_increment = retrace::core::DegToRad(0.25);
     scan.range_min = 0.05;

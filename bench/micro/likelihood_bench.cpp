@@ -16,6 +16,7 @@
 #include <numbers>
 #include <vector>
 
+#include "bench/micro/campus_map.hpp"
 #include "core/angle.hpp"
 #include "core/laser_scan.hpp"
 #include "core/occupancy_grid.hpp"
@@ -24,75 +25,19 @@
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
 
-namespace retrace_bench {
-// Shared with dynamic_rejection_bench.cpp (declared there).
-retrace::core::OccupancyGrid CampusMap();
-}  // namespace retrace_bench
-
 namespace {
 
 using retrace::core::Pose2;
 using retrace::core::Rng;
 using retrace::core::Vec2;
 
-constexpr int kCells = 3000;
-constexpr double kRes = 0.1;
+constexpr int kCells = retrace::bench_micro::kCampusCells;
+constexpr double kRes = retrace::bench_micro::kCampusResolution;
 constexpr int kParticles = 500;
 constexpr int kBeamStep = 10;
 
-}  // namespace
-
-// Campus: building outlines, free-standing walls and trees on a free background.
-retrace::core::OccupancyGrid retrace_bench::CampusMap() {
-  retrace::core::OccupancyGrid g(kCells, kCells, kRes, Vec2(-150.0, -150.0));
-  const float free_l = static_cast<float>(retrace::core::Logit(0.05));
-  const float occ_l = static_cast<float>(retrace::core::Logit(0.95));
-  std::vector<float>& l = g.log_odds();
-  std::fill(l.begin(), l.end(), free_l);
-  const auto set = [&](int x, int y) {
-    if (x >= 0 && y >= 0 && x < kCells && y < kCells) l[static_cast<std::size_t>(y) * kCells + x] = occ_l;
-  };
-  Rng rng(2018);
-  for (int b = 0; b < 70; ++b) {  // buildings: 3-cell-thick outlines with a door gap
-    const int x0 = static_cast<int>(rng.UniformIndex(kCells - 400)) + 50;
-    const int y0 = static_cast<int>(rng.UniformIndex(kCells - 400)) + 50;
-    const int w = 100 + static_cast<int>(rng.UniformIndex(300)), h = 100 + static_cast<int>(rng.UniformIndex(300));
-    for (int t = 0; t < 3; ++t) {
-      for (int x = x0; x <= x0 + w; ++x) {
-        if (x - x0 > 20 && x - x0 < 40) continue;
-        set(x, y0 + t);
-        set(x, y0 + h - t);
-      }
-      for (int y = y0; y <= y0 + h; ++y) {
-        set(x0 + t, y);
-        set(x0 + w - t, y);
-      }
-    }
-  }
-  for (int k = 0; k < 120; ++k) {  // walls and hedges: 2 cells thick, 5-30 m long
-    const double x = rng.Uniform(0, kCells), y = rng.Uniform(0, kCells);
-    const double a = rng.Uniform(0, 2 * std::numbers::pi), len = rng.Uniform(50, 300);
-    for (double s = 0; s < len; s += 0.5) {
-      set(static_cast<int>(x + s * std::cos(a)), static_cast<int>(y + s * std::sin(a)));
-      set(static_cast<int>(x + s * std::cos(a)) + 1, static_cast<int>(y + s * std::sin(a)));
-    }
-  }
-  for (int k = 0; k < 3000; ++k) {  // trees: discs of radius 2-4 cells
-    const int cx = static_cast<int>(rng.UniformIndex(kCells)), cy = static_cast<int>(rng.UniformIndex(kCells));
-    const int r = 2 + static_cast<int>(rng.UniformIndex(3));
-    for (int y = -r; y <= r; ++y) {
-      for (int x = -r; x <= r; ++x) {
-        if (x * x + y * y <= r * r) set(cx + x, cy + y);
-      }
-    }
-  }
-  return g;
-}
-
-namespace {
-
 struct Fixture {
-  retrace::core::OccupancyGrid map = retrace_bench::CampusMap();
+  retrace::core::OccupancyGrid map = retrace::bench_micro::CampusMap();
   retrace::nav::LikelihoodField field{map, {}, 30.0};
   std::vector<Pose2> X_ML;     // particle LiDAR poses
   std::vector<double> xs, ys;  // used beam end points in L
@@ -101,13 +46,7 @@ struct Fixture {
   Fixture() {
     retrace::nav::GridRayCaster caster(field);
     Rng rng(7);
-    // A free pose at least 1.5 m from obstacles near the centre.
-    Pose2 truth;
-    for (int tries = 0;; ++tries) {
-      truth = Pose2(rng.Uniform(-50, 50), rng.Uniform(-50, 50), rng.Uniform(-3, 3));
-      const auto c = map.WorldToCell(truth.translation());
-      if (field.Distance(c) > 1.5f) break;
-    }
+    const Pose2 truth = retrace::bench_micro::FreeCampusPose(map, field, rng);
     const double angle_min = -retrace::core::DegToRad(135.0), inc = retrace::core::DegToRad(0.25);
     for (int i = 0; i < 1081; i += kBeamStep) {
       const double a = angle_min + i * inc;

@@ -7,9 +7,13 @@
 
 #include "core/errors.hpp"
 #include "core/occupancy_grid.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::nav {
 namespace {
+
+using retrace::testing::kValid;
+using retrace::testing::ValidationErrorKey;
 
 TEST(InverseSensorModel, DefaultsRaiseAHitTo094AndLowerAMissTo004) {
   const InverseSensorModelConfig config;
@@ -62,27 +66,19 @@ TEST(InverseSensorModel, FromTheLikelihoodFieldReproducesTheOriginalConstants) {
 }
 
 TEST(InverseSensorModel, ValidateNamesTheKey) {
-  auto key_of = [](const InverseSensorModelConfig& config) {
-    try {
-      config.Validate();
-    } catch (const core::ConfigError& e) {
-      return e.key_path();
-    }
-    return std::string("<valid>");
-  };
   InverseSensorModelConfig c;
-  EXPECT_EQ(key_of(c), "<valid>");
+  EXPECT_EQ(ValidationErrorKey(c), kValid);
   c.hit_probability = 0.5;
-  EXPECT_EQ(key_of(c), "hit_probability");
+  EXPECT_EQ(ValidationErrorKey(c), "hit_probability");
   c = {};
   c.miss_probability = 0.6;
-  EXPECT_EQ(key_of(c), "miss_probability");
+  EXPECT_EQ(ValidationErrorKey(c), "miss_probability");
   c = {};
   c.sigma = 0.0;
-  EXPECT_EQ(key_of(c), "sigma");
+  EXPECT_EQ(ValidationErrorKey(c), "sigma");
   c = {};
   c.neighbourhood_sigmas = -1.0;
-  EXPECT_EQ(key_of(c), "neighbourhood_sigmas");
+  EXPECT_EQ(ValidationErrorKey(c), "neighbourhood_sigmas");
 }
 
 }  // namespace

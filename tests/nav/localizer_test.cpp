@@ -12,12 +12,15 @@
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::nav {
 namespace {
 
 using core::Pose2;
 using core::Vec2;
+using retrace::testing::kValid;
+using retrace::testing::ValidationErrorKey;
 
 constexpr double kInfD = std::numeric_limits<double>::infinity();
 
@@ -33,9 +36,9 @@ struct Circle {
 
 // A 12 m x 9 m room with 0.2 m walls and asymmetric furniture.
 std::vector<Rect> RoomGeometry() {
-  return {{0, 0, 12, 0.2},     {0, 8.8, 12, 9},     {0, 0, 0.2, 9},        {11.8, 0, 12, 9},
-          {2, 6, 3.5, 7},      {8.3, 1.0, 9.3, 1.8}, {5.0, 4.0, 5.6, 4.6}, {9.5, 6, 10.5, 6.4},
-          {1, 1, 1.6, 2.5},    {10.6, 3.5, 11.8, 3.8}};
+  return {{0, 0, 12, 0.2},  {0, 8.8, 12, 9},       {0, 0, 0.2, 9},       {11.8, 0, 12, 9},
+          {2, 6, 3.5, 7},   {8.3, 1.0, 9.3, 1.8},  {5.0, 4.0, 5.6, 4.6}, {9.5, 6, 10.5, 6.4},
+          {1, 1, 1.6, 2.5}, {10.6, 3.5, 11.8, 3.8}};
 }
 
 // Rasterises rectangles at 0.1 m: a cell is occupied (0.95) when its centre lies in one, free
@@ -127,8 +130,9 @@ struct Drive {
     X_WR = core::IntegrateOdometry(X_WR, truth);
     core::OdometryDelta measured;
     measured.distance = 1.01 * truth.distance + std::sqrt(1e-3 * truth.distance) * rng.Normal();
-    measured.dtheta = 1.01 * truth.dtheta +
-                      std::sqrt(2e-4 * std::abs(truth.dtheta) + 1e-5 * truth.distance) * rng.Normal();
+    measured.dtheta =
+        1.01 * truth.dtheta +
+        std::sqrt(2e-4 * std::abs(truth.dtheta) + 1e-5 * truth.distance) * rng.Normal();
     return measured;
   }
   // Pedestrian-sized unmapped circles walking with the robot 1.4-1.6 m away, spread over the
@@ -145,7 +149,9 @@ struct Drive {
 };
 
 double PositionError(const Pose2& a, const Pose2& b) { return core::Distance(a, b); }
-double HeadingError(const Pose2& a, const Pose2& b) { return std::abs(core::AngleDiff(a.theta, b.theta)); }
+double HeadingError(const Pose2& a, const Pose2& b) {
+  return std::abs(core::AngleDiff(a.theta, b.theta));
+}
 
 // Drives until `updates` measurement updates have run; returns the final errors.
 struct RunResult {
@@ -159,7 +165,7 @@ struct RunResult {
 };
 
 RunResult DriveAndLocalize(Localizer& loc, Drive& drive, int updates, bool walkers, int skip = 0,
-              const LocalizerConfig& config = TestConfig()) {
+                           const LocalizerConfig& config = TestConfig()) {
   RunResult res;
   double sum = 0.0;
   int counted = 0;
@@ -168,9 +174,8 @@ RunResult DriveAndLocalize(Localizer& loc, Drive& drive, int updates, bool walke
     if (tick % 2 != 0) continue;
     std::vector<bool> blocked;
     const Pose2 X_WL = drive.X_WR * config.lidar_mount;
-    const core::LaserScan scan =
-        MakeScan(drive.rects, walkers ? drive.Walkers() : std::vector<Circle>{}, X_WL, drive.rng,
-                 &blocked);
+    const core::LaserScan scan = MakeScan(
+        drive.rects, walkers ? drive.Walkers() : std::vector<Circle>{}, X_WL, drive.rng, &blocked);
     const LocalizerUpdate u = loc.Update(scan);
     if (!u.ran) continue;
     ++res.updates;
@@ -220,9 +225,10 @@ TEST(Localizer, ConvergesInRoomFromHalfMetreTenDegreesWithinTenUpdates) {
     worst_heading = std::max(worst_heading, r.final_heading_error);
     sum += r.final_position_error;
   }
-  std::printf("[ report ] convergence within 10 updates: %d/%d seeds; final position error mean "
-              "%.3f m, max %.3f m; max heading error %.2f deg\n",
-              converged, kSeeds, sum / kSeeds, worst, core::RadToDeg(worst_heading));
+  std::printf(
+      "[ report ] convergence within 10 updates: %d/%d seeds; final position error mean "
+      "%.3f m, max %.3f m; max heading error %.2f deg\n",
+      converged, kSeeds, sum / kSeeds, worst, core::RadToDeg(worst_heading));
   EXPECT_GE(converged, 19);  // >= 95 %
 }
 
@@ -255,11 +261,12 @@ TEST(Localizer, RejectionKeepsErrorLowWithThirtyPercentOfBeamsBlocked) {
   }
   const double precision = tp / static_cast<double>(tp + fp);
   const double recall = tp / static_cast<double>(tp + fn);
-  std::printf("[ report ] 30 %% beams blocked: mean position error rejection ON %.3f m, OFF %.3f m "
-              "(OFF worse on %d/%d seeds); %.1f %% of tested beams blocked; mask precision %.3f recall %.3f "
-              "(tp %d fp %d fn %d)\n",
-              mean_on, mean_off, worse, kSeeds, 100.0 * (tp + fn) / tested, precision, recall, tp,
-              fp, fn);
+  std::printf(
+      "[ report ] 30 %% beams blocked: mean position error rejection ON %.3f m, OFF %.3f m "
+      "(OFF worse on %d/%d seeds); %.1f %% of tested beams blocked; mask precision %.3f recall "
+      "%.3f "
+      "(tp %d fp %d fn %d)\n",
+      mean_on, mean_off, worse, kSeeds, 100.0 * (tp + fn) / tested, precision, recall, tp, fp, fn);
   EXPECT_LT(mean_on, 0.1);
   EXPECT_GT(mean_off, 1.5 * mean_on);
   EXPECT_GE(worse, 8);
@@ -322,7 +329,8 @@ TEST(Localizer, ApplyMapSwitchTransformsEveryParticleByEquationOne) {
   EXPECT_NEAR(core::AngleDiff(loc.Estimate().theta, expected.theta), 0.0, 1e-9);
   // The new map's first scan is used without motion.
   core::Rng noise(6);
-  EXPECT_TRUE(loc.Update(MakeScan(drive.rects, {}, drive.X_WR * TestConfig().lidar_mount, noise)).ran);
+  EXPECT_TRUE(
+      loc.Update(MakeScan(drive.rects, {}, drive.X_WR * TestConfig().lidar_mount, noise)).ran);
 }
 
 TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
@@ -352,9 +360,11 @@ TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
       }
     }
   }
-  std::printf("[ report ] kidnapping by 1.5 m and 20 deg: augmented MCL recovered on %d/%d seeds (mean final "
-              "error %.3f m), injected on %d/%d; without augmentation recovered on %d/%d\n",
-              recovered, kSeeds, sum_err / kSeeds, injected_any, kSeeds, ok_without, kSeeds);
+  std::printf(
+      "[ report ] kidnapping by 1.5 m and 20 deg: augmented MCL recovered on %d/%d seeds (mean "
+      "final "
+      "error %.3f m), injected on %d/%d; without augmentation recovered on %d/%d\n",
+      recovered, kSeeds, sum_err / kSeeds, injected_any, kSeeds, ok_without, kSeeds);
   EXPECT_EQ(injected_any, kSeeds);
   EXPECT_GE(recovered, 8);
   EXPECT_GT(recovered, ok_without);
@@ -411,29 +421,24 @@ TEST(Localizer, CovarianceShrinksAsItConverges) {
 }
 
 TEST(Localizer, ConfigErrorsNameTheKey) {
-  const auto key_of = [](auto mutate) -> std::string {
-    LocalizerConfig c;
-    mutate(c);
-    try {
-      c.Validate();
-    } catch (const core::ConfigError& e) {
-      return e.key_path();
-    }
-    return "";
-  };
-  EXPECT_EQ(key_of([](LocalizerConfig&) {}), "");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.particles = 0; }), "particles");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.beam_step = 0; }), "beam_step");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.range_max = 0.01; }), "range_max");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.rejection.chi = 1.5; }), "rejection.chi");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.rejection.beam_model.sigma_hit = 0.0; }),
-            "rejection.beam_model.sigma_hit");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.motion.alpha3 = -1.0; }), "motion.alpha3");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.likelihood_field.sigma_hit = std::nan(""); }),
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto&) {}), kValid);
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.particles = 0; }), "particles");
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.beam_step = 0; }), "beam_step");
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.range_max = 0.01; }), "range_max");
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.rejection.chi = 1.5; }),
+            "rejection.chi");
+  EXPECT_EQ(
+      ValidationErrorKey<LocalizerConfig>([](auto& c) { c.rejection.beam_model.sigma_hit = 0.0; }),
+      "rejection.beam_model.sigma_hit");
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.motion.alpha3 = -1.0; }),
+            "motion.alpha3");
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>(
+                [](auto& c) { c.likelihood_field.sigma_hit = std::nan(""); }),
             "likelihood_field.sigma_hit");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.augmented.alpha_fast = 1e-5; }),
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.augmented.alpha_fast = 1e-5; }),
             "augmented.alpha_fast");
-  EXPECT_EQ(key_of([](LocalizerConfig& c) { c.kld.max_particles = 10; }), "kld.max_particles");
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.kld.max_particles = 10; }),
+            "kld.max_particles");
   LocalizerConfig bad;
   bad.particles = -3;
   EXPECT_THROW(Localizer(bad, core::Rng(1)), core::ConfigError);

@@ -13,12 +13,15 @@
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::nav {
 namespace {
 
 using core::Pose2;
 using core::Vec2;
+using retrace::testing::kValid;
+using retrace::testing::ValidationErrorKey;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
@@ -378,30 +381,22 @@ TEST(Mapper, GridGrowsWhenDrivingOutOfTheInitialArea) {
 }
 
 TEST(Mapper, ConfigErrorsNameTheKey) {
-  auto key_of = [](MapperConfig config) {
-    try {
-      config.Validate();
-    } catch (const core::ConfigError& e) {
-      return e.key_path();
-    }
-    return std::string("<valid>");
-  };
-  EXPECT_EQ(key_of(MapperConfig{}), "<valid>");
+  EXPECT_EQ(ValidationErrorKey(MapperConfig{}), kValid);
   MapperConfig c;
   c.resolution = 0.0;
-  EXPECT_EQ(key_of(c), "resolution");
+  EXPECT_EQ(ValidationErrorKey(c), "resolution");
   c = MapperConfig{};
   c.log_odds_max = -1.0;
-  EXPECT_EQ(key_of(c), "log_odds_max");
+  EXPECT_EQ(ValidationErrorKey(c), "log_odds_max");
   c = MapperConfig{};
   c.keyframe_distance = -0.1;
-  EXPECT_EQ(key_of(c), "keyframe_distance");
+  EXPECT_EQ(ValidationErrorKey(c), "keyframe_distance");
   c = MapperConfig{};
   c.inverse_model.sigma = -0.01;
-  EXPECT_EQ(key_of(c), "inverse_model.sigma");
+  EXPECT_EQ(ValidationErrorKey(c), "inverse_model.sigma");
   c = MapperConfig{};
   c.lidar_mount.x = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(key_of(c), "lidar_mount");
+  EXPECT_EQ(ValidationErrorKey(c), "lidar_mount");
   EXPECT_THROW(Mapper{c}, core::ConfigError);
 }
 

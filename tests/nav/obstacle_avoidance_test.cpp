@@ -14,12 +14,15 @@
 #include "core/errors.hpp"
 #include "core/path.hpp"
 #include "nav/path_follower.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::nav {
 namespace {
 
 using core::Pose2;
 using core::Vec2;
+using retrace::testing::kValid;
+using retrace::testing::ValidationErrorKey;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDt = 0.05;  // s, control period
@@ -193,11 +196,12 @@ TEST(ObstacleAvoidance, ReportsTimeToCollisionWithAWallAhead) {
 
 TEST(ObstacleAvoidance, StopsBeforeADeadEnd) {
   // A corridor 2 m wide closed by a wall at x = 5; the desired command drives straight on.
-  std::vector<Segment> world = {{{-1.0, -1.0}, {5.0, -1.0}}, {{-1.0, 1.0}, {5.0, 1.0}},
-                                {{5.0, -1.0}, {5.0, 1.0}}};
+  std::vector<Segment> world = {
+      {{-1.0, -1.0}, {5.0, -1.0}}, {{-1.0, 1.0}, {5.0, 1.0}}, {{5.0, -1.0}, {5.0, 1.0}}};
   ObstacleAvoidance avoidance({});
-  const Rollout r = Roll(avoidance, world, Pose2(), 15.0,
-                         [](const Pose2&, bool*) { return core::Twist{1.0, 0.0}; });
+  const Rollout r = Roll(avoidance, world, Pose2(), 15.0, [](const Pose2&, bool*) {
+    return core::Twist{1.0, 0.0};
+  });
   EXPECT_TRUE(r.any_blocked || r.any_emergency);
   EXPECT_GT(r.min_clearance, 0.0);  // the footprint never touched anything
   EXPECT_NEAR(r.robot.setpoint.v, 0.0, 1e-12);
@@ -210,9 +214,8 @@ TEST(ObstacleAvoidance, StopsBeforeADeadEnd) {
 
 TEST(ObstacleAvoidance, StopsForAClosedDoorAcrossThePathOfAFollower) {
   // The follower insists on a straight 10 m path along a 3 m wide corridor closed at x = 6.
-  const std::vector<Segment> world = {{{6.0, -1.5}, {6.0, 1.5}},
-                                      {{-1.0, -1.5}, {6.0, -1.5}},
-                                      {{-1.0, 1.5}, {6.0, 1.5}}};
+  const std::vector<Segment> world = {
+      {{6.0, -1.5}, {6.0, 1.5}}, {{-1.0, -1.5}, {6.0, -1.5}}, {{-1.0, 1.5}, {6.0, 1.5}}};
   PathFollower follower({});
   follower.SetPath(core::Path({Pose2(0, 0, 0), Pose2(5, 0, 0), Pose2(10, 0, 0)}));
   ObstacleAvoidance avoidance({});
@@ -291,7 +294,7 @@ TEST(ObstacleAvoidance, EmergencyStopForSomethingJustAhead) {
       avoidance.Filter({0.5, 0.2}, CastScan(Box(0.33, -0.05, 0.43, 0.05), Pose2()));
   EXPECT_TRUE(out.emergency_stop);
   EXPECT_EQ(out.command.v, 0.0);
-  EXPECT_EQ(out.command.omega, 0.2);  // turning in place is still allowed
+  EXPECT_EQ(out.command.omega, 0.2);      // turning in place is still allowed
   EXPECT_LT(out.time_to_collision, 0.1);  // the bare footprint is 0.03 m from it
 }
 
@@ -349,22 +352,19 @@ TEST(ObstacleAvoidance, TurningInPlaceIsPassedThrough) {
 }
 
 TEST(ObstacleAvoidance, RejectsInvalidConfigNamingTheKey) {
-  auto key_of = [](const std::function<void(ObstacleAvoidanceConfig&)>& edit) {
-    ObstacleAvoidanceConfig c;
-    edit(c);
-    try {
-      c.Validate();
-    } catch (const core::ConfigError& e) {
-      return e.key_path();
-    }
-    return std::string("(none)");
-  };
-  EXPECT_EQ(key_of([](auto&) {}), "(none)");
-  EXPECT_EQ(key_of([](auto& c) { c.robot_radius = 0.0; }), "robot_radius");
-  EXPECT_EQ(key_of([](auto& c) { c.omega_step = -0.1; }), "omega_step");
-  EXPECT_EQ(key_of([](auto& c) { c.speed_factors = {}; }), "speed_factors");
-  EXPECT_EQ(key_of([](auto& c) { c.speed_factors = {0.8, 1.5}; }), "speed_factors[1]");
-  EXPECT_EQ(key_of([](auto& c) { c.horizon = std::nan(""); }), "horizon");
+  EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto&) {}), kValid);
+  EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) { c.robot_radius = 0.0; }),
+            "robot_radius");
+  EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) { c.omega_step = -0.1; }),
+            "omega_step");
+  EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) { c.speed_factors = {}; }),
+            "speed_factors");
+  EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) {
+              c.speed_factors = {0.8, 1.5};
+            }),
+            "speed_factors[1]");
+  EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) { c.horizon = std::nan(""); }),
+            "horizon");
   ObstacleAvoidanceConfig bad;
   bad.emergency_stop_width = 0.0;
   EXPECT_THROW(ObstacleAvoidance{bad}, core::ConfigError);

@@ -4,18 +4,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <vector>
 
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "core/twist.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::nav {
 namespace {
 
 using core::Pose2;
 using core::Vec2;
+using retrace::testing::kValid;
+using retrace::testing::ValidationErrorKey;
 
 constexpr double kDt = 0.05;  // s, the default 20 Hz control period
 
@@ -25,7 +27,8 @@ core::Path Polyline(const std::vector<Vec2>& points, double step = 0.5) {
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     const double len = (points[i + 1] - points[i]).norm();
     const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
-    for (int k = 0; k < n; ++k) dense.push_back(points[i] + (points[i + 1] - points[i]) * (k / double(n)));
+    for (int k = 0; k < n; ++k)
+      dense.push_back(points[i] + (points[i + 1] - points[i]) * (k / double(n)));
   }
   dense.push_back(points.back());
   core::Path path;
@@ -141,7 +144,8 @@ TEST(PathFollower, TracksSCurveWithBoundedError) {
   const auto log = Drive(follower, Pose2(-2.0, 0.0, 0.0), 60.0);
   ASSERT_TRUE(log.back().out.goal_reached);
   double max_error = 0.0;
-  for (const Step& s : log) max_error = std::max(max_error, DistanceToPath(path, s.pose.translation()));
+  for (const Step& s : log)
+    max_error = std::max(max_error, DistanceToPath(path, s.pose.translation()));
   EXPECT_LT(max_error, 0.05);
   RecordProperty("max_error_on_s_curve", std::to_string(max_error));
 }
@@ -277,7 +281,8 @@ TEST(PathFollower, StartsFromTheFirstPathPoint) {
   EXPECT_NEAR(log.front().out.remaining, path.Length(), 1e-9);
   // The robot drove up the first leg instead of cutting towards the later points.
   double closest_to_leg = 1e9;
-  for (const Step& s : log) closest_to_leg = std::min(closest_to_leg, (s.pose.translation() - Vec2(0.0, 0.5)).norm());
+  for (const Step& s : log)
+    closest_to_leg = std::min(closest_to_leg, (s.pose.translation() - Vec2(0.0, 0.5)).norm());
   EXPECT_LT(closest_to_leg, 0.05);
 }
 
@@ -308,22 +313,18 @@ TEST(PathFollower, SinglePointPathIsApproached) {
 }
 
 TEST(PathFollower, RejectsInvalidConfigNamingTheKey) {
-  auto key_of = [](const std::function<void(PathFollowerConfig&)>& edit) {
-    PathFollowerConfig c;
-    edit(c);
-    try {
-      c.Validate();
-    } catch (const core::ConfigError& e) {
-      return e.key_path();
-    }
-    return std::string("(none)");
-  };
-  EXPECT_EQ(key_of([](auto&) {}), "(none)");
-  EXPECT_EQ(key_of([](auto& c) { c.look_ahead = 0.0; }), "look_ahead");
-  EXPECT_EQ(key_of([](auto& c) { c.kd_heading = 1.0; }), "kd_heading");
-  EXPECT_EQ(key_of([](auto& c) { c.min_speed = 2.0; }), "min_speed");
-  EXPECT_EQ(key_of([](auto& c) { c.goal_tolerance = std::nan(""); }), "goal_tolerance");
-  EXPECT_EQ(key_of([](auto& c) { c.kp_lateral = -1.0; }), "kp_lateral");
+  EXPECT_EQ(ValidationErrorKey<PathFollowerConfig>([](auto&) {}), kValid);
+  EXPECT_EQ(ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.look_ahead = 0.0; }),
+            "look_ahead");
+  EXPECT_EQ(ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.kd_heading = 1.0; }),
+            "kd_heading");
+  EXPECT_EQ(ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.min_speed = 2.0; }),
+            "min_speed");
+  EXPECT_EQ(
+      ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.goal_tolerance = std::nan(""); }),
+      "goal_tolerance");
+  EXPECT_EQ(ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.kp_lateral = -1.0; }),
+            "kp_lateral");
   PathFollowerConfig bad;
   bad.decel = 0.0;
   EXPECT_THROW(PathFollower{bad}, core::ConfigError);

@@ -11,9 +11,12 @@
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "io/config_yaml.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::sim {
 namespace {
+
+using retrace::testing::ValidationErrorKey;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const std::vector<std::uint64_t> kSeeds = {11, 12, 13};
@@ -48,15 +51,6 @@ double BoxRange(const Vec2& p, double a, double x0, double y0, double x1, double
   return std::min(tx, ty);
 }
 
-std::string KeyOfError(const LidarConfig& config) {
-  try {
-    config.Validate();
-  } catch (const core::ConfigError& e) {
-    return e.key_path();
-  }
-  return "<valid>";
-}
-
 TEST(LidarConfig, DefaultsAreValidAndDescribeAUtm30lx) {
   const LidarConfig config;
   EXPECT_NO_THROW(config.Validate());
@@ -69,24 +63,21 @@ TEST(LidarConfig, DefaultsAreValidAndDescribeAUtm30lx) {
 }
 
 TEST(LidarConfig, ValidateNamesTheOffendingKey) {
-  auto with = [](auto edit) {
-    LidarConfig c;
-    edit(c);
-    return KeyOfError(c);
-  };
-  EXPECT_EQ(with([](LidarConfig& c) { c.fov_deg = 0.0; }), "fov_deg");
-  EXPECT_EQ(with([](LidarConfig& c) { c.fov_deg = 361.0; }), "fov_deg");
-  EXPECT_EQ(with([](LidarConfig& c) { c.beams = 1; }), "beams");
-  EXPECT_EQ(with([](LidarConfig& c) { c.range_min = -0.1; }), "range_min");
-  EXPECT_EQ(with([](LidarConfig& c) { c.range_max = 0.05; }), "range_max");
-  EXPECT_EQ(with([](LidarConfig& c) { c.range_max = kInf; }), "range_max");
-  EXPECT_EQ(with([](LidarConfig& c) { c.rate_hz = 0.0; }), "rate_hz");
-  EXPECT_EQ(with([](LidarConfig& c) { c.mount.x = std::nan(""); }), "mount");
-  EXPECT_EQ(with([](LidarConfig& c) { c.noise.sigma0 = -0.01; }), "noise.sigma0");
-  EXPECT_EQ(with([](LidarConfig& c) { c.noise.sigma1 = std::nan(""); }), "noise.sigma1");
-  EXPECT_EQ(with([](LidarConfig& c) { c.noise.dropout_probability = 1.5; }),
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.fov_deg = 0.0; }), "fov_deg");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.fov_deg = 361.0; }), "fov_deg");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.beams = 1; }), "beams");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.range_min = -0.1; }), "range_min");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.range_max = 0.05; }), "range_max");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.range_max = kInf; }), "range_max");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.rate_hz = 0.0; }), "rate_hz");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.mount.x = std::nan(""); }), "mount");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.noise.sigma0 = -0.01; }),
+            "noise.sigma0");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.noise.sigma1 = std::nan(""); }),
+            "noise.sigma1");
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) { c.noise.dropout_probability = 1.5; }),
             "noise.dropout_probability");
-  EXPECT_EQ(with([](LidarConfig& c) {
+  EXPECT_EQ(ValidationErrorKey<LidarConfig>([](auto& c) {
               c.noise.dropout_probability = 0.6;
               c.noise.short_probability = 0.6;
             }),

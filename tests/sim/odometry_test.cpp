@@ -13,11 +13,14 @@
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 #include "io/config_yaml.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::sim {
 namespace {
 
 using core::Pose2;
+using retrace::testing::kValid;
+using retrace::testing::ValidationErrorKey;
 
 // One exact unicycle step: a circular arc of length v·dt turning by omega·dt.
 Pose2 ArcStep(const Pose2& X_WR, double v, double omega, double dt) {
@@ -325,33 +328,25 @@ TEST(Odometry, IsDeterministicPerSeed) {
 }
 
 TEST(OdometryConfig, ValidateNamesTheKey) {
-  const auto key_of = [](OdometryConfig c) -> std::string {
-    try {
-      c.Validate();
-    } catch (const core::ConfigError& e) {
-      return e.key_path();
-    }
-    return "";
-  };
-  EXPECT_EQ(key_of(OdometryConfig{}), "");
+  EXPECT_EQ(ValidationErrorKey(OdometryConfig{}), kValid);
   OdometryConfig c;
   c.wheel_base = 0.0;
-  EXPECT_EQ(key_of(c), "wheel_base");
+  EXPECT_EQ(ValidationErrorKey(c), "wheel_base");
   c = {};
   c.alpha3 = -1e-3;
-  EXPECT_EQ(key_of(c), "alpha3");
+  EXPECT_EQ(ValidationErrorKey(c), "alpha3");
   c = {};
   c.alpha1 = std::nan("");
-  EXPECT_EQ(key_of(c), "alpha1");
+  EXPECT_EQ(ValidationErrorKey(c), "alpha1");
   c = {};
   c.rate_hz = 0.0;
-  EXPECT_EQ(key_of(c), "rate_hz");
+  EXPECT_EQ(ValidationErrorKey(c), "rate_hz");
   c = {};
   c.radius_mismatch = 0.5;
-  EXPECT_EQ(key_of(c), "radius_mismatch");
+  EXPECT_EQ(ValidationErrorKey(c), "radius_mismatch");
   c = {};
   c.scale_error = -1.0;
-  EXPECT_EQ(key_of(c), "scale_error");
+  EXPECT_EQ(ValidationErrorKey(c), "scale_error");
   c = {};
   c.wheel_base = -1.0;
   EXPECT_THROW(Odometry(c, core::Rng(1)), core::ConfigError);

@@ -7,9 +7,12 @@
 
 #include "core/errors.hpp"
 #include "sim/physics_world.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::sim {
 namespace {
+
+using retrace::testing::ValidationErrorKey;
 
 void AddBox(StaticGeometry& g, double x0, double y0, double x1, double y1) {
   g.AddPolygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
@@ -25,12 +28,7 @@ TEST(Robot, DefaultConfigIsValidAndBadValuesNameTheKey) {
   RobotConfig c;
   EXPECT_NO_THROW(c.Validate());
   c.max_accel = 0.0;
-  try {
-    c.Validate();
-    FAIL();
-  } catch (const core::ConfigError& e) {
-    EXPECT_EQ(e.key_path(), "max_accel");
-  }
+  EXPECT_EQ(ValidationErrorKey(c), "max_accel");
   c = {};
   c.max_reverse_speed = -0.1;
   EXPECT_THROW(c.Validate(), core::ConfigError);

@@ -5,9 +5,12 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::sim {
 namespace {
+
+using retrace::testing::ValidationErrorKey;
 
 const SocialForceConfig kConfig;
 
@@ -188,12 +191,7 @@ TEST(SocialForce, ValidateNamesTheKey) {
   SocialForceConfig c;
   EXPECT_NO_THROW(c.Validate());
   c.relaxation_time = 0.0;
-  try {
-    c.Validate();
-    FAIL();
-  } catch (const core::ConfigError& e) {
-    EXPECT_EQ(e.key_path(), "relaxation_time");
-  }
+  EXPECT_EQ(ValidationErrorKey(c), "relaxation_time");
   c = {};
   c.out_of_view_weight = 1.5;
   EXPECT_THROW(c.Validate(), core::ConfigError);

@@ -11,12 +11,15 @@
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::sim {
 namespace {
 
 using core::Pose2;
 using core::Vec2;
+using retrace::testing::kValid;
+using retrace::testing::ValidationErrorKey;
 
 constexpr double kDt = 0.05;  // control period (s)
 
@@ -279,36 +282,28 @@ TEST(Teacher, ValidateRouteRejectsBadRoutes) {
 }
 
 TEST(TeacherConfig, ValidateNamesTheKey) {
-  const auto key_of = [](const TeacherConfig& c) -> std::string {
-    try {
-      c.Validate();
-    } catch (const core::ConfigError& e) {
-      return e.key_path();
-    }
-    return "";
-  };
-  EXPECT_EQ(key_of(TeacherConfig{}), "");
+  EXPECT_EQ(ValidationErrorKey(TeacherConfig{}), kValid);
   TeacherConfig c;
   c.speed = 0.0;
-  EXPECT_EQ(key_of(c), "speed");
+  EXPECT_EQ(ValidationErrorKey(c), "speed");
   c = {};
   c.min_turn_speed = 2.0;
-  EXPECT_EQ(key_of(c), "min_turn_speed");
+  EXPECT_EQ(ValidationErrorKey(c), "min_turn_speed");
   c = {};
   c.lookahead = -1.0;
-  EXPECT_EQ(key_of(c), "lookahead");
+  EXPECT_EQ(ValidationErrorKey(c), "lookahead");
   c = {};
   c.wobble_amplitude = 1.0;
-  EXPECT_EQ(key_of(c), "wobble_amplitude");
+  EXPECT_EQ(ValidationErrorKey(c), "wobble_amplitude");
   c = {};
   c.wobble_time_constant = 0.0;
-  EXPECT_EQ(key_of(c), "wobble_time_constant");
+  EXPECT_EQ(ValidationErrorKey(c), "wobble_time_constant");
   c = {};
   c.goal_tolerance = std::nan("");
-  EXPECT_EQ(key_of(c), "goal_tolerance");
+  EXPECT_EQ(ValidationErrorKey(c), "goal_tolerance");
   c = {};
   c.max_yaw_rate = 0.0;
-  EXPECT_EQ(key_of(c), "max_yaw_rate");
+  EXPECT_EQ(ValidationErrorKey(c), "max_yaw_rate");
   c = {};
   c.speed = -1.0;
   EXPECT_THROW(Teacher(kLRoute, c, core::Rng(1)), core::ConfigError);

@@ -1,0 +1,70 @@
+#include "bench/micro/campus_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <vector>
+
+namespace retrace::bench_micro {
+
+// Campus: building outlines, free-standing walls and trees on a free background.
+core::OccupancyGrid CampusMap() {
+  constexpr int kCells = kCampusCells;
+  core::OccupancyGrid g(kCells, kCells, kCampusResolution, core::Vec2(-150.0, -150.0));
+  const float free_l = static_cast<float>(core::Logit(0.05));
+  const float occ_l = static_cast<float>(core::Logit(0.95));
+  std::vector<float>& l = g.log_odds();
+  std::fill(l.begin(), l.end(), free_l);
+  const auto set = [&](int x, int y) {
+    if (x >= 0 && y >= 0 && x < kCells && y < kCells)
+      l[static_cast<std::size_t>(y) * kCells + x] = occ_l;
+  };
+  core::Rng rng(2018);
+  for (int b = 0; b < 70; ++b) {  // buildings: 3-cell-thick outlines with a door gap
+    const int x0 = static_cast<int>(rng.UniformIndex(kCells - 400)) + 50;
+    const int y0 = static_cast<int>(rng.UniformIndex(kCells - 400)) + 50;
+    const int w = 100 + static_cast<int>(rng.UniformIndex(300)),
+              h = 100 + static_cast<int>(rng.UniformIndex(300));
+    for (int t = 0; t < 3; ++t) {
+      for (int x = x0; x <= x0 + w; ++x) {
+        if (x - x0 > 20 && x - x0 < 40) continue;
+        set(x, y0 + t);
+        set(x, y0 + h - t);
+      }
+      for (int y = y0; y <= y0 + h; ++y) {
+        set(x0 + t, y);
+        set(x0 + w - t, y);
+      }
+    }
+  }
+  for (int k = 0; k < 120; ++k) {  // walls and hedges: 2 cells thick, 5-30 m long
+    const double x = rng.Uniform(0, kCells), y = rng.Uniform(0, kCells);
+    const double a = rng.Uniform(0, 2 * std::numbers::pi), len = rng.Uniform(50, 300);
+    for (double s = 0; s < len; s += 0.5) {
+      set(static_cast<int>(x + s * std::cos(a)), static_cast<int>(y + s * std::sin(a)));
+      set(static_cast<int>(x + s * std::cos(a)) + 1, static_cast<int>(y + s * std::sin(a)));
+    }
+  }
+  for (int k = 0; k < 3000; ++k) {  // trees: discs of radius 2-4 cells
+    const int cx = static_cast<int>(rng.UniformIndex(kCells)),
+              cy = static_cast<int>(rng.UniformIndex(kCells));
+    const int r = 2 + static_cast<int>(rng.UniformIndex(3));
+    for (int y = -r; y <= r; ++y) {
+      for (int x = -r; x <= r; ++x) {
+        if (x * x + y * y <= r * r) set(cx + x, cy + y);
+      }
+    }
+  }
+  return g;
+}
+
+core::Pose2 FreeCampusPose(const core::OccupancyGrid& map, const nav::LikelihoodField& field,
+                           core::Rng& rng) {
+  while (true) {
+    const core::Pose2 X(rng.Uniform(-50, 50), rng.Uniform(-50, 50), rng.Uniform(-3, 3));
+    if (field.Distance(map.WorldToCell(X.translation())) > 1.5f) return X;
+  }
+}
+
+}  // namespace retrace::bench_micro
