@@ -270,24 +270,35 @@ TEST(Odometry, DriftDoesNotDependOnTheRate) {
   }
 }
 
-TEST(Odometry, DefaultsDriftLikeARealRobot) {
-  // DESIGN §4: a few percent of the distance and several degrees of heading per 100 m.
-  const OdometryConfig c;
+// RMS over kSeeds runs (seeds first_seed, first_seed + 1, ...) of the odometry's final position
+// error (% of `distance`) and heading error (deg).
+struct DriftRms {
+  double position_percent = 0.0;
+  double heading_deg = 0.0;
+};
+DriftRms RmsDrift(const OdometryConfig& c, std::uint64_t first_seed, double distance,
+                  const std::function<core::Twist(double)>& command) {
   double sum_pos2 = 0.0, sum_th2 = 0.0;
-  std::vector<double> pos_err, th_err;
   for (int seed = 0; seed < kSeeds; ++seed) {
-    const RunResult r = Drive(c, 1000 + seed, 50.0, kStraight / kSpeed, StraightAhead);
+    const RunResult r = Drive(c, first_seed + static_cast<std::uint64_t>(seed), 50.0,
+                              distance / kSpeed, command);
     const double e_pos = std::hypot(r.X_OR.x - r.X_OR_true.x, r.X_OR.y - r.X_OR_true.y);
     const double e_th = core::AngleDiff(r.X_OR.theta, r.X_OR_true.theta);
     sum_pos2 += e_pos * e_pos;
     sum_th2 += e_th * e_th;
   }
-  const double rms_pos_percent = 100.0 * std::sqrt(sum_pos2 / kSeeds) / kStraight;
-  const double rms_heading_deg = core::RadToDeg(std::sqrt(sum_th2 / kSeeds));
-  EXPECT_GT(rms_pos_percent, 1.0);
-  EXPECT_LT(rms_pos_percent, 6.0);
-  EXPECT_GT(rms_heading_deg, 2.0);
-  EXPECT_LT(rms_heading_deg, 10.0);
+  return {100.0 * std::sqrt(sum_pos2 / kSeeds) / distance,
+          core::RadToDeg(std::sqrt(sum_th2 / kSeeds))};
+}
+
+TEST(Odometry, DefaultsDriftLikeARealRobot) {
+  // DESIGN §4: a few percent of the distance and several degrees of heading per 100 m.
+  const OdometryConfig c;
+  const DriftRms straight = RmsDrift(c, 1000, kStraight, StraightAhead);
+  EXPECT_GT(straight.position_percent, 1.0);
+  EXPECT_LT(straight.position_percent, 6.0);
+  EXPECT_GT(straight.heading_deg, 2.0);
+  EXPECT_LT(straight.heading_deg, 10.0);
 
   // A 100 m loop: a 25 m square with rounded corners (radius 1 m), driven counter-clockwise.
   const double corner = core::kPi / 2.0 * 1.0;  // arc length of a corner (m)
@@ -297,24 +308,16 @@ TEST(Odometry, DefaultsDriftLikeARealRobot) {
     const double s = std::fmod(kSpeed * t, side + corner);
     return s < side ? core::Twist{kSpeed, 0.0} : core::Twist{kSpeed, kSpeed / 1.0};
   };
-  double loop_pos2 = 0.0, loop_th2 = 0.0;
-  for (int seed = 0; seed < kSeeds; ++seed) {
-    const RunResult r = Drive(c, 3000 + seed, 50.0, lap / kSpeed, loop);
-    const double e_pos = std::hypot(r.X_OR.x - r.X_OR_true.x, r.X_OR.y - r.X_OR_true.y);
-    const double e_th = core::AngleDiff(r.X_OR.theta, r.X_OR_true.theta);
-    loop_pos2 += e_pos * e_pos;
-    loop_th2 += e_th * e_th;
-  }
-  const double loop_pos_percent = 100.0 * std::sqrt(loop_pos2 / kSeeds) / lap;
-  const double loop_heading_deg = core::RadToDeg(std::sqrt(loop_th2 / kSeeds));
-  EXPECT_GT(loop_pos_percent, 0.5);
-  EXPECT_LT(loop_pos_percent, 6.0);
-  EXPECT_GT(loop_heading_deg, 2.0);
-  EXPECT_LT(loop_heading_deg, 10.0);
+  const DriftRms looped = RmsDrift(c, 3000, lap, loop);
+  EXPECT_GT(looped.position_percent, 0.5);
+  EXPECT_LT(looped.position_percent, 6.0);
+  EXPECT_GT(looped.heading_deg, 2.0);
+  EXPECT_LT(looped.heading_deg, 10.0);
   std::printf(
       "[ info     ] defaults, RMS over %d seeds: straight 100 m: position %.2f %%, heading %.2f "
       "deg; %.0f m square loop: position %.2f %% of the loop, heading %.2f deg\n",
-      kSeeds, rms_pos_percent, rms_heading_deg, lap, loop_pos_percent, loop_heading_deg);
+      kSeeds, straight.position_percent, straight.heading_deg, lap, looped.position_percent,
+      looped.heading_deg);
 }
 
 TEST(Odometry, IsDeterministicPerSeed) {
