@@ -1,18 +1,30 @@
-// The `retrace` command-line program. Every subcommand turns bad input into one clear line on
-// stderr and exit code 2.
+// The `retrace` command-line program. Exit codes: 0 success; 1 the runs completed but
+// navigation failed where the scenario requires success; 2 bad input (one clear line on
+// stderr, nothing written); 3 an internal error.
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <string>
 
+#include "bench/campus_command.hpp"
+#include "bench/run_command.hpp"
 #include "bench/world_command.hpp"
 #include "core/errors.hpp"
 
 namespace {
 
 constexpr int kExitBadInput = 2;
+constexpr int kExitInternalError = 3;  // a bug in retrace, never bad input
+
+std::string CommandLine(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  return line;
+}
 
 }  // namespace
 
@@ -21,6 +33,20 @@ int main(int argc, char** argv) {
   CLI::App app{"retrace: teaching-playback navigation without a consistent map, simulated"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "retrace 0.1.0");
+
+  bench::RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand(
+      "run", "Teach the scenario's route, play it back in each map mode, write metrics and trajectories");
+  bench::AddRunOptions(run_cmd, &run, bench::RunPhases::kAll);
+
+  bench::RunOptions teach;
+  CLI::App* teach_cmd = app.add_subcommand("teach", "Drive the route once and write the teach bundles only");
+  bench::AddRunOptions(teach_cmd, &teach, bench::RunPhases::kTeachOnly);
+
+  bench::RunOptions playback;
+  CLI::App* playback_cmd =
+      app.add_subcommand("playback", "Play back a teach folder written by an earlier run or teach");
+  bench::AddRunOptions(playback_cmd, &playback, bench::RunPhases::kPlaybackOnly);
 
   bench::WorldCommandOptions world;
   CLI::App* world_cmd = app.add_subcommand("world", "Load and check a world file, render it to a PNG");
@@ -31,6 +57,11 @@ int main(int argc, char** argv) {
   world_cmd->add_option("--pixels-per-meter", world.pixels_per_meter, "Image scale")
       ->check(CLI::PositiveNumber);
   world_cmd->add_option("--seed", world.seed, "Seed for the pedestrians' spawn points");
+
+  bench::GenerateCampusOptions campus;
+  CLI::App* campus_cmd = app.add_subcommand(
+      "generate-campus", "Turn a route into a campus world: buildings, hedges, trees, poles, benches, pedestrians");
+  bench::AddGenerateCampusOptions(campus_cmd, &campus);
 
   try {
     app.parse(argc, argv);
@@ -43,14 +74,22 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
 
+  const std::string command_line = CommandLine(argc, argv);
   try {
+    if (*run_cmd) return bench::RunRunCommand(run, bench::RunPhases::kAll, command_line);
+    if (*teach_cmd) return bench::RunRunCommand(teach, bench::RunPhases::kTeachOnly, command_line);
+    if (*playback_cmd) return bench::RunRunCommand(playback, bench::RunPhases::kPlaybackOnly, command_line);
     if (*world_cmd) std::cout << bench::RunWorldCommand(world) << "\n";
+    if (*campus_cmd) std::cout << bench::RunGenerateCampusCommand(campus) << "\n";
   } catch (const core::Error& e) {
     std::cerr << "retrace: error: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "retrace: error: " << e.what() << "\n";  // e.g. an output folder that cannot be written
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "retrace: internal error: " << e.what() << "\n";
-    return 1;
+    return kExitInternalError;
   }
   return 0;
 }

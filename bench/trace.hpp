@@ -25,6 +25,7 @@ enum class MapMode {
 /// One partial map's reference: for every odometry tick of its segment of the teaching drive,
 /// the recorder's pose in the map and the ground truth at the same instant.
 struct TeachMapTrace {
+  std::vector<double> time;       ///< s since the teaching drive started
   std::vector<core::Pose2> X_MR;  ///< X_{M_k R} (the mapper's pose in map k)
   std::vector<core::Pose2> X_WR;  ///< ground truth X_{W R} at the same instant
 };
@@ -71,6 +72,12 @@ struct SwitchRecord {
   core::Pose2 X_MnR;  ///< the estimate in the new map right after the transform (eq. 1)
 };
 
+/// A scripted event that fired.
+struct EventRecord {
+  double time = 0.0;
+  std::string name;
+};
+
 /// How a playback run ended.
 enum class Outcome { kSuccess, kTimeout, kCollision, kLost };
 
@@ -82,6 +89,7 @@ struct RunTrace {
   std::vector<LocalizerSample> updates;
   std::vector<SwitchRecord> switches;
   std::vector<sim::CollisionEvent> collisions;
+  std::vector<EventRecord> events;
   double sim_time_s = 0.0;   ///< simulated duration
   double cpu_time_s = 0.0;   ///< thread CPU time of the whole run
 };

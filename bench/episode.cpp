@@ -1,0 +1,179 @@
+#include "bench/episode.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "bench/local_truth.hpp"
+#include "bench/scripted_events.hpp"
+#include "core/angle.hpp"
+#include "core/rng.hpp"
+#include "nav/localizer.hpp"
+#include "nav/map_server.hpp"
+#include "nav/obstacle_avoidance.hpp"
+#include "nav/path_follower.hpp"
+#include "sim/simulator.hpp"
+
+namespace retrace::bench {
+namespace {
+
+constexpr double kProgressPeriod = 10.0;  // s of simulated time between progress reports
+
+// The robot's edge to the nearest pedestrian's (m), +inf without pedestrians.
+double PedestrianGap(const sim::Simulator& simulator, const core::Vec2& p_W, double radius) {
+  double gap = std::numeric_limits<double>::infinity();
+  for (const sim::DynamicCircle& c : simulator.PedestrianCircles()) {
+    gap = std::min(gap, (c.center - p_W).norm() - c.radius - radius);
+  }
+  return gap;
+}
+
+// Scores the localizer's dynamic-point mask against which beams really hit a pedestrian.
+LocalizerSample Score(const nav::LocalizerUpdate& update, const sim::LidarReading& reading, double time,
+                      double cpu_s) {
+  LocalizerSample sample;
+  sample.time = time;
+  sample.cpu_s = cpu_s;
+  sample.beams_tested = update.beams_tested;
+  sample.beams_rejected = update.beams_rejected;
+  for (std::size_t i = 0; i < update.beams.size(); ++i) {
+    if (update.beams[i] == nav::BeamUse::kUnused) continue;
+    const bool rejected = update.beams[i] == nav::BeamUse::kRejected;
+    const bool pedestrian = reading.truth[i].source == sim::BeamSource::kPedestrian;
+    if (rejected && pedestrian) ++sample.true_positive;
+    if (rejected && !pedestrian) ++sample.false_positive;
+    if (!rejected && pedestrian) ++sample.false_negative;
+  }
+  return sample;
+}
+
+}  // namespace
+
+core::Rng PlaybackRng(const ScenarioConfig& config, int run) {
+  return core::Rng(config.seed).Split("playback").Split(static_cast<std::uint64_t>(run));
+}
+
+RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, const TeachTrace& teach,
+                     int run, double timeout_s, const ProgressFn& progress) {
+  const double cpu_start = ThreadCpuSeconds();
+  const ScenarioConfig& config = scenario.config;
+  const NavConfig& nav_config = config.nav;
+  core::Rng rng = PlaybackRng(config, run);
+  RunTrace trace;
+  trace.run = run;
+  trace.seed = rng.seed();
+
+  // The robot starts near the teaching start; the localizer believes it is at map 0's origin.
+  core::Rng start_rng = rng.Split("start");
+  const double yaw_sigma = core::DegToRad(config.playback.start_offset_yaw_deg);
+  const core::Pose2 X_start_offset(config.playback.start_offset_xy * start_rng.Normal(),
+                                   config.playback.start_offset_xy * start_rng.Normal(),
+                                   yaw_sigma * start_rng.Normal());
+  sim::Simulator simulator(scenario.playback_world, config.sim, scenario.X_W_start * X_start_offset,
+                           rng.Split("sim"));
+  ScriptedEvents events(config.events, EventPhase::kPlayback);
+  RouteProgress route_progress(scenario.route);
+
+  nav::Localizer localizer(nav_config.localizer, rng.Split("localizer"));
+  nav::PathFollower follower(nav_config.follower);
+  nav::ObstacleAvoidance avoidance(nav_config.avoidance);
+  nav::MapServer server(bundle);
+  server.Start(localizer, follower);
+  localizer.Initialize(core::Pose2::Identity(), config.playback.initial_sigma_xy,
+                       core::DegToRad(config.playback.initial_sigma_yaw_deg));
+
+  // Ground truth in the current map, for the `lost` check (the metrics recompute it).
+  std::optional<LocalTruth> local_truth;
+  local_truth.emplace(teach.maps.at(0));
+
+  const std::uint64_t control_steps =
+      sim::PeriodInSteps("nav.control_rate_hz", nav_config.control_rate_hz, simulator.time_step());
+  const double control_dt = static_cast<double>(control_steps) * simulator.time_step();
+  const double radius = config.sim.robot.radius;
+  std::optional<core::LaserScan> latest_scan;
+  core::Twist command;
+  double lost_since = -1.0;
+  double next_report = kProgressPeriod;
+  std::optional<Outcome> outcome;
+
+  for (std::uint64_t step = 1; !outcome; ++step) {
+    // 1. Physics, then the sensors that came due.
+    const sim::SimStep s = simulator.Step(command);
+    const double t = s.time;
+    trace.collisions.insert(trace.collisions.end(), s.collisions.begin(), s.collisions.end());
+
+    // 2. Localizer: prediction from each odometry increment, correction from each scan.
+    if (s.odometry || s.lidar) {
+      const double cpu0 = ThreadCpuSeconds();
+      if (s.odometry) localizer.Predict(*s.odometry);
+      std::optional<nav::LocalizerUpdate> update;
+      if (s.lidar) update = localizer.Update(s.lidar->scan);
+      const double cpu = ThreadCpuSeconds() - cpu0;
+      if (update && update->ran) trace.updates.push_back(Score(*update, *s.lidar, t, cpu));
+    }
+    if (s.lidar) latest_scan = s.lidar->scan;
+
+    if (step % control_steps != 0) continue;
+    const core::Pose2 X_WR = simulator.RobotPose();
+
+    // 3. Map server: at the end of path k, switch to map k+1 and transform the pose (eq. 1).
+    nav::FollowerOutput follow = follower.Compute(localizer.Estimate(), control_dt);
+    if (server.SwitchDue(follow)) {
+      const nav::MapSwitch sw = server.SwitchToNext(localizer, follower);
+      trace.switches.push_back({t, static_cast<int>(sw.from), static_cast<int>(sw.to), X_WR, sw.X_MnR});
+      local_truth.emplace(teach.maps.at(sw.to));
+      follow = follower.Compute(localizer.Estimate(), control_dt);
+    }
+    const core::Pose2 X_MR = localizer.Estimate();
+
+    // 4. Follower, then obstacle avoidance on the latest scan, then the robot's command.
+    nav::AvoidanceOutput avoid;
+    avoid.command = follow.command;
+    if (latest_scan) avoid = avoidance.Filter(follow.command, *latest_scan);
+    command = avoid.command;
+
+    PlaybackSample sample;
+    sample.time = t;
+    sample.map_index = static_cast<int>(server.index());
+    sample.X_WR = X_WR;
+    sample.X_MR = X_MR;
+    sample.X_OR = simulator.OdometryPose();
+    sample.command = command;
+    sample.clearance = simulator.StaticClearance(X_WR.translation()) - radius;
+    sample.pedestrian_gap = PedestrianGap(simulator, X_WR.translation(), radius);
+    sample.avoiding = avoid.modified;
+    trace.samples.push_back(sample);
+
+    // 5. Scripted events and the end conditions.
+    for (const std::string& name : events.Fire(t, route_progress.Update(X_WR.translation()), simulator)) {
+      trace.events.push_back({t, name});
+    }
+    const double error = Compare(X_MR, local_truth->InMap(X_WR)).distance;
+    if (error > config.limits.lost_distance) {
+      if (lost_since < 0.0) lost_since = t;
+    } else {
+      lost_since = -1.0;
+    }
+    if (follow.goal_reached && server.IsLast()) {
+      outcome = Outcome::kSuccess;
+    } else if (config.limits.stop_on_collision && !trace.collisions.empty()) {
+      outcome = Outcome::kCollision;
+    } else if (lost_since >= 0.0 && t - lost_since >= config.limits.lost_time) {
+      outcome = Outcome::kLost;
+    } else if (t >= timeout_s) {
+      outcome = Outcome::kTimeout;
+    }
+    if (progress && t >= next_report) {
+      progress(t);
+      next_report += kProgressPeriod;
+    }
+  }
+  trace.outcome = *outcome;
+  trace.sim_time_s = simulator.time();
+  trace.cpu_time_s = ThreadCpuSeconds() - cpu_start;
+  return trace;
+}
+
+}  // namespace retrace::bench

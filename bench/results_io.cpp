@@ -1,0 +1,121 @@
+#include "bench/results_io.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/local_truth.hpp"
+#include "core/errors.hpp"
+#include "io/csv_writer.hpp"
+#include "io/tum.hpp"
+#include "nav/teach_bundle.hpp"
+
+namespace retrace::bench {
+namespace {
+
+std::vector<io::StampedPose> Stamped(const std::vector<double>& time, const std::vector<core::Pose2>& poses) {
+  std::vector<io::StampedPose> out(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) out[i] = {time[i], poses[i]};
+  return out;
+}
+
+void Unstamp(const std::vector<io::StampedPose>& in, std::vector<double>* time, std::vector<core::Pose2>* poses) {
+  time->clear();
+  poses->clear();
+  for (const io::StampedPose& p : in) {
+    time->push_back(p.t);
+    poses->push_back(p.pose);
+  }
+}
+
+std::string MapFile(std::size_t k, const char* frame) {
+  return "map_" + std::to_string(k) + "_in_" + frame + ".tum";
+}
+
+}  // namespace
+
+void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach) {
+  nav::WriteTeachBundle(dir, teach.bundle);
+  const TeachTrace& trace = teach.trace;
+  io::WriteTum(dir / "gt.tum", Stamped(trace.time, trace.X_WR));
+  io::WriteTum(dir / "odom.tum", Stamped(trace.time, trace.X_OR));
+  for (std::size_t k = 0; k < trace.maps.size(); ++k) {
+    const TeachMapTrace& map = trace.maps[k];
+    io::WriteTum(dir / "reference" / MapFile(k, "map"), Stamped(map.time, map.X_MR));
+    io::WriteTum(dir / "reference" / MapFile(k, "world"), Stamped(map.time, map.X_WR));
+  }
+}
+
+ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
+  if (!std::filesystem::is_directory(dir)) {
+    throw core::IoError(dir.string() + ": no such teach folder (expected the teach/ folder of a previous run)");
+  }
+  ModeTeach teach;
+  teach.mode = mode;
+  teach.bundle = nav::ReadTeachBundle(dir);
+  TeachTrace& trace = teach.trace;
+  Unstamp(io::ReadTum(dir / "gt.tum"), &trace.time, &trace.X_WR);
+  std::vector<double> odom_time;
+  Unstamp(io::ReadTum(dir / "odom.tum"), &odom_time, &trace.X_OR);
+  if (odom_time.size() != trace.time.size() || trace.time.empty()) {
+    throw core::IoError(dir.string() + ": gt.tum and odom.tum must hold the same, non-empty, instants");
+  }
+  for (std::size_t k = 0; k < teach.bundle.maps.size(); ++k) {
+    TeachMapTrace map;
+    std::vector<double> world_time;
+    Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "map")), &map.time, &map.X_MR);
+    Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "world")), &world_time, &map.X_WR);
+    if (map.time.empty() || world_time != map.time) {
+      throw core::IoError(dir.string() + ": reference/" + MapFile(k, "map") + " and " + MapFile(k, "world") +
+                          " must hold the same, non-empty, instants");
+    }
+    trace.maps.push_back(std::move(map));
+  }
+  return teach;
+}
+
+void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run) {
+  std::vector<io::StampedPose> gt, est, odom;
+  io::CsvWriter est_map(dir / "est_map.csv", {"time", "map", "x", "y", "theta"});
+  std::optional<LocalTruth> local;
+  int local_map = -1;
+  for (const PlaybackSample& s : run.samples) {
+    if (s.map_index != local_map) {
+      local.emplace(teach.maps.at(static_cast<std::size_t>(s.map_index)));
+      local_map = s.map_index;
+    }
+    local->InMap(s.X_WR);
+    gt.push_back({s.time, s.X_WR});
+    est.push_back({s.time, local->X_WM() * s.X_MR});
+    odom.push_back({s.time, s.X_OR});
+    est_map.AddRow({s.time, s.map_index, s.X_MR.x, s.X_MR.y, s.X_MR.theta});
+  }
+  io::WriteTum(dir / "gt.tum", gt);
+  io::WriteTum(dir / "est.tum", est);
+  io::WriteTum(dir / "odom.tum", odom);
+  est_map.Commit();
+
+  io::CsvWriter events(dir / "events.csv", {"time", "event", "detail"});
+  // Merged in time order: switches, collisions and scripted events are each already sorted.
+  struct Row {
+    double time;
+    std::string event, detail;
+  };
+  std::vector<Row> rows;
+  for (const SwitchRecord& sw : run.switches) {
+    rows.push_back({sw.time, "map_switch", std::to_string(sw.from) + "->" + std::to_string(sw.to)});
+  }
+  for (const sim::CollisionEvent& c : run.collisions) {
+    rows.push_back({c.time, "collision",
+                    c.kind == sim::CollisionKind::kStatic ? std::string("static")
+                                                          : "pedestrian " + std::to_string(c.pedestrian_id)});
+  }
+  for (const EventRecord& e : run.events) rows.push_back({e.time, "scripted", e.name});
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.time < b.time; });
+  for (const Row& r : rows) events.AddRow({r.time, r.event, r.detail});
+  events.AddRow({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});
+  events.Commit();
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,37 @@
+#pragma once
+// The files of a run's results folder (DESIGN §6):
+//
+//   <mode>/teach/                 the teach bundle (maps/, paths/, switch_poses.txt, ...) plus
+//          gt.tum odom.tum        the teaching drive's ground truth and odometry (TUM, W and O)
+//          reference/map_<k>_in_map.tum, map_<k>_in_world.tum
+//                                 per partial map, the mapper's pose in M_k and the ground truth
+//                                 at the same instants: what local ground truth is made of
+//   <mode>/runs/<i>/gt.tum        ground truth X_WR at every control tick
+//                  est.tum        the estimate carried into W by the local alignment of the
+//                                 nearest teaching sample (so evo's APE against gt.tum is the
+//                                 localization error of DESIGN §6)
+//                  est_map.csv    the raw estimate in its own map: time, map, x, y, theta
+//                  odom.tum       wheel odometry X_OR
+//                  events.csv     time, event, detail: map switches, collisions, scripted events,
+//                                 the outcome
+//
+// TUM lines are `t x y z qx qy qz qw` (z = 0, rotation about z), readable by evo.
+
+#include <filesystem>
+
+#include "bench/teach_drive.hpp"
+#include "bench/trace.hpp"
+
+namespace retrace::bench {
+
+/// Writes the teach bundle and the references of one mode into `dir`.
+void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach);
+
+/// Reads a folder written by WriteTeachFolder (`retrace playback --teach DIR`). Throws
+/// core::IoError naming the folder and the missing or malformed file.
+ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode);
+
+/// Writes one run's trajectories and events into `dir`.
+void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run);
+
+}  // namespace retrace::bench

@@ -1,0 +1,183 @@
+#include "bench/run_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bench/episode.hpp"
+#include "bench/manifest.hpp"
+#include "bench/metrics.hpp"
+#include "bench/parallel.hpp"
+#include "bench/progress.hpp"
+#include "bench/results_io.hpp"
+#include "bench/scenario.hpp"
+#include "bench/summary.hpp"
+#include "bench/teach_drive.hpp"
+#include "core/errors.hpp"
+#include "io/config_override.hpp"
+#include "io/json_writer.hpp"
+
+namespace retrace::bench {
+namespace {
+
+std::vector<MapMode> ResolveModes(const std::string& mode, const std::vector<MapMode>& scenario_modes) {
+  if (mode.empty()) return scenario_modes;
+  if (mode == "all") return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
+  const auto parsed = core::ParseEnum<MapMode>(mode);
+  if (!parsed) {
+    throw core::ConfigError("--mode", "unknown mode '" + mode + "'; expected one of: " +
+                                          core::EnumNameList<MapMode>() + ", all");
+  }
+  return {*parsed};
+}
+
+// Publishes a results folder in one step: everything is written into `<final>.tmp`, which then
+// replaces `final`, so an interrupted run never leaves a half-written results folder behind.
+class StagedFolder {
+ public:
+  explicit StagedFolder(std::filesystem::path final_dir)
+      : final_(std::move(final_dir)), staging_(final_.string() + ".tmp") {
+    std::filesystem::remove_all(staging_);
+    std::filesystem::create_directories(staging_);
+  }
+  ~StagedFolder() {
+    std::error_code ignored;
+    if (!committed_) std::filesystem::remove_all(staging_, ignored);
+  }
+  const std::filesystem::path& path() const { return staging_; }
+  void Commit() {
+    std::filesystem::remove_all(final_);
+    std::filesystem::rename(staging_, final_);
+    committed_ = true;
+  }
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path staging_;
+  bool committed_ = false;
+};
+
+// Turns the episode's absolute progress reports into increments for the shared line.
+ProgressFn Reporter(ProgressLine& line) {
+  return [&line, last = 0.0](double t) mutable {
+    line.AddSimTime(t - last);
+    last = t;
+  };
+}
+
+}  // namespace
+
+void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
+  command->add_option("scenario", options->scenario, "Scenario file (YAML)")->required();
+  if (phases == RunPhases::kPlaybackOnly) {
+    command->add_option("--teach", options->teach_dir, "The teach/ folder of an earlier run or teach")
+        ->required();
+    command->add_option("--mode", options->mode, "Map mode the teach folder was built in (partial|single|consistent)")
+        ->default_val("partial");
+  } else {
+    command->add_option("--mode", options->mode,
+                        "Map mode: partial|single|consistent|all (default: the scenario's modes)");
+  }
+  if (phases != RunPhases::kTeachOnly) {
+    command->add_option("--repeats", options->repeats, "Playback runs per mode")->check(CLI::PositiveNumber);
+    command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
+        ->check(CLI::NonNegativeNumber);
+  }
+  command->add_option("--seed", options->seed, "Scenario seed (overrides the file's)");
+  command->add_option("--out", options->out, "Results folder (default: results/<scenario name>)");
+  command->add_option("--set", options->overrides, "Override a scenario key: a.b.c=value (repeatable)");
+}
+
+int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string& command_line) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::vector<io::ConfigOverride> overrides;
+  for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
+  if (options.seed) overrides.push_back(io::ParseOverride("seed=" + std::to_string(*options.seed)));
+  if (options.repeats) overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
+  Scenario scenario = LoadScenario(options.scenario, overrides);
+  ScenarioConfig& config = scenario.config;
+  config.modes = ResolveModes(options.mode, config.modes);
+  const std::filesystem::path out = options.out.empty() ? std::filesystem::path("results") / config.name : options.out;
+  for (const std::string& warning : scenario.warnings) std::cerr << "retrace: warning: " << warning << "\n";
+
+  // Read a reused teach folder before anything is run or written.
+  std::vector<ModeTeach> teaches;
+  double teach_duration = 0.0;
+  ProgressLine progress;
+  if (phases == RunPhases::kPlaybackOnly) {
+    teaches.push_back(ReadTeachFolder(options.teach_dir, config.modes.front()));
+    teach_duration = teaches.front().trace.time.back();
+  } else {
+    progress.Phase("teach", 1);
+    TeachResult teach = RunTeachDrive(scenario, config.modes, Reporter(progress));
+    teach_duration = teach.duration_s;
+    teaches = std::move(teach.modes);
+  }
+
+  const int repeats = phases == RunPhases::kTeachOnly ? 0 : config.playback.repeats;
+  const std::size_t modes = teaches.size();
+  std::vector<RunTrace> traces(modes * static_cast<std::size_t>(repeats));
+  if (!traces.empty()) {
+    const double timeout = PlaybackTimeout(scenario, teach_duration);
+    progress.Phase("playback", static_cast<int>(traces.size()));
+    ParallelFor(options.jobs > 0 ? options.jobs : DefaultJobs(), traces.size(), [&](std::size_t i) {
+      const ModeTeach& teach = teaches[i / static_cast<std::size_t>(repeats)];
+      const int run = static_cast<int>(i % static_cast<std::size_t>(repeats));
+      traces[i] = RunPlayback(scenario, teach.bundle, teach.trace, run, timeout, Reporter(progress));
+      progress.UnitDone();
+    });
+  }
+  progress.Clear();
+
+  // Metrics, then the files: one staged folder per mode.
+  int exit_code = 0;
+  std::vector<ModeSummary> summaries;
+  nlohmann::json comparison = nlohmann::json::object();
+  const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  for (std::size_t m = 0; m < modes; ++m) {
+    const ModeTeach& teach = teaches[m];
+    const std::string mode_name(core::EnumName(teach.mode));
+    const std::vector<RunTrace> runs(traces.begin() + static_cast<std::ptrdiff_t>(m * repeats),
+                                     traces.begin() + static_cast<std::ptrdiff_t>((m + 1) * repeats));
+    std::vector<RunMetrics> run_metrics;
+    for (const RunTrace& run : runs) run_metrics.push_back(ComputeRunMetrics(teach.trace, run, config.metrics));
+    StagedFolder folder(out / mode_name);
+    if (phases != RunPhases::kPlaybackOnly) WriteTeachFolder(folder.path() / "teach", teach);
+    for (const RunTrace& run : runs) {
+      WriteRunFolder(folder.path() / "runs" / std::to_string(run.run), teach.trace, run);
+    }
+    ModeSummary summary{teach.mode, 0, 0, {}};
+    if (repeats > 0) {
+      const AggregateMetrics aggregate = Aggregate(teach.trace, runs, run_metrics, config.metrics);
+      nlohmann::json metrics;
+      metrics["mode"] = mode_name;
+      metrics["aggregate"] = ToJson(aggregate);
+      metrics["runs"] = nlohmann::json::array();
+      for (const RunMetrics& r : run_metrics) metrics["runs"].push_back(ToJson(r));
+      io::WriteJsonAtomic(folder.path() / "metrics.json", metrics);
+      comparison[mode_name] = metrics["aggregate"];
+      summary = SummarizeMode(teach.mode, aggregate);
+      const bool required = std::find(config.limits.success_required.begin(), config.limits.success_required.end(),
+                                      teach.mode) != config.limits.success_required.end();
+      if (required && summary.successes < summary.runs) exit_code = 1;
+    }
+    ManifestInfo info;
+    info.command_line = command_line;
+    info.mode = teach.mode;
+    info.wall_time_s = wall_time;
+    info.teach_dir = options.teach_dir;
+    WriteManifest(folder.path() / "manifest.yaml", scenario, info);
+    folder.Commit();
+    summaries.push_back(summary);
+  }
+  if (modes > 1 && repeats > 0) io::WriteJsonAtomic(out / "comparison.json", comparison);
+
+  std::cout << SummaryText(scenario, summaries, out, wall_time);
+  return exit_code;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,38 @@
+#pragma once
+// `retrace run`, `retrace teach` and `retrace playback`: teaching drive, playback runs,
+// metrics and result files for the map modes of a scenario.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace retrace::bench {
+
+struct RunOptions {
+  std::filesystem::path scenario;
+  std::string mode;  ///< partial, single, consistent or all; empty: the scenario's `modes`
+  std::optional<int> repeats;
+  std::optional<std::uint64_t> seed;
+  std::filesystem::path out;  ///< results folder; empty: results/<scenario name>
+  std::vector<std::string> overrides;
+  int jobs = 0;                     ///< worker threads; 0: one per core
+  std::filesystem::path teach_dir;  ///< playback: a teach/ folder of an earlier run
+};
+
+enum class RunPhases { kAll, kTeachOnly, kPlaybackOnly };
+
+/// Adds the options shared by run / teach / playback to a CLI11 subcommand.
+void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases);
+
+/// Runs the command; prints the summary on stdout. Returns the exit code: 0, or 1 when a run of
+/// a mode in limits.success_required failed. Throws core::Error on bad input, before anything
+/// is written.
+int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string& command_line);
+
+}  // namespace retrace::bench

@@ -1,0 +1,139 @@
+// Teach → playback end to end on the small scenario: success, plausible metrics, determinism,
+// the files written, and the failure the paper predicts when a map's segment revisits itself.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bench/episode.hpp"
+#include "bench/metrics.hpp"
+#include "bench/results_io.hpp"
+#include "bench/run_command.hpp"
+#include "bench/scenario.hpp"
+#include "bench/teach_drive.hpp"
+#include "core/rng.hpp"
+#include "io/json_writer.hpp"
+#include "io/tum.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace retrace::bench {
+namespace {
+
+const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+
+Scenario Small(std::vector<std::string> sets = {}) {
+  std::vector<io::ConfigOverride> overrides;
+  for (const std::string& s : sets) overrides.push_back(io::ParseOverride(s));
+  return LoadScenario(kSource / "scenarios/small.yaml", overrides);
+}
+
+std::uint64_t TrajectoryHash(const RunTrace& run) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const PlaybackSample& s : run.samples) {
+    const double values[] = {s.time, s.X_WR.x, s.X_WR.y, s.X_WR.theta, s.X_MR.x, s.X_MR.y, s.X_MR.theta};
+    h = core::HashBytes(values, sizeof values, h);
+  }
+  return h;
+}
+
+// The teaching drive of the small scenario in partial mode, shared by the tests below.
+const ModeTeach& PartialTeach() {
+  static const ModeTeach teach = [] {
+    TeachResult result = RunTeachDrive(Small(), {MapMode::kPartial});
+    return std::move(result.modes.front());
+  }();
+  return teach;
+}
+
+TEST(Episode, SmallScenarioPlaybackSucceedsWithPlausibleMetrics) {
+  const Scenario scenario = Small();
+  const ModeTeach& teach = PartialTeach();
+  ASSERT_EQ(teach.bundle.maps.size(), 2u);  // one switch point
+  ASSERT_EQ(teach.trace.maps.size(), 2u);
+  const RunTrace run = RunPlayback(scenario, teach.bundle, teach.trace, 0, 300.0);
+  EXPECT_EQ(run.outcome, Outcome::kSuccess);
+  ASSERT_EQ(run.switches.size(), 1u);
+  const RunMetrics m = ComputeRunMetrics(teach.trace, run, scenario.config.metrics);
+  EXPECT_TRUE(m.success);
+  EXPECT_LT(m.tracking_error_m.rms, 0.25);
+  EXPECT_LT(m.tracking_error_m.max, 0.8);
+  EXPECT_LT(m.localization_error_m.rms, 0.25);
+  EXPECT_LT(m.switch_error_max_m, 0.5);
+  EXPECT_NEAR(m.path_length_m, scenario.route_length, 0.1 * scenario.route_length);
+  EXPECT_EQ(m.collisions.pedestrian_incidents, 0);
+  EXPECT_GT(m.cpu.real_time_factor, 1.0);
+  EXPECT_GT(m.dynamic_points.beams_tested, 0);
+}
+
+TEST(Episode, SameSeedSameTrajectoryOtherRunOtherTrajectory) {
+  const Scenario scenario = Small();
+  const ModeTeach& teach = PartialTeach();
+  const RunTrace a = RunPlayback(scenario, teach.bundle, teach.trace, 0, 60.0);
+  const RunTrace b = RunPlayback(scenario, teach.bundle, teach.trace, 0, 60.0);
+  const RunTrace c = RunPlayback(scenario, teach.bundle, teach.trace, 1, 60.0);
+  EXPECT_EQ(TrajectoryHash(a), TrajectoryHash(b));
+  EXPECT_NE(TrajectoryHash(a), TrajectoryHash(c));
+  const TeachResult again = RunTeachDrive(scenario, {MapMode::kPartial});
+  EXPECT_EQ(again.modes.front().trace.X_WR.back(), teach.trace.X_WR.back());
+}
+
+TEST(Episode, RunCommandWritesFilesThatParseBack) {
+  const retrace::testing::TempDir tmp;
+  RunOptions options;
+  options.scenario = kSource / "scenarios/small.yaml";
+  options.mode = "partial";
+  options.repeats = 1;
+  options.out = tmp.path() / "small";
+  options.jobs = 1;
+  EXPECT_EQ(RunRunCommand(options, RunPhases::kAll, "retrace run (test)"), 0);
+  const std::filesystem::path dir = options.out / "partial";
+  const nlohmann::json metrics = io::ReadJsonFile(dir / "metrics.json");
+  EXPECT_EQ(metrics["mode"], "partial");
+  EXPECT_EQ(metrics["runs"].size(), 1u);
+  EXPECT_TRUE(metrics["aggregate"].contains("success_rate"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "manifest.yaml"));
+  const auto gt = io::ReadTum(dir / "runs/0/gt.tum");
+  const auto est = io::ReadTum(dir / "runs/0/est.tum");
+  EXPECT_EQ(gt.size(), est.size());
+  EXPECT_GT(gt.size(), 100u);
+  const ModeTeach reread = ReadTeachFolder(dir / "teach", MapMode::kPartial);
+  EXPECT_EQ(reread.bundle.maps.size(), 2u);
+  EXPECT_EQ(reread.trace.maps.size(), 2u);
+  EXPECT_FALSE(std::filesystem::exists(options.out / "partial.tmp"));
+
+  // Playback again from the written teach folder.
+  RunOptions again = options;
+  again.teach_dir = dir / "teach";
+  again.out = tmp.path() / "again";
+  EXPECT_EQ(RunRunCommand(again, RunPhases::kPlaybackOnly, "retrace playback (test)"), 0);
+  EXPECT_TRUE(std::filesystem::exists(again.out / "partial/runs/0/gt.tum"));
+}
+
+TEST(Scenarios, EveryShippedScenarioLoadsAndValidates) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSource / "scenarios")) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const Scenario scenario = LoadScenario(entry.path());
+    EXPECT_GT(scenario.route_length, 10.0);
+    EXPECT_TRUE(scenario.warnings.empty()) << scenario.warnings.front();
+    ++count;
+  }
+  EXPECT_GE(count, 3);
+}
+
+TEST(Scenarios, EveryShippedWorldLoads) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSource / "worlds")) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW(sim::LoadWorld(entry.path()));
+    ++count;
+  }
+  EXPECT_GE(count, 3);
+}
+
+}  // namespace
+}  // namespace retrace::bench
