@@ -76,6 +76,31 @@ Lidar::Lidar(const LidarConfig& config, const StaticGeometry& geometry)
   }
 }
 
+void Lidar::AddObstacles(const StaticGeometry& solids) {
+  std::size_t ring_edges = 0;
+  for (const auto& ring : solids.polygons()) ring_edges += ring.size();
+  RETRACE_CHECK(ring_edges == solids.segments().size() && solids.masks().empty());
+  for (const auto& ring : solids.polygons()) {
+    Obstacle o;
+    Vec2 center = Vec2::Zero();
+    for (const Vec2& v : ring) center += v;
+    center /= static_cast<double>(ring.size());
+    double radius = 0.0;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      radius = std::max(radius, (ring[i] - center).norm());
+      o.edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+    }
+    o.bound = {center, radius};
+    obstacle_parts_.push_back(std::move(o));
+    obstacles_.AddPolygon(ring);
+  }
+  for (const Circle& circle : solids.circles()) {
+    RETRACE_CHECK(circle.center.allFinite() && circle.radius > 0.0);
+    obstacle_parts_.push_back({circle, {}, circle});
+    obstacles_.AddCircle(circle);
+  }
+}
+
 LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle> pedestrians,
                          double stamp, core::Rng& rng) const {
   const std::size_t n = beam_dirs_L_.size();
@@ -101,21 +126,39 @@ LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle>
     dirs[i] = Vec2(c * d.x() - s * d.y(), s * d.x() + c * d.y());
   }
 
-  // Pedestrians first: each is tested only on the beams its angular interval (seen from L)
-  // covers, widened by one beam against rounding; the exact circle test decides.
+  // Calls test_beams(lo, hi) for beam index intervals that together hold every beam that can
+  // meet a disc (centre and radius in W): the disc's angular interval seen from L, widened by
+  // one beam against rounding, in each 2 pi wrap. The exact hit tests decide.
+  const int last_beam = static_cast<int>(n) - 1;
+  auto for_covered_beams = [&](const Vec2& center, double radius, const auto& test_beams) {
+    const Vec2 rel = center - origin;
+    const double dist = rel.norm();
+    if (dist - radius > range_max) return;
+    if (dist <= radius) {  // the sensor is inside: every beam may meet the boundary
+      test_beams(0, last_beam);
+      return;
+    }
+    const double half = std::asin(radius / dist);
+    const double bearing = std::atan2(-s * rel.x() + c * rel.y(), c * rel.x() + s * rel.y());
+    for (const double wrap : {-2.0 * core::kPi, 0.0, 2.0 * core::kPi}) {
+      const double lo = (bearing + wrap - half - angle_min_) / angle_increment_;
+      const double hi = (bearing + wrap + half - angle_min_) / angle_increment_;
+      if (hi < -1.0 || lo > static_cast<double>(last_beam) + 1.0) continue;
+      // Clamped before the conversion so that huge indices (tiny increments) stay in int.
+      test_beams(
+          std::max(static_cast<int>(std::ceil(std::max(lo, -1.0))) - 1, 0),
+          std::min(static_cast<int>(std::floor(std::min(hi, last_beam + 1.0))) + 1, last_beam));
+    }
+  };
+
+  // Pedestrians first, each on the beams it can cover.
   std::vector<double> limit(n, range_max);
   for (auto& t : out.truth) t.pedestrian_id = -1;
-  const int last_beam = static_cast<int>(n) - 1;
   for (const DynamicCircle& p : pedestrians) {
     RETRACE_CHECK(p.id >= 0 && p.radius > 0.0 && std::isfinite(p.center.x()) &&
                   std::isfinite(p.center.y()));
     const Circle circle{p.center, p.radius};
-    const Vec2 rel = p.center - origin;
-    const double dist = rel.norm();
-    if (dist - p.radius > range_max) continue;
-    auto test_beams = [&](int lo, int hi) {
-      lo = std::max(lo, 0);
-      hi = std::min(hi, last_beam);
+    for_covered_beams(p.center, p.radius, [&](int lo, int hi) {
       for (int i = lo; i <= hi; ++i) {
         const auto k = static_cast<std::size_t>(i);
         const double t = RayCircleHit(origin, dirs[k], circle);
@@ -125,27 +168,36 @@ LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle>
           out.truth[k].pedestrian_id = p.id;
         }
       }
-    };
-    if (dist <= p.radius) {  // the sensor is inside: every beam meets the boundary
-      test_beams(0, last_beam);
-      continue;
-    }
-    const double half = std::asin(p.radius / dist);
-    const double bearing = std::atan2(-s * rel.x() + c * rel.y(), c * rel.x() + s * rel.y());
-    for (const double wrap : {-2.0 * core::kPi, 0.0, 2.0 * core::kPi}) {
-      const double lo = (bearing + wrap - half - angle_min_) / angle_increment_;
-      const double hi = (bearing + wrap + half - angle_min_) / angle_increment_;
-      if (hi < -1.0 || lo > static_cast<double>(last_beam) + 1.0) continue;
-      // Clamped before the conversion so that huge indices (tiny increments) stay in int.
-      test_beams(static_cast<int>(std::ceil(std::max(lo, -1.0))) - 1,
-                 static_cast<int>(std::floor(std::min(hi, last_beam + 1.0))) + 1);
-    }
+    });
   }
 
   // Static geometry up to the nearest pedestrian (or range_max): a wall at the same distance
-  // as a pedestrian wins the tie.
+  // as a pedestrian wins the tie. Added obstacles are static too: their closest hit within
+  // range_max also bounds the ray caster's search.
   std::vector<double> wall(n);
-  caster_.CastFan(origin, dirs, limit, wall);
+  if (obstacle_parts_.empty()) {
+    caster_.CastFan(origin, dirs, limit, wall);
+  } else {
+    std::vector<double> added(n, kInf);
+    for (const Obstacle& o : obstacle_parts_) {
+      for_covered_beams(o.bound.center, o.bound.radius, [&](int lo, int hi) {
+        for (int i = lo; i <= hi; ++i) {
+          const auto k = static_cast<std::size_t>(i);
+          double t = kInf;
+          if (o.edges.empty()) {
+            t = RayCircleHit(origin, dirs[k], o.circle);
+          } else {
+            for (const Segment& e : o.edges) t = std::min(t, RaySegmentHit(origin, dirs[k], e));
+          }
+          if (t <= range_max) added[k] = std::min(added[k], t);
+        }
+      });
+    }
+    std::vector<double> cast_limit(n);
+    for (std::size_t i = 0; i < n; ++i) cast_limit[i] = std::min(limit[i], added[i]);
+    caster_.CastFan(origin, dirs, cast_limit, wall);
+    for (std::size_t i = 0; i < n; ++i) wall[i] = std::min(wall[i], added[i]);
+  }
 
   const LidarNoiseConfig& noise = config_.noise;
   const double p_drop = noise.dropout_probability;

@@ -1,6 +1,7 @@
 #pragma once
-// The simulated planar LiDAR (DESIGN §4): exact closest hits over the static geometry and the
-// pedestrians, Gaussian range noise, dropouts and spurious short returns, REP-117 readings.
+// The simulated planar LiDAR (DESIGN §4): exact closest hits over the static geometry (the
+// world's, plus obstacles added at run time) and the pedestrians, Gaussian range noise, dropouts
+// and spurious short returns, REP-117 readings.
 
 #include <cstdint>
 #include <span>
@@ -107,6 +108,15 @@ class Lidar {
   LidarReading Scan(const core::Pose2& X_WR, std::span<const DynamicCircle> pedestrians,
                     double stamp, core::Rng& rng) const;
 
+  /// Adds the polygons and circles of `solids` (W, m; obstacles placed at run time) to what the
+  /// LiDAR sees from the next scan on, as static geometry: BeamTruth source kStatic, and they
+  /// win a tie with a pedestrian like walls do. Meant for a few solids (tens): each is tested
+  /// exactly on the beams its bounding disc covers, outside the precomputed ray caster. Open
+  /// edges (imported maps) are not supported (checked).
+  void AddObstacles(const StaticGeometry& solids);
+  /// Every solid added by AddObstacles so far.
+  const StaticGeometry& obstacles() const { return obstacles_; }
+
   const LidarConfig& config() const { return config_; }
   const RayCaster& ray_caster() const { return caster_; }
   double angle_min() const { return angle_min_; }              ///< rad, in L
@@ -118,6 +128,14 @@ class Lidar {
   double angle_min_ = 0.0;
   double angle_increment_ = 0.0;
   std::vector<Vec2> beam_dirs_L_;  // unit beam directions in L
+  // Added obstacles: for the beam selection, each one's bounding disc and its own primitives.
+  struct Obstacle {
+    Circle bound{Vec2::Zero(), 0.0};   // W; contains the whole solid
+    std::vector<Segment> edges;        // a polygon's edges; empty for a circle
+    Circle circle{Vec2::Zero(), 0.0};  // the circle; radius 0 for a polygon
+  };
+  StaticGeometry obstacles_;
+  std::vector<Obstacle> obstacle_parts_;
 };
 
 }  // namespace retrace::sim

@@ -42,6 +42,30 @@ std::string Format(const char* fmt, auto... args) {
   return buf;
 }
 
+// Appends the closest point of every solid added at run time (polygon edge or circle) within
+// `radius` of p, like GeometryIndex::NearbyClosestPoints does for the world's geometry (there are
+// few of them: brute force). Inside a solid (one was dropped on a pedestrian) the point is
+// mirrored through p, so that the repulsion points the way out instead of deeper in.
+void AddedObstaclePoints(const StaticGeometry& solids, const Vec2& p, double radius,
+                         std::vector<Vec2>* out) {
+  const double r2 = radius * radius;
+  for (const auto& ring : solids.polygons()) {
+    const bool inside = PointInPolygon(ring, p);
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const Vec2 q = ClosestPointOnSegment({ring[k], ring[(k + 1) % ring.size()]}, p);
+      if ((q - p).squaredNorm() < r2) out->push_back(inside ? Vec2(2.0 * p - q) : q);
+    }
+  }
+  for (const Circle& c : solids.circles()) {
+    const Vec2 d = p - c.center;
+    const double n = d.norm();
+    if (n - c.radius >= radius) continue;
+    const Vec2 q =
+        n > 0.0 ? Vec2(c.center + d * (c.radius / n)) : Vec2(c.center + Vec2(c.radius, 0.0));
+    out->push_back(n < c.radius ? Vec2(2.0 * p - q) : q);
+  }
+}
+
 }  // namespace
 
 void CrowdConfig::Validate() const {
@@ -66,7 +90,8 @@ struct Pedestrians::Walker {
   core::Rng rng;
   Aabb region;
   PedestrianMode mode = PedestrianMode::kWander;
-  std::vector<Vec2> loop;  // loop waypoints, snapped to free space
+  std::size_t planner = 0;  // index into planners_
+  std::vector<Vec2> loop;   // loop waypoints, snapped to free space
   std::size_t loop_index = 0;
   double idle_until = -1.0;    // standing with nowhere to go until then (s)
   double yield_until = -1.0;   // stepping aside after getting stuck until then (s)
@@ -80,11 +105,20 @@ struct Pedestrians::Walker {
   int stuck_count = 0;
 };
 
+// A pedestrian drawn but not yet in the physics world.
+struct Pedestrians::Placement {
+  Walker walker;
+  PedestrianStatus status;
+  Vec2 spawn{0.0, 0.0};
+};
+
 Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
                          const CrowdConfig& config, const StaticGeometry& geometry,
                          const core::Rng& rng, const std::vector<Circle>& keep_clear,
                          PhysicsWorld& world)
-    : config_(config) {
+    : config_(config),
+      runtime_rng_(rng.Split("runtime")),
+      constructor_groups_(static_cast<int>(groups.size())) {
   config_.Validate();
   for (std::size_t g = 0; g < groups.size(); ++g) {
     try {
@@ -107,104 +141,133 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
     max_radius = std::max(max_radius, g.radius);
   }
   if (regions.empty()) return;  // nobody to spawn: no planner either
-  planner_ = std::make_unique<WalkPlanner>(
+  planners_.push_back(std::make_unique<WalkPlanner>(
       *index_, PlanningArea(regions, points, config_.planner.area_padding), max_radius,
-      config_.planner);
+      config_.planner));
 
-  std::vector<Circle> placed;  // spawned pedestrians so far
+  std::vector<Circle> occupied;  // spawned pedestrians so far
   std::uint64_t person = 0;
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    const PedestrianGroupConfig& group = groups[g];
-    if (group.count == 0) continue;
-    const Aabb region{group.region_min, group.region_max};
-
-    std::vector<Vec2> loop;
-    int loop_component = -1;
-    if (group.mode == PedestrianMode::kLoop) {
-      for (std::size_t k = 0; k < group.waypoints.size(); ++k) {
-        const Vec2& w = group.waypoints[k];
-        std::optional<Vec2> snapped =
-            planner_->IsFree(w) ? std::optional<Vec2>(w) : planner_->NearestFree(w, kWaypointSnap);
-        if (!snapped) {
-          throw core::WorldError(Format(
-              "pedestrian group %zu: loop waypoint %zu (%.2f, %.2f) is inside or too close to "
-              "static geometry (no walkable point within %.1f m)",
-              g, k, w.x(), w.y(), kWaypointSnap));
-        }
-        const int c = planner_->Component(*snapped);
-        if (k == 0) loop_component = c;
-        if (c != loop_component) {
-          throw core::WorldError(Format(
-              "pedestrian group %zu: loop waypoint %zu (%.2f, %.2f) cannot be reached on foot "
-              "from waypoint 0 (%.2f, %.2f)",
-              g, k, w.x(), w.y(), group.waypoints[0].x(), group.waypoints[0].y()));
-        }
-        loop.push_back(*snapped);
-      }
-    }
-
-    for (int n = 0; n < group.count; ++n, ++person) {
-      Walker walker{.rng = rng.Split(person), .region = region, .mode = group.mode, .loop = loop};
-      PedestrianStatus status;
-      status.group = static_cast<int>(g);
-      status.radius = group.radius;
-      // Desired speed N(mean, std) clipped to two standard deviations and to a walking minimum.
-      const double lo = std::max(0.1 * group.speed_mean, group.speed_mean - 2.0 * group.speed_std);
-      const double hi = group.speed_mean + 2.0 * group.speed_std;
-      status.desired_speed =
-          std::clamp(walker.rng.Normal(group.speed_mean, group.speed_std), lo, hi);
-
-      std::optional<Vec2> spawn;
-      for (int t = 0; t < config_.max_spawn_tries && !spawn; ++t) {
-        const auto p = planner_->SampleFreePoint(region, walker.rng, 1, loop_component);
-        if (!p) continue;
-        bool ok = true;
-        for (const Circle& c : placed) {
-          const double min_d = c.radius + group.radius + config_.spawn_gap;
-          if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
-        }
-        for (const Circle& c : keep_clear) {
-          const double min_d = c.radius + group.radius + config_.keep_clear_gap;
-          if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
-        }
-        if (ok) spawn = p;
-      }
-      if (!spawn) {
-        core::Rng probe = walker.rng.Split("probe");
-        const bool any_free =
-            planner_->SampleFreePoint(region, probe, 10000, loop_component).has_value();
-        throw core::WorldError(Format(
-            "pedestrian group %zu: cannot place pedestrian %d of %d in region [%.2f, %.2f]-[%.2f, "
-            "%.2f] after %d tries: %s",
-            g, n + 1, group.count, region.min.x(), region.min.y(), region.max.x(), region.max.y(),
-            config_.max_spawn_tries,
-            any_free ? "the region is too full (fewer pedestrians, a larger region, or a robot "
-                       "start too close)"
-                     : (group.mode == PedestrianMode::kLoop
-                            ? "the region has no free space connected to the loop waypoints"
-                            : "the region has no free space (inside walls or too narrow for the "
-                              "pedestrian radius plus margin)")));
-      }
-      placed.push_back({*spawn, group.radius});
-      status.id = world.AddPedestrian(*spawn, group.radius, config_.mass);
-      if (group.mode == PedestrianMode::kLoop) {
-        walker.loop_index = static_cast<std::size_t>(walker.rng.UniformIndex(loop.size()));
-        // Everyone aims at their own spot near each waypoint: a shared point would make them
-        // queue for it.
-        for (Vec2& w : walker.loop) {
-          const double angle = walker.rng.Uniform(0.0, 2.0 * core::kPi);
-          const double dist = config_.loop_spread * std::sqrt(walker.rng.Uniform());
-          const Vec2 q = w + dist * Vec2(std::cos(angle), std::sin(angle));
-          if (planner_->Component(q) == loop_component && planner_->ClearPath(w, q, group.radius))
-            w = q;
-        }
-      }
-      status_.push_back(std::move(status));
-      walkers_.push_back(std::move(walker));
-    }
+    if (groups[g].count == 0) continue;
+    std::vector<Placement> placements =
+        PlaceGroup(groups[g], static_cast<int>(g), Format("pedestrian group %zu", g), *planners_[0],
+                   0, rng, person, keep_clear, &occupied);
+    person += static_cast<std::uint64_t>(groups[g].count);
+    Commit(std::move(placements), world);
   }
   // Goals are chosen after everyone is placed so that spawning alone decides positions.
-  for (std::size_t i = 0; i < status_.size(); ++i) {
+  StartWalking(0, /*added=*/false, world);
+}
+
+std::vector<Pedestrians::Placement> Pedestrians::PlaceGroup(
+    const PedestrianGroupConfig& group, int group_index, const std::string& label,
+    const WalkPlanner& planner, std::size_t planner_index, const core::Rng& family,
+    std::uint64_t first_member, const std::vector<Circle>& keep_clear,
+    std::vector<Circle>* occupied) const {
+  const Aabb region{group.region_min, group.region_max};
+  const char* name = label.c_str();
+
+  std::vector<Vec2> loop;
+  int loop_component = -1;
+  if (group.mode == PedestrianMode::kLoop) {
+    for (std::size_t k = 0; k < group.waypoints.size(); ++k) {
+      const Vec2& w = group.waypoints[k];
+      std::optional<Vec2> snapped =
+          planner.IsFree(w) ? std::optional<Vec2>(w) : planner.NearestFree(w, kWaypointSnap);
+      if (!snapped) {
+        throw core::WorldError(Format(
+            "%s: loop waypoint %zu (%.2f, %.2f) is inside or too close to static geometry (no "
+            "walkable point within %.1f m)",
+            name, k, w.x(), w.y(), kWaypointSnap));
+      }
+      const int c = planner.Component(*snapped);
+      if (k == 0) loop_component = c;
+      if (c != loop_component) {
+        throw core::WorldError(
+            Format("%s: loop waypoint %zu (%.2f, %.2f) cannot be reached on foot from waypoint 0 "
+                   "(%.2f, %.2f)",
+                   name, k, w.x(), w.y(), group.waypoints[0].x(), group.waypoints[0].y()));
+      }
+      loop.push_back(*snapped);
+    }
+  }
+
+  std::vector<Placement> out;
+  for (int n = 0; n < group.count; ++n) {
+    Walker walker{.rng = family.Split(first_member + static_cast<std::uint64_t>(n)),
+                  .region = region,
+                  .mode = group.mode,
+                  .planner = planner_index,
+                  .loop = loop};
+    PedestrianStatus status;
+    status.group = group_index;
+    status.radius = group.radius;
+    // Desired speed N(mean, std) clipped to two standard deviations and to a walking minimum.
+    const double lo = std::max(0.1 * group.speed_mean, group.speed_mean - 2.0 * group.speed_std);
+    const double hi = group.speed_mean + 2.0 * group.speed_std;
+    status.desired_speed = std::clamp(walker.rng.Normal(group.speed_mean, group.speed_std), lo, hi);
+
+    std::optional<Vec2> spawn;
+    for (int t = 0; t < config_.max_spawn_tries && !spawn; ++t) {
+      const auto p = planner.SampleFreePoint(region, walker.rng, 1, loop_component);
+      if (!p) continue;
+      bool ok = true;
+      for (const Circle& c : *occupied) {
+        const double min_d = c.radius + group.radius + config_.spawn_gap;
+        if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
+      }
+      for (const Circle& c : keep_clear) {
+        const double min_d = c.radius + group.radius + config_.keep_clear_gap;
+        if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
+      }
+      if (ok) spawn = p;
+    }
+    if (!spawn) {
+      core::Rng probe = walker.rng.Split("probe");
+      const bool any_free =
+          planner.SampleFreePoint(region, probe, 10000, loop_component).has_value();
+      throw core::WorldError(Format(
+          "%s: cannot place pedestrian %d of %d in region [%.2f, %.2f]-[%.2f, %.2f] after %d "
+          "tries: %s",
+          name, n + 1, group.count, region.min.x(), region.min.y(), region.max.x(), region.max.y(),
+          config_.max_spawn_tries,
+          any_free ? "the region is too full (fewer pedestrians, a larger region, or a robot "
+                     "start too close)"
+                   : (group.mode == PedestrianMode::kLoop
+                          ? "the region has no free space connected to the loop waypoints"
+                          : "the region has no free space (inside walls or obstacles, or too "
+                            "narrow for the pedestrian radius plus margin)")));
+    }
+    occupied->push_back({*spawn, group.radius});
+    if (group.mode == PedestrianMode::kLoop) {
+      walker.loop_index = static_cast<std::size_t>(walker.rng.UniformIndex(loop.size()));
+      // Everyone aims at their own spot near each waypoint: a shared point would make them
+      // queue for it.
+      for (Vec2& w : walker.loop) {
+        const double angle = walker.rng.Uniform(0.0, 2.0 * core::kPi);
+        const double dist = config_.loop_spread * std::sqrt(walker.rng.Uniform());
+        const Vec2 q = w + dist * Vec2(std::cos(angle), std::sin(angle));
+        if (planner.Component(q) == loop_component && planner.ClearPath(w, q, group.radius)) w = q;
+      }
+    }
+    out.push_back({std::move(walker), std::move(status), *spawn});
+  }
+  return out;
+}
+
+std::vector<int> Pedestrians::Commit(std::vector<Placement>&& placements, PhysicsWorld& world) {
+  std::vector<int> ids;
+  for (Placement& p : placements) {
+    p.status.id = world.AddPedestrian(p.spawn, p.status.radius, config_.mass);
+    ids.push_back(p.status.id);
+    status_.push_back(std::move(p.status));
+    walkers_.push_back(std::move(p.walker));
+  }
+  return ids;
+}
+
+void Pedestrians::StartWalking(std::size_t first, bool added, const PhysicsWorld& world) {
+  for (std::size_t i = first; i < status_.size(); ++i) {
     const Vec2 p = world.PedestrianPosition(status_[i].id);
     if (walkers_[i].mode == PedestrianMode::kLoop) {
       status_[i].goal = walkers_[i].loop[walkers_[i].loop_index];
@@ -213,11 +276,91 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
       ChooseNextGoal(i, p, world.time());
     }
     // Stagger the progress windows so that two pedestrians blocking each other (in a door,
-    // say) do not react at the same instant: one steps aside, the other passes.
-    walkers_[i].window_start = world.time() - walkers_[i].rng.Uniform(0.0, config_.stuck_time);
+    // say) do not react at the same instant: one steps aside, the other passes. The world's
+    // pedestrians start their first window in the past, so that some check within a fraction of
+    // a second, before they are up to speed (kept as is: it is part of the pinned simulation);
+    // added groups start it in the future instead, so that none of them mistakes accelerating
+    // from rest for being stuck and pauses right after appearing (a scripted crossing would
+    // lose its timing).
+    const double stagger = walkers_[i].rng.Uniform(0.0, config_.stuck_time);
+    walkers_[i].window_start = added ? world.time() + stagger : world.time() - stagger;
     walkers_[i].window_distance =
         status_[i].path.empty() ? 0.0 : (status_[i].path.front() - p).norm();
   }
+}
+
+std::vector<int> Pedestrians::AddGroup(const PedestrianGroupConfig& group,
+                                       const std::vector<Circle>& keep_clear, PhysicsWorld& world) {
+  group.Validate();
+  // The stream index counts every call, so that a group's draws do not depend on whether an
+  // earlier one failed or was empty.
+  const std::uint64_t k = added_groups_++;
+  if (group.count == 0) return {};
+  const int group_index = constructor_groups_ + static_cast<int>(k);
+  const std::string label =
+      Format("pedestrian group %d (added at t = %.2f s)", group_index, world.time());
+
+  // A planner whose grid is inflated enough for this radius and covers the region and loop
+  // waypoints with room for detours; else a new one (which must see the added obstacles too).
+  const Aabb region{group.region_min, group.region_max};
+  const Aabb area = PlanningArea(
+      {region}, group.mode == PedestrianMode::kLoop ? group.waypoints : std::vector<Vec2>{},
+      config_.planner.area_padding);
+  const double inflation = group.radius + config_.planner.margin;
+  std::size_t planner_index = planners_.size();
+  for (std::size_t i = 0; i < planners_.size(); ++i) {
+    const Aabb covered = planners_[i]->area();
+    if (planners_[i]->inflation_radius() >= inflation && covered.Contains(area.min) &&
+        covered.Contains(area.max)) {
+      planner_index = i;
+      break;
+    }
+  }
+  std::unique_ptr<WalkPlanner> new_planner;
+  if (planner_index == planners_.size()) {
+    new_planner = std::make_unique<WalkPlanner>(*index_, area, group.radius, config_.planner);
+    if (!obstacles_.empty()) new_planner->AddObstacles(obstacles_);
+  }
+  const WalkPlanner& planner = new_planner ? *new_planner : *planners_[planner_index];
+
+  std::vector<Circle> occupied;
+  for (const DynamicCircle& c : world.PedestrianCircles()) occupied.push_back({c.center, c.radius});
+  std::vector<Placement> placements = PlaceGroup(group, group_index, label, planner, planner_index,
+                                                 runtime_rng_.Split(k), 0, keep_clear, &occupied);
+
+  // Placed: from here on nothing throws.
+  if (new_planner) planners_.push_back(std::move(new_planner));
+  const std::size_t first = status_.size();
+  std::vector<int> ids = Commit(std::move(placements), world);
+  // Wander goals keep away from the robot where it is now (Update refreshes this every step).
+  if (world.has_robot()) {
+    robot_ =
+        SocialAgent{world.RobotPose().translation(), world.RobotVelocityW(), world.robot_radius()};
+  }
+  StartWalking(first, /*added=*/true, world);
+  return ids;
+}
+
+void Pedestrians::AddObstacles(const StaticGeometry& solids, const PhysicsWorld& world) {
+  for (const auto& ring : solids.polygons()) obstacles_.AddPolygon(ring);
+  for (const Circle& c : solids.circles()) obstacles_.AddCircle(c);
+  for (auto& planner : planners_) planner->AddObstacles(solids);
+  // Like the periodic path check in Update, but now: nobody keeps walking into a new obstacle
+  // for up to a check period because its straight line was clear a moment ago.
+  for (std::size_t i = 0; i < status_.size(); ++i) {
+    PedestrianStatus& s = status_[i];
+    if (s.path.empty()) continue;
+    const Vec2 p = world.PedestrianPosition(s.id);
+    walkers_[i].line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
+    if (!walkers_[i].line_clear) {
+      Replan(i, p);
+      walkers_[i].window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+    }
+  }
+}
+
+const WalkPlanner& Pedestrians::PlannerOf(std::size_t i) const {
+  return *planners_[walkers_[i].planner];
 }
 
 Pedestrians::~Pedestrians() = default;
@@ -233,15 +376,15 @@ void Pedestrians::ChooseNextGoal(std::size_t i, const Vec2& position, double tim
     Replan(i, position);
     return;
   }
-  int component = planner_->Component(position);
+  int component = PlannerOf(i).Component(position);
   if (component < 0) {
-    const auto near = planner_->NearestFree(position, 1.5);
-    if (near) component = planner_->Component(*near);
+    const auto near = PlannerOf(i).NearestFree(position, 1.5);
+    if (near) component = PlannerOf(i).Component(*near);
   }
   std::optional<Vec2> goal;
   std::optional<Vec2> fallback;  // a reachable goal closer than min_goal_distance
   for (int attempt = 0; attempt < kGoalAttempts && !goal && component >= 0; ++attempt) {
-    const auto p = planner_->SampleFreePoint(w.region, w.rng, kGoalSamples, component);
+    const auto p = PlannerOf(i).SampleFreePoint(w.region, w.rng, kGoalSamples, component);
     if (!p) break;
     if (robot_ &&
         (*p - robot_->position).norm() < robot_->radius + s.radius + config_.keep_clear_gap) {
@@ -266,7 +409,8 @@ void Pedestrians::ChooseNextGoal(std::size_t i, const Vec2& position, double tim
   Replan(i, position);
 }
 
-Vec2 Pedestrians::YieldPoint(const Vec2& position, const Vec2& waypoint, double radius) const {
+Vec2 Pedestrians::YieldPoint(std::size_t i, const Vec2& position, const Vec2& waypoint) const {
+  const double radius = status_[i].radius;
   Vec2 ahead = waypoint - position;
   if (ahead.norm() < 1e-6) return position;
   ahead.normalize();
@@ -274,18 +418,18 @@ Vec2 Pedestrians::YieldPoint(const Vec2& position, const Vec2& waypoint, double 
   // Keep right, like most people do; else left; else back off.
   for (const Vec2& dir : {right, Vec2(-right), Vec2(-ahead)}) {
     const Vec2 q = position + kYieldDistance * dir;
-    if (planner_->IsFree(q) && planner_->ClearPath(position, q, radius)) return q;
+    if (PlannerOf(i).IsFree(q) && PlannerOf(i).ClearPath(position, q, radius)) return q;
   }
   return position;
 }
 
 void Pedestrians::Replan(std::size_t i, const Vec2& position) {
   PedestrianStatus& s = status_[i];
-  auto path = planner_->Plan(position, s.goal);
+  auto path = PlannerOf(i).Plan(position, s.goal);
   // No walkable path (pushed off the grid, goal cut off): head straight for the goal; the
   // progress check will pick another goal if that does not work either.
   s.path = path ? std::move(*path) : std::vector<Vec2>{s.goal};
-  walkers_[i].line_clear = planner_->ClearPath(position, s.path.front(), s.radius);
+  walkers_[i].line_clear = PlannerOf(i).ClearPath(position, s.path.front(), s.radius);
 }
 
 void Pedestrians::Update(PhysicsWorld& world) {
@@ -333,12 +477,12 @@ void Pedestrians::Update(PhysicsWorld& world) {
         }
         ++s.waypoints_passed;
         s.path.erase(s.path.begin());
-        w.line_clear = planner_->ClearPath(p, s.path.front(), s.radius);
+        w.line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
       }
       // Pushed off the straight line to the next waypoint (behind a corner, say): re-plan.
       // Staggered over pedestrians to spread the cost.
       if (!s.path.empty() && (world.step_count() + i) % check_period == 0) {
-        w.line_clear = planner_->ClearPath(p, s.path.front(), s.radius);
+        w.line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
         if (!w.line_clear) {
           Replan(i, p);
           w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
@@ -358,7 +502,7 @@ void Pedestrians::Update(PhysicsWorld& world) {
           // after the pause.
           ++s.replans;
           w.yield_until = t + w.rng.Uniform(0.5 * kYieldTime, kYieldTime);
-          w.yield_point = YieldPoint(p, s.path.empty() ? p : s.path.front(), s.radius);
+          w.yield_point = YieldPoint(i, p, s.path.empty() ? p : s.path.front());
         } else {
           ++s.goals_abandoned;
           w.stuck_count = 0;
@@ -393,6 +537,9 @@ void Pedestrians::Update(PhysicsWorld& world) {
     }
     obstacle_points_.clear();
     index_->NearbyClosestPoints(p, sf.obstacle_cutoff, &obstacle_points_);
+    if (!obstacles_.empty()) {
+      AddedObstaclePoints(obstacles_, p, sf.obstacle_cutoff, &obstacle_points_);
+    }
     SelectObstaclePoints(p, &obstacle_points_);
     SocialForceInputs in;
     in.self = agents_[i];

@@ -5,8 +5,10 @@
 // each other and out of the robot. Deterministic: every random draw comes from the Rng given
 // at construction, split per pedestrian.
 
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/config.hpp"
@@ -61,7 +63,7 @@ struct CrowdConfig {
 /// What one pedestrian is doing and has done, for tests and diagnostics.
 struct PedestrianStatus {
   int id = 0;                  ///< pedestrian id in the PhysicsWorld (DynamicCircle id)
-  int group = 0;               ///< index into the group list
+  int group = 0;               ///< index into the groups: the world's, then added ones in order
   double radius = 0.3;         ///< m
   double desired_speed = 0.0;  ///< m/s
   Vec2 goal{0.0, 0.0};         ///< current goal (W, m): wander target or loop waypoint
@@ -88,6 +90,27 @@ class Pedestrians {
   Pedestrians(Pedestrians&&) noexcept;
   Pedestrians& operator=(Pedestrians&&) noexcept;
 
+  /// Spawns one more group now (a scripted event), by the constructor's rules: random free
+  /// points of its region, clear of static geometry and of the obstacles added so far (by radius
+  /// + planner margin), of every pedestrian in `world` (by spawn_gap) and of the `keep_clear`
+  /// circles (by keep_clear_gap). They walk from the next Update on. Randomness comes from the
+  /// k-th added group's own stream (the crowd's Rng split "runtime", then k), so the constructor's
+  /// pedestrians draw exactly the numbers they would without it. Their status().group is the
+  /// number of constructor groups plus k. The group reuses a walk planner whose grid covers its
+  /// region (and loop waypoints) with area_padding to spare, else gets its own.
+  /// Returns their DynamicCircle ids (empty for count 0). Throws core::ConfigError on an invalid
+  /// group (key as in PedestrianGroupConfig::Validate) and core::WorldError when the group cannot
+  /// be placed or a loop waypoint is unreachable; nothing is added then.
+  std::vector<int> AddGroup(const PedestrianGroupConfig& group,
+                            const std::vector<Circle>& keep_clear, PhysicsWorld& world);
+
+  /// Makes the crowd aware of solids added to the world at run time (the polygons and circles of
+  /// `solids`, W; physics keeps bodies out of them anyway): their surfaces repel like walls in the
+  /// social force, the walk planners block the cells around them (so paths, wander goals and
+  /// spawn points avoid them), and every pedestrian whose way to its next waypoint they block
+  /// re-plans now (positions from `world`). Open edges are not supported (checked).
+  void AddObstacles(const StaticGeometry& solids, const PhysicsWorld& world);
+
   /// Advances goals and waypoints, re-plans when pushed off the straight line to the next
   /// waypoint, handles lack of progress (first step aside for a moment and re-plan, then give
   /// the goal up), and sets every pedestrian's velocity from the social force (reacting to the
@@ -96,19 +119,36 @@ class Pedestrians {
 
   int size() const { return static_cast<int>(status_.size()); }
   const std::vector<PedestrianStatus>& status() const { return status_; }
-  /// The walk planner shared by the crowd; nullptr when there are no pedestrians.
-  const WalkPlanner* planner() const { return planner_.get(); }
+  /// The walk planner shared by the constructor's groups (or the first one built for an added
+  /// group); nullptr when there are no pedestrians.
+  const WalkPlanner* planner() const { return planners_.empty() ? nullptr : planners_[0].get(); }
+  /// Every solid added by AddObstacles so far.
+  const StaticGeometry& obstacles() const { return obstacles_; }
 
  private:
   struct Walker;  // per-pedestrian state not worth publishing (rng, progress window)
+  struct Placement;
 
+  std::vector<Placement> PlaceGroup(const PedestrianGroupConfig& group, int group_index,
+                                    const std::string& label, const WalkPlanner& planner,
+                                    std::size_t planner_index, const core::Rng& family,
+                                    std::uint64_t first_member,
+                                    const std::vector<Circle>& keep_clear,
+                                    std::vector<Circle>* occupied) const;
+  std::vector<int> Commit(std::vector<Placement>&& placements, PhysicsWorld& world);
+  void StartWalking(std::size_t first, bool added, const PhysicsWorld& world);
+  const WalkPlanner& PlannerOf(std::size_t i) const;
   void ChooseNextGoal(std::size_t i, const Vec2& position, double time);
   void Replan(std::size_t i, const Vec2& position);
-  Vec2 YieldPoint(const Vec2& position, const Vec2& waypoint, double radius) const;
+  Vec2 YieldPoint(std::size_t i, const Vec2& position, const Vec2& waypoint) const;
 
   CrowdConfig config_;
   std::unique_ptr<GeometryIndex> index_;
-  std::unique_ptr<WalkPlanner> planner_;
+  std::vector<std::unique_ptr<WalkPlanner>> planners_;  // [0]: the constructor groups'
+  StaticGeometry obstacles_;                            // solids added at run time
+  core::Rng runtime_rng_;                               // parent of the added groups' streams
+  int constructor_groups_ = 0;
+  std::uint64_t added_groups_ = 0;
   std::vector<PedestrianStatus> status_;
   std::vector<Walker> walkers_;
   std::optional<SocialAgent> robot_;  // as of the last Update

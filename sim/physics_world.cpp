@@ -83,6 +83,7 @@ struct PhysicsWorld::Impl {
   PhysicsConfig config;
   b2World world;
   RobotContactListener listener;
+  b2Body* ground = nullptr;  // the static body: world geometry and added obstacles
   b2Body* robot = nullptr;
   double robot_radius = 0.0;
   std::vector<b2Body*> pedestrians;
@@ -125,6 +126,7 @@ PhysicsWorld::PhysicsWorld(const StaticGeometry& geometry, const PhysicsConfig& 
   b2BodyDef def;
   def.type = b2_staticBody;
   b2Body* ground = impl_->world.CreateBody(&def);
+  impl_->ground = ground;
   b2FixtureDef fixture;
   fixture.friction = kStaticFriction;
   fixture.restitution = 0.0f;
@@ -166,6 +168,36 @@ void PhysicsWorld::Step() {
   impl_->world.Step(static_cast<float>(impl_->config.time_step), impl_->config.velocity_iterations,
                     impl_->config.position_iterations);
   ++impl_->steps;
+}
+
+void PhysicsWorld::AddStaticBox(const core::Pose2& X_WB, const core::Vec2& size) {
+  RETRACE_CHECK(std::isfinite(X_WB.x) && std::isfinite(X_WB.y) && std::isfinite(X_WB.theta));
+  RETRACE_CHECK(size.x() > 0.0 && size.y() > 0.0 && size.allFinite());
+  // SetAsBox rather than Set(points): Set computes a convex hull and welds close vertices, and
+  // silently replaces a degenerate hull by a 2 m box. The polygon keeps Box2D's 1 cm skin, like
+  // the world's edges.
+  b2PolygonShape box;
+  box.SetAsBox(static_cast<float>(0.5 * size.x()), static_cast<float>(0.5 * size.y()),
+               ToB2(X_WB.translation()), static_cast<float>(X_WB.theta));
+  b2FixtureDef fixture;
+  fixture.shape = &box;
+  fixture.friction = kStaticFriction;
+  fixture.restitution = 0.0f;
+  fixture.userData.pointer = kStaticTag;
+  impl_->ground->CreateFixture(&fixture);
+}
+
+void PhysicsWorld::AddStaticCircle(const Circle& c) {
+  RETRACE_CHECK(c.center.allFinite() && c.radius > 0.0 && std::isfinite(c.radius));
+  b2CircleShape circle;
+  circle.m_p = ToB2(c.center);
+  circle.m_radius = static_cast<float>(c.radius) + b2_polygonRadius;  // skin, as in the ctor
+  b2FixtureDef fixture;
+  fixture.shape = &circle;
+  fixture.friction = kStaticFriction;
+  fixture.restitution = 0.0f;
+  fixture.userData.pointer = kStaticTag;
+  impl_->ground->CreateFixture(&fixture);
 }
 
 void PhysicsWorld::AddRobot(const core::Pose2& X_WR, double radius, double mass) {

@@ -1,11 +1,12 @@
 #pragma once
 // The rigid-body world (Box2D 2.4 behind a pimpl): static geometry as one static body of
-// two-sided edges and circles, the robot and the pedestrians as dynamic circles, advanced with
-// a fixed time step. Contacts that begin between the robot and anything else are recorded as
-// CollisionEvents. Bodies are driven kinematically through their velocities; Box2D resolves
-// contacts, so nothing passes through walls or through each other. Static shapes carry Box2D's
-// 1 cm skin (b2_polygonRadius), so bodies rest about 1 cm outside the geometry; moving bodies
-// may overlap each other by a centimetre or two for a step (Box2D's contact tolerance).
+// two-sided edges and circles (plus solid boxes and circles added at run time), the robot and
+// the pedestrians as dynamic circles, advanced with a fixed time step. Contacts that begin
+// between the robot and anything else are recorded as CollisionEvents. Bodies are driven
+// kinematically through their velocities; Box2D resolves contacts, so nothing passes through
+// walls or through each other. Static shapes carry Box2D's 1 cm skin (b2_polygonRadius), so
+// bodies rest about 1 cm outside the geometry; moving bodies may overlap each other by a
+// centimetre or two for a step (Box2D's contact tolerance).
 
 #include <cstdint>
 #include <memory>
@@ -55,6 +56,15 @@ class PhysicsWorld {
 
   /// Advances the world by one time step and records the robot's new contacts.
   void Step();
+
+  // --- Obstacles added at run time ----------------------------------------------------------
+  /// Adds a solid box (centre and yaw X_WB, full extents `size` along B's x and y, m) to the
+  /// static geometry now: bodies collide with it from the next step on, robot contacts with it
+  /// are kStatic events. Solid (not edges), so a body it was dropped on is pushed out rather
+  /// than trapped inside. Size must be positive and the pose finite (checked).
+  void AddStaticBox(const core::Pose2& X_WB, const core::Vec2& size);
+  /// Adds a solid circle (W, m) to the static geometry now, like AddStaticBox.
+  void AddStaticCircle(const Circle& circle);
 
   // --- Robot -------------------------------------------------------------------------------
   /// Adds the robot as a dynamic circle (radius m, mass kg) at X_WR, at rest, with continuous

@@ -1,6 +1,8 @@
 #include "sim/simulator.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/errors.hpp"
 
@@ -65,6 +67,65 @@ SimStep Simulator::Step(const core::Twist& command) {
     out.lidar = lidar_.Scan(X_WR, people, out.time, lidar_rng_);
   }
   return out;
+}
+
+std::vector<int> Simulator::AddPedestrians(const PedestrianGroupConfig& group) {
+  const std::vector<Circle> keep_clear{{physics_.RobotPose().translation(), config_.robot.radius}};
+  return pedestrians_->AddGroup(group, keep_clear, physics_);
+}
+
+void Simulator::AddObstacle(const BoxConfig& box) {
+  box.Validate();
+  StaticGeometry solid;
+  solid.AddPolygon(BoxRing(box));
+  char what[160];
+  std::snprintf(what, sizeof(what), "obstacle box at (%.3f, %.3f) of %.3f m x %.3f m, yaw %.3f rad",
+                box.center.x(), box.center.y(), box.size.x(), box.size.y(), box.yaw);
+  RequireClearOfRobot(solid, what);
+  physics_.AddStaticBox(core::Pose2(box.center.x(), box.center.y(), box.yaw), box.size);
+  AddToSensorsAndCrowd(solid);
+}
+
+void Simulator::AddObstacle(const CircleConfig& circle) {
+  circle.Validate();
+  StaticGeometry solid;
+  solid.AddCircle({circle.center, circle.radius});
+  char what[160];
+  std::snprintf(what, sizeof(what), "obstacle circle at (%.3f, %.3f) of radius %.3f m",
+                circle.center.x(), circle.center.y(), circle.radius);
+  RequireClearOfRobot(solid, what);
+  physics_.AddStaticCircle({circle.center, circle.radius});
+  AddToSensorsAndCrowd(solid);
+}
+
+void Simulator::RequireClearOfRobot(const StaticGeometry& solid, const std::string& what) const {
+  // The same rule as for the robot's start (RequireFootprintFree): the footprint must not
+  // overlap the solid; touching is allowed.
+  const core::Vec2 p = physics_.RobotPose().translation();
+  const double radius = config_.robot.radius;
+  const double clearance = solid.Clearance(p);
+  if (clearance < radius) {
+    char buf[400];
+    std::snprintf(buf, sizeof(buf),
+                  "%s would overlap the robot at (%.3f, %.3f) at t = %.2f s (%s; clearance %.3f m "
+                  "< robot radius %.3f m)",
+                  what.c_str(), p.x(), p.y(), physics_.time(),
+                  solid.IsInside(p) ? "it covers the robot's centre" : "too close", clearance,
+                  radius);
+    throw core::WorldError(buf);
+  }
+}
+
+void Simulator::AddToSensorsAndCrowd(const StaticGeometry& solid) {
+  lidar_.AddObstacles(solid);
+  pedestrians_->AddObstacles(solid, physics_);
+  for (const auto& ring : solid.polygons()) added_obstacles_.AddPolygon(ring);
+  for (const Circle& c : solid.circles()) added_obstacles_.AddCircle(c);
+}
+
+double Simulator::StaticClearance(const core::Vec2& p_W) const {
+  const double world = world_.geometry.Clearance(p_W);
+  return added_obstacles_.empty() ? world : std::min(world, added_obstacles_.Clearance(p_W));
 }
 
 }  // namespace retrace::sim

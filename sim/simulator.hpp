@@ -1,12 +1,14 @@
 #pragma once
 // The simulated world as one object: physics, robot plant, pedestrians, LiDAR and wheel
 // odometry, advanced one fixed physics step at a time. It owns ground truth; the harness
-// (bench) reads sensors from it and feeds commands into it. Sensors fire on integer multiples
-// of the physics step (DESIGN §3).
+// (bench) reads sensors from it and feeds commands into it, and may change the world between
+// steps (scripted events: pedestrian groups and static obstacles added at run time). Sensors
+// fire on integer multiples of the physics step (DESIGN §3).
 
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/config.hpp"
@@ -68,10 +70,42 @@ class Simulator {
   /// one step, then samples the sensors that are due at the new time.
   SimStep Step(const core::Twist& command);
 
+  // --- Scripted events ---------------------------------------------------------------------
+  // The harness changes the world between steps. Nothing here draws from the world's own
+  // random streams, so a run without events is unchanged, and equal events at equal steps give
+  // equal runs.
+
+  /// Spawns a pedestrian group now, by the rules of the world's groups: random free points of
+  /// its region, clear of static geometry (including added obstacles) by radius + planner
+  /// margin, of other pedestrians by crowd.spawn_gap and of the robot by crowd.keep_clear_gap.
+  /// They walk from the next step on, and are seen by the LiDAR and physics like the others.
+  /// Randomness: the k-th call draws from the pedestrian stream split "runtime", then k.
+  /// Returns their DynamicCircle ids. Throws core::ConfigError for an invalid group (key as in
+  /// PedestrianGroupConfig, e.g. "count") and core::WorldError when they cannot be placed; then
+  /// nothing is added.
+  std::vector<int> AddPedestrians(const PedestrianGroupConfig& group);
+
+  /// Adds a static obstacle now (W): solid for physics from the next step on (robot contacts are
+  /// CollisionKind::kStatic events), seen by the LiDAR from the next scan (BeamTruth kStatic),
+  /// counted by StaticClearance, repelling and re-routing pedestrians. Pedestrians it lands on
+  /// are pushed out by the physics. Throws core::ConfigError for an invalid box or circle and
+  /// core::WorldError (naming both positions) if it would overlap the robot's footprint; then
+  /// nothing is added. Box2D keeps a 1 cm skin around static shapes, so an obstacle placed
+  /// within 1 cm of the robot is a collision at the next step.
+  void AddObstacle(const BoxConfig& box);
+  void AddObstacle(const CircleConfig& circle);
+
+  /// Distance (m) from p_W to the nearest static surface, world geometry or added obstacle; 0
+  /// inside a solid. Brute force over all static primitives.
+  double StaticClearance(const core::Vec2& p_W) const;
+
   double time() const { return physics_.time(); }
   double time_step() const { return physics_.time_step(); }
   const SimConfig& config() const { return config_; }
+  /// The world file's static geometry (without the added obstacles).
   const StaticGeometry& geometry() const { return world_.geometry; }
+  /// The obstacles added by AddObstacle, as polygons (boxes) and circles in W.
+  const StaticGeometry& added_obstacles() const { return added_obstacles_; }
   /// Ground-truth robot pose X_WR.
   core::Pose2 RobotPose() const { return physics_.RobotPose(); }
   /// Actual robot twist in R (m/s, rad/s).
@@ -85,6 +119,9 @@ class Simulator {
   const std::vector<CollisionEvent>& collisions() const { return collisions_; }
 
  private:
+  void RequireClearOfRobot(const StaticGeometry& solid, const std::string& what) const;
+  void AddToSensorsAndCrowd(const StaticGeometry& solid);
+
   const World& world_;
   SimConfig config_;
   PhysicsWorld physics_;
@@ -97,6 +134,7 @@ class Simulator {
   std::uint64_t odometry_period_steps_;
   core::Pose2 X_WR_last_odometry_;
   std::vector<CollisionEvent> collisions_;
+  StaticGeometry added_obstacles_;
 };
 
 /// Number of physics steps in one period of a sensor running at rate_hz. Throws

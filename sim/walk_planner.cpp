@@ -115,6 +115,11 @@ WalkPlanner::WalkPlanner(const GeometryIndex& index, const Aabb& area, double pe
     }
   }
 
+  LabelComponents();
+}
+
+void WalkPlanner::LabelComponents() {
+  const std::size_t n = free_.size();
   // Components under the A* move rule (diagonals only between free orthogonal cells).
   component_.assign(n, -1);
   int next_id = 0;
@@ -144,6 +149,61 @@ WalkPlanner::WalkPlanner(const GeometryIndex& index, const Aabb& area, double pe
     ++next_id;
   }
 }
+
+void WalkPlanner::AddObstacles(const StaticGeometry& solids) {
+  std::size_t ring_edges = 0;
+  for (const auto& ring : solids.polygons()) ring_edges += ring.size();
+  RETRACE_CHECK(ring_edges == solids.segments().size() && solids.masks().empty());
+  // Only the cells within the inflation radius of a solid's bounding box can change. Indices
+  // are clamped in double first so that far-away solids cannot overflow an int.
+  auto cell_index = [&](double v, double o, int count) {
+    return static_cast<int>(
+        std::clamp(std::floor((v - o) / cell_), -1.0, static_cast<double>(count)));
+  };
+  bool changed = false;
+  auto block = [&](const Aabb& box, const auto& distance) {
+    const double r = inflation_;
+    const int x0 = std::max(0, cell_index(box.min.x() - r, origin_.x(), nx_));
+    const int y0 = std::max(0, cell_index(box.min.y() - r, origin_.y(), ny_));
+    const int x1 = std::min(nx_ - 1, cell_index(box.max.x() + r, origin_.x(), nx_));
+    const int y1 = std::min(ny_ - 1, cell_index(box.max.y() + r, origin_.y(), ny_));
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
+        const double d = distance(CellCenter(static_cast<int>(c)));
+        if (d >= inflation_) continue;
+        changed = changed || free_[c] != 0;
+        free_[c] = 0;
+        clearance_[c] = std::min(clearance_[c], static_cast<float>(d));
+      }
+    }
+  };
+  for (const auto& ring : solids.polygons()) {
+    Aabb box{ring.front(), ring.front()};
+    for (const Vec2& v : ring) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+    block(box, [&ring](const Vec2& p) {
+      if (PointInPolygon(ring, p)) return 0.0;
+      double d = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Segment s{ring[i], ring[(i + 1) % ring.size()]};
+        d = std::min(d, (ClosestPointOnSegment(s, p) - p).norm());
+      }
+      return d;
+    });
+  }
+  for (const Circle& circle : solids.circles()) {
+    const Vec2 r(circle.radius, circle.radius);
+    block(Aabb{circle.center - r, circle.center + r}, [&circle](const Vec2& p) {
+      return std::max(0.0, (p - circle.center).norm() - circle.radius);
+    });
+  }
+  if (changed) LabelComponents();
+}
+
+Aabb WalkPlanner::area() const { return {origin_, origin_ + Vec2(nx_ * cell_, ny_ * cell_)}; }
 
 int WalkPlanner::free_cell_count() const {
   return static_cast<int>(std::count(free_.begin(), free_.end(), std::uint8_t{1}));

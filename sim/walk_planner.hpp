@@ -45,8 +45,15 @@ class WalkPlanner {
   WalkPlanner(const GeometryIndex& index, const Aabb& area, double pedestrian_radius,
               const WalkPlannerConfig& config);
 
+  /// Blocks the cells whose centre lies inside or within inflation_radius() of a polygon or
+  /// circle of `solids` (obstacles added at run time; open edges are not supported: checked),
+  /// and recomputes the connected components. Component ids may change.
+  void AddObstacles(const StaticGeometry& solids);
+
   /// Clearance radius (m) the free cells guarantee at their centres.
   double inflation_radius() const { return inflation_; }
+  /// The rasterised area (W, m): the requested one rounded up to whole cells.
+  Aabb area() const;
   double cell_size() const { return cell_; }
   int width() const { return nx_; }
   int height() const { return ny_; }
@@ -82,6 +89,7 @@ class WalkPlanner {
  private:
   int CellOf(const Vec2& p) const;  // -1 outside the grid
   Vec2 CellCenter(int cell) const;
+  void LabelComponents();
   std::optional<int> NearestFreeCell(const Vec2& p, double max_distance, int component) const;
   std::vector<int> AStar(int start, int goal) const;
   // Grid traversal: min_clearance < 0 means "free cells only".

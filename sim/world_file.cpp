@@ -20,13 +20,6 @@ double SignedArea(const std::vector<Vec2>& ring) {
   return 0.5 * a;
 }
 
-std::vector<Vec2> BoxRing(const BoxConfig& b) {
-  const core::Pose2 X_WB(b.center.x(), b.center.y(), b.yaw);
-  const double hx = 0.5 * b.size.x();
-  const double hy = 0.5 * b.size.y();
-  return {X_WB * Vec2(-hx, -hy), X_WB * Vec2(hx, -hy), X_WB * Vec2(hx, hy), X_WB * Vec2(-hx, hy)};
-}
-
 void AddWall(const WallConfig& wall, StaticGeometry* geometry) {
   const std::size_t n = wall.points.size();
   const std::size_t pieces = wall.closed ? n : n - 1;
@@ -44,11 +37,24 @@ void AddWall(const WallConfig& wall, StaticGeometry* geometry) {
 
 }  // namespace
 
-void BoxConfig::Validate() const {
-  core::RequirePositive("size", std::min(size.x(), size.y()));
+std::vector<Vec2> BoxRing(const BoxConfig& b) {
+  const core::Pose2 X_WB(b.center.x(), b.center.y(), b.yaw);
+  const double hx = 0.5 * b.size.x();
+  const double hy = 0.5 * b.size.y();
+  return {X_WB * Vec2(-hx, -hy), X_WB * Vec2(hx, -hy), X_WB * Vec2(hx, hy), X_WB * Vec2(-hx, hy)};
 }
 
-void CircleConfig::Validate() const { core::RequirePositive("radius", radius); }
+void BoxConfig::Validate() const {
+  if (!center.allFinite()) throw core::ConfigError("center", "must be finite");
+  core::RequirePositive("size", std::min(size.x(), size.y()));
+  core::RequirePositive("size", std::max(size.x(), size.y()));  // rejects an infinite extent
+  core::RequireFinite("yaw", yaw);
+}
+
+void CircleConfig::Validate() const {
+  if (!center.allFinite()) throw core::ConfigError("center", "must be finite");
+  core::RequirePositive("radius", radius);
+}
 
 void PolygonConfig::Validate() const {
   if (points.size() < 3) {

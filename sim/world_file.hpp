@@ -32,8 +32,12 @@ struct BoxConfig {
     v("size", size);
     v("yaw", yaw);
   }
+  /// Throws core::ConfigError naming the key: finite centre and yaw, positive finite size.
   void Validate() const;
 };
+
+/// The corners of a box in W (m), counter-clockwise.
+std::vector<core::Vec2> BoxRing(const BoxConfig& box);
 
 struct CircleConfig {
   core::Vec2 center{0.0, 0.0};
@@ -43,6 +47,7 @@ struct CircleConfig {
     v("center", center);
     v("radius", radius);
   }
+  /// Throws core::ConfigError naming the key: finite centre, positive finite radius.
   void Validate() const;
 };
 
