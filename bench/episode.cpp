@@ -20,6 +20,7 @@ namespace retrace::bench {
 namespace {
 
 constexpr double kProgressPeriod = 10.0;  // s of simulated time between progress reports
+constexpr double kStallProgress = 0.5;    // m along the path that counts as progress
 
 // The robot's edge to the nearest pedestrian's (m), +inf without pedestrians.
 double PedestrianGap(const sim::Simulator& simulator, const core::Vec2& p_W, double radius) {
@@ -95,6 +96,9 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
   std::optional<core::LaserScan> latest_scan;
   core::Twist command;
   double lost_since = -1.0;
+  // Progress for the stall check: the maps passed and the path length left in the current one.
+  std::pair<std::size_t, double> best_progress{0, std::numeric_limits<double>::infinity()};
+  double last_progress_time = 0.0;
   double next_report = kProgressPeriod;
   std::optional<Outcome> outcome;
 
@@ -105,15 +109,13 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
     trace.collisions.insert(trace.collisions.end(), s.collisions.begin(), s.collisions.end());
 
     // 2. Localizer: prediction from each odometry increment, correction from each scan.
-    if (s.odometry || s.lidar) {
+    if (s.odometry) localizer.Predict(*s.odometry);
+    if (s.lidar) {
       const double cpu0 = ThreadCpuSeconds();
-      if (s.odometry) localizer.Predict(*s.odometry);
-      std::optional<nav::LocalizerUpdate> update;
-      if (s.lidar) update = localizer.Update(s.lidar->scan);
-      const double cpu = ThreadCpuSeconds() - cpu0;
-      if (update && update->ran) trace.updates.push_back(Score(*update, *s.lidar, t, cpu));
+      const nav::LocalizerUpdate update = localizer.Update(s.lidar->scan);
+      if (update.ran) trace.updates.push_back(Score(update, *s.lidar, t, ThreadCpuSeconds() - cpu0));
+      latest_scan = s.lidar->scan;
     }
-    if (s.lidar) latest_scan = s.lidar->scan;
 
     if (step % control_steps != 0) continue;
     const core::Pose2 X_WR = simulator.RobotPose();
@@ -156,13 +158,17 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
     } else {
       lost_since = -1.0;
     }
+    if (server.index() > best_progress.first || follow.remaining < best_progress.second - kStallProgress) {
+      best_progress = {server.index(), follow.remaining};
+      last_progress_time = t;
+    }
     if (follow.goal_reached && server.IsLast()) {
       outcome = Outcome::kSuccess;
     } else if (config.limits.stop_on_collision && !trace.collisions.empty()) {
       outcome = Outcome::kCollision;
     } else if (lost_since >= 0.0 && t - lost_since >= config.limits.lost_time) {
       outcome = Outcome::kLost;
-    } else if (t >= timeout_s) {
+    } else if (t >= timeout_s || t - last_progress_time >= config.limits.stall_time) {
       outcome = Outcome::kTimeout;
     }
     if (progress && t >= next_report) {

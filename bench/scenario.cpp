@@ -82,6 +82,7 @@ void LimitsConfig::Validate() const {
   core::RequireNonNegative("timeout_s", timeout_s);
   core::RequirePositive("lost_distance", lost_distance);
   core::RequirePositive("lost_time", lost_time);
+  core::RequirePositive("stall_time", stall_time);
 }
 
 void NavConfig::Validate() const { core::RequireInRange("control_rate_hz", control_rate_hz, 1.0, 1000.0); }

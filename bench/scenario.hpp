@@ -162,6 +162,9 @@ struct LimitsConfig {
   double timeout_s = 0.0;        ///< s; 0: 2 × the teaching drive's duration + 60 s
   double lost_distance = 2.0;    ///< m: localization error beyond this ...
   double lost_time = 5.0;        ///< s: ... for this long ends the run as `lost`
+  /// s without 0.5 m of progress along the path (stuck behind an obstacle, or following a
+  /// wrong estimate into a wall) that ends the run as a timeout early
+  double stall_time = 60.0;
   bool stop_on_collision = false;
   /// Modes whose runs must all succeed; otherwise `retrace run` exits with code 1.
   std::vector<MapMode> success_required = {MapMode::kPartial, MapMode::kConsistent};
@@ -171,6 +174,7 @@ struct LimitsConfig {
     v("timeout_s", timeout_s);
     v("lost_distance", lost_distance);
     v("lost_time", lost_time);
+    v("stall_time", stall_time);
     v("stop_on_collision", stop_on_collision);
     v("success_required", success_required);
   }

@@ -60,7 +60,7 @@ struct LocalizerSample {
   int true_positive = 0;   ///< rejected and hit a pedestrian
   int false_positive = 0;  ///< rejected, but hit static geometry (or was spurious)
   int false_negative = 0;  ///< tested, hit a pedestrian, not rejected
-  double cpu_s = 0.0;      ///< thread CPU time of Predict + Update (s)
+  double cpu_s = 0.0;      ///< thread CPU time of the measurement update (s)
 };
 
 /// A map switch done by the map server.

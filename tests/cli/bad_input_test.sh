@@ -13,12 +13,12 @@ fail=0
 expect_bad() {  # expect_bad <name> <expected substring> <args...>
   local name="$1" want="$2"
   shift 2
-  rm -f "$tmp/out.png"
+  rm -rf "$tmp/out.png" "$tmp/results"
   "$retrace" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
   local code=$?
   local lines
   lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" && [ ! -e "$tmp/out.png" ]; then
+  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" && [ ! -e "$tmp/out.png" ] && [ ! -e "$tmp/results" ]; then
     pass=$((pass + 1))
   else
     fail=$((fail + 1))
@@ -60,6 +60,35 @@ expect_bad bad-override-syntax "--set expects key.path=value" world "$src/worlds
 expect_bad unwritable-output "cannot create folder" world "$src/worlds/office.yaml" --png /proc/retrace/out.png
 expect_bad no-subcommand "A subcommand is required" 
 expect_bad unknown-option "--bogus" world "$src/worlds/office.yaml" --png "$tmp/out.png" --bogus
+
+# Scenarios (`retrace run`, `teach`, `playback`): nothing may be written under $tmp/results.
+cp "$src/worlds/test_room.yaml" "$tmp/room.yaml"
+scenario() {  # scenario <file> <route/extra yaml>
+  printf 'name: bad\nworld: room.yaml\n%b' "$2" >"$tmp/$1"
+}
+scenario unknown_key.yaml 'route: {points: [[1, 1], [9, 1]]}\nplayback: {repeat: 2}\n'
+scenario through_box.yaml 'route: {points: [[1, 3.8], [9, 3.8]]}\n'
+scenario beyond_end.yaml 'route: {points: [[1, 1], [9, 1]], switch_points: [4, 12]}\n'
+scenario inside.yaml 'route: {points: [[4, 2], [9, 1]]}\n'
+scenario decreasing.yaml 'route: {points: [[1, 1], [9, 1]], switch_points: [5, 3]}\n'
+scenario bad_mode.yaml 'route: {points: [[1, 1], [9, 1]]}\nmodes: [partial, slam]\n'
+scenario missing_world.yaml 'route: {points: [[1, 1], [9, 1]]}\n'
+sed -i 's/room.yaml/nowhere.yaml/' "$tmp/missing_world.yaml"
+mkdir -p "$tmp/teach_broken/maps"
+echo 2 >"$tmp/teach_broken/sub_map_num.txt"
+
+out=(--out "$tmp/results")
+expect_bad run-unknown-key "playback.repeat: unknown key; did you mean 'repeats'?" run "$tmp/unknown_key.yaml" "${out[@]}"
+expect_bad run-route-through-box "route is not drivable" run "$tmp/through_box.yaml" "${out[@]}"
+expect_bad run-switch-beyond-end "lies beyond the route's end" run "$tmp/beyond_end.yaml" "${out[@]}"
+expect_bad run-start-inside "route is not drivable" run "$tmp/inside.yaml" "${out[@]}"
+expect_bad run-switch-decreasing "must be strictly increasing" run "$tmp/decreasing.yaml" "${out[@]}"
+expect_bad run-bad-mode "unknown value 'slam'" run "$tmp/bad_mode.yaml" "${out[@]}"
+expect_bad run-missing-world "nowhere.yaml: cannot open file" run "$tmp/missing_world.yaml" "${out[@]}"
+expect_bad run-bad-mode-flag "unknown mode 'slam'" run "$src/scenarios/small.yaml" --mode slam "${out[@]}"
+expect_bad run-bad-set "--set nav.localizer.particles=-5" run "$src/scenarios/small.yaml" --set nav.localizer.particles=-5 "${out[@]}"
+expect_bad playback-missing-bundle "no such teach folder" playback "$src/scenarios/small.yaml" --teach "$tmp/nothing" "${out[@]}"
+expect_bad playback-broken-bundle "teach_broken" playback "$src/scenarios/small.yaml" --teach "$tmp/teach_broken" "${out[@]}"
 
 # And the good case writes the image.
 if "$retrace" world "$src/worlds/office.yaml" --route "$src/worlds/routes/office_loop.txt" --png "$tmp/ok.png" >/dev/null &&
