@@ -139,7 +139,7 @@ Scenario LoadScenario(const std::filesystem::path& file,
   try {
     sim::ValidateRoute(scenario.route);
   } catch (const core::ConfigError& e) {
-    throw core::ConfigError("route", Where(file) + e.what());
+    throw core::ConfigError(e.key_path(), Where(file) + e.what(), true);
   }
   scenario.route_length = RouteLength(scenario.route);
   const double radius = config.sim.robot.radius;
@@ -153,22 +153,24 @@ Scenario LoadScenario(const std::filesystem::path& file,
   } catch (const core::WorldError& e) {
     // A closed gate on the route during playback is a legitimate experiment (the robot must
     // stop), so this is a warning, not an error.
-    scenario.warnings.push_back(std::string("the route is blocked during playback: ") + e.what());
+    scenario.playback_blocked = std::string("the route is blocked during playback: ") + e.what();
   }
   const core::Vec2 d = scenario.route[1] - scenario.route[0];
   scenario.X_W_start = core::Pose2(scenario.route[0].x(), scenario.route[0].y(), std::atan2(d.y(), d.x()));
-  for (const auto& warning :
-       CheckSwitchPoints(scenario.route, config.route.switch_points, config.route.revisit_radius)) {
-    scenario.warnings.push_back(warning);
-  }
-  for (std::size_t i = 0; i < config.events.size(); ++i) {
-    const EventConfig& event = config.events[i];
-    if (event.at_route_s && *event.at_route_s > scenario.route_length) {
-      throw core::ConfigError("events." + std::to_string(i) + ".at_route_s",
-                              Where(file) + "lies beyond the route's end (" +
-                                  core::FormatNumber(scenario.route_length) + " m)");
+  try {
+    scenario.warnings = CheckSwitchPoints(scenario.route, config.route.switch_points, config.route.revisit_radius);
+    for (std::size_t i = 0; i < config.events.size(); ++i) {
+      const EventConfig& event = config.events[i];
+      if (event.at_route_s && *event.at_route_s > scenario.route_length) {
+        throw core::ConfigError("events." + std::to_string(i) + ".at_route_s",
+                                "lies beyond the route's end (" + core::FormatNumber(scenario.route_length) + " m)");
+      }
     }
+  } catch (const core::ConfigError& e) {
+    if (e.located()) throw;
+    throw core::ConfigError(e.key_path(), Where(file) + e.what(), true);
   }
+  if (!scenario.playback_blocked.empty()) scenario.warnings.push_back(scenario.playback_blocked);
   return scenario;
 }
 

@@ -248,6 +248,7 @@ struct Scenario {
   sim::World teach_world;
   sim::World playback_world;
   std::vector<std::string> warnings;
+  std::string playback_blocked;  ///< why the route is not drivable in the playback world, if so
 };
 
 /// Loads and checks a scenario: strict keys, overrides (`--set`), the world and route files,

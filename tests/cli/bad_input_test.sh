@@ -80,7 +80,7 @@ echo 2 >"$tmp/teach_broken/sub_map_num.txt"
 out=(--out "$tmp/results")
 expect_bad run-unknown-key "playback.repeat: unknown key; did you mean 'repeats'?" run "$tmp/unknown_key.yaml" "${out[@]}"
 expect_bad run-route-through-box "route is not drivable" run "$tmp/through_box.yaml" "${out[@]}"
-expect_bad run-switch-beyond-end "lies beyond the route's end" run "$tmp/beyond_end.yaml" "${out[@]}"
+expect_bad run-switch-beyond-end "beyond_end.yaml: route.switch_points: switch point 1 (12) must lie inside the route" run "$tmp/beyond_end.yaml" "${out[@]}"
 expect_bad run-start-inside "route is not drivable" run "$tmp/inside.yaml" "${out[@]}"
 expect_bad run-switch-decreasing "must be strictly increasing" run "$tmp/decreasing.yaml" "${out[@]}"
 expect_bad run-bad-mode "unknown value 'slam'" run "$tmp/bad_mode.yaml" "${out[@]}"
