@@ -87,7 +87,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
 
   // Ground truth in the current map, for the `lost` check (the metrics recompute it).
   std::optional<LocalTruth> local_truth;
-  local_truth.emplace(teach.maps.at(0));
+  local_truth.emplace(teach.maps.at(0), config.metrics.match_window, config.metrics.match_fallback_distance);
 
   const std::uint64_t control_steps =
       sim::PeriodInSteps("nav.control_rate_hz", nav_config.control_rate_hz, simulator.time_step());
@@ -125,7 +125,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
     if (server.SwitchDue(follow)) {
       const nav::MapSwitch sw = server.SwitchToNext(localizer, follower);
       trace.switches.push_back({t, static_cast<int>(sw.from), static_cast<int>(sw.to), X_WR, sw.X_MnR});
-      local_truth.emplace(teach.maps.at(sw.to));
+      local_truth.emplace(teach.maps.at(sw.to), config.metrics.match_window, config.metrics.match_fallback_distance);
       follow = follower.Compute(localizer.Estimate(), control_dt);
     }
     const core::Pose2 X_MR = localizer.Estimate();

@@ -6,10 +6,13 @@
 //
 //   X_{M_k R} = X_{M_k R_j} * inverse(X_{W R_j}) * X_{W R}            (DESIGN §6)
 //
-// with j the nearest teaching sample of the map, tracked monotonically along the segment so
-// that a segment that passes the same place twice (mode `single`) matches the right pass.
+// with j the nearest teaching sample of the map, tracked along the segment: searched within
+// `window` m of arc length behind and ahead of the previous match, so that a segment that
+// passes the same place twice (mode `single`) matches the right pass; only when that match is
+// farther than `fallback_distance` from the robot is the whole segment searched.
 
 #include <cstddef>
+#include <vector>
 
 #include "bench/trace.hpp"
 #include "core/pose2.hpp"
@@ -18,12 +21,13 @@ namespace retrace::bench {
 
 class LocalTruth {
  public:
-  /// `map` must outlive this object and hold at least one sample.
-  explicit LocalTruth(const TeachMapTrace& map);
+  /// `map` must outlive this object and hold at least one sample (checked).
+  LocalTruth(const TeachMapTrace& map, double window, double fallback_distance);
 
-  /// The local truth X_{M_k R} for the ground truth X_WR; moves the match forward (or back,
-  /// within the window) from the previous call's.
+  /// The local truth X_{M_k R} for the ground truth X_WR; moves the match along.
   core::Pose2 InMap(const core::Pose2& X_WR);
+  /// Starts the tracking again at the map's first sample (the robot entered the map).
+  void Reset() { match_ = 0; }
   /// Index of the teaching sample matched by the last InMap.
   std::size_t match() const { return match_; }
   /// The local alignment of the last match, X_{W M_k} = X_{W R_j} * inverse(X_{M_k R_j}): it
@@ -31,18 +35,17 @@ class LocalTruth {
   /// gives exactly the localization error.
   core::Pose2 X_WM() const { return map_.X_WR[match_] * map_.X_MR[match_].Inverse(); }
 
-  /// m of teaching path searched behind and ahead of the previous match.
-  static constexpr double kWindow = 10.0;
-  /// m: a windowed match farther than this from the robot falls back to a global search.
-  static constexpr double kFallbackDistance = 3.0;
-
  private:
+  std::size_t Nearest(const core::Vec2& p, std::size_t lo, std::size_t hi, double* d2) const;
+
   const TeachMapTrace& map_;
-  std::vector<double> arc_;  // arc length of each sample's position along the map's segment
+  double window_;
+  double fallback_distance_;
+  std::vector<double> arc_;  // arc length of each sample's position along the segment
   std::size_t match_ = 0;
 };
 
-/// Position (m) and heading (rad, absolute) error of an estimate against the local truth.
+/// Position (m) and heading (rad, absolute) error of an estimate against a truth.
 struct PoseError {
   double distance = 0.0;
   double angle = 0.0;

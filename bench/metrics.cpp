@@ -5,9 +5,10 @@
 #include <cstddef>
 #include <limits>
 #include <map>
-#include <tuple>
+#include <optional>
 #include <utility>
 
+#include "bench/local_truth.hpp"
 #include "core/angle.hpp"
 #include "core/check.hpp"
 
@@ -284,80 +285,26 @@ class PathTracker {
   double s_prev_ = 0.0;
 };
 
-// Nearest teaching sample of one partial map, with the same progress tracking.
-class MapMatcher {
- public:
-  MapMatcher(const TeachMapTrace& map, const MetricsConfig& config) : config_(config) {
-    const std::size_t n = std::min(map.X_MR.size(), map.X_WR.size());
-    X_MR_.assign(map.X_MR.begin(), map.X_MR.begin() + static_cast<std::ptrdiff_t>(n));
-    X_WR_.assign(map.X_WR.begin(), map.X_WR.begin() + static_cast<std::ptrdiff_t>(n));
-    for (const Pose2& X : X_WR_) points_.push_back(X.translation());
-    arc_ = CumulativeArc(points_);
-    grid_ = NearestGrid(points_, points_);
-  }
-
-  bool empty() const { return points_.empty(); }
-  void Reset() { j_prev_ = 0; }
-
-  // X_{M_k R} local truth for the ground truth X_WR, at the tracked nearest sample j:
-  // X_{M_k R_j} * inverse(X_{W R_j}) * X_WR.
-  Pose2 LocalTruth(const Pose2& X_WR) {
-    const std::size_t j = Match(X_WR.translation());
-    return X_MR_[j] * X_WR_[j].Inverse() * X_WR;
-  }
-
- private:
-  std::size_t Match(const Vec2& p) {
-    const double centre = arc_[j_prev_];
-    const auto lo = std::lower_bound(arc_.begin(), arc_.end(), centre - config_.match_window);
-    const auto hi = std::upper_bound(arc_.begin(), arc_.end(), centre + config_.match_window);
-    std::size_t best = j_prev_;
-    double best_d2 = kInf;
-    for (auto it = lo; it != hi; ++it) {
-      const std::size_t j = static_cast<std::size_t>(it - arc_.begin());
-      const double d2 = (points_[j] - p).squaredNorm();
-      if (d2 < best_d2) {
-        best_d2 = d2;
-        best = j;
-      }
-    }
-    const double limit = config_.match_fallback_distance;
-    if (!(best_d2 <= limit * limit)) {
-      const std::size_t global =
-          grid_.Nearest(p, [&](std::size_t j) { return (points_[j] - p).squaredNorm(); });
-      if (global != kNone && (points_[global] - p).squaredNorm() < best_d2) best = global;
-    }
-    j_prev_ = best;
-    return best;
-  }
-
-  const MetricsConfig& config_;
-  std::vector<Pose2> X_MR_;
-  std::vector<Pose2> X_WR_;
-  std::vector<Vec2> points_;
-  std::vector<double> arc_;
-  NearestGrid grid_;
-  std::size_t j_prev_ = 0;
-};
-
-// Position and heading error of an estimate against a truth in the same frame.
-std::pair<double, double> EstimateError(const Pose2& estimate, const Pose2& truth) {
-  return {core::Distance(estimate, truth), std::abs(core::AngleDiff(estimate.theta, truth.theta))};
-}
 
 // What one run's metrics need from the teach trace, built once per run.
 struct TeachIndex {
   TeachIndex(const TeachTrace& teach, const MetricsConfig& config) : path(teach.X_WR) {
     matchers.reserve(teach.maps.size());
-    for (const TeachMapTrace& map : teach.maps) matchers.emplace_back(map, config);
+    for (const TeachMapTrace& map : teach.maps) {
+      if (map.X_WR.empty() || map.X_WR.size() != map.X_MR.size()) {
+        matchers.emplace_back();  // no reference: its samples are left out
+      } else {
+        matchers.emplace_back(std::in_place, map, config.match_window, config.match_fallback_distance);
+      }
+    }
   }
-  MapMatcher* Matcher(int k) {
+  LocalTruth* Matcher(int k) {
     if (k < 0 || static_cast<std::size_t>(k) >= matchers.size()) return nullptr;
-    MapMatcher& m = matchers[static_cast<std::size_t>(k)];
-    return m.empty() ? nullptr : &m;
+    std::optional<LocalTruth>& m = matchers[static_cast<std::size_t>(k)];
+    return m ? &*m : nullptr;
   }
   TaughtPath path;
-  std::vector<MapMatcher> matchers;
+  std::vector<std::optional<LocalTruth>> matchers;
 };
 
 RunSeries Series(TeachIndex& index, const RunTrace& run, const MetricsConfig& config,
@@ -383,15 +330,15 @@ RunSeries Series(TeachIndex& index, const RunTrace& run, const MetricsConfig& co
       out.lateral_offset_m[i] = proj.lateral;
     }
     if (!with_localization) continue;
-    MapMatcher* matcher = index.Matcher(sample.map_index);
+    LocalTruth* matcher = index.Matcher(sample.map_index);
     if (sample.map_index != current_map) {
       current_map = sample.map_index;
       if (matcher != nullptr) matcher->Reset();
     }
     if (matcher == nullptr) continue;
-    const auto [e_m, e_rad] = EstimateError(sample.X_MR, matcher->LocalTruth(sample.X_WR));
-    out.localization_error_m[i] = e_m;
-    out.localization_error_rad[i] = e_rad;
+    const PoseError e = Compare(sample.X_MR, matcher->InMap(sample.X_WR));
+    out.localization_error_m[i] = e.distance;
+    out.localization_error_rad[i] = e.angle;
   }
   return out;
 }
@@ -635,9 +582,11 @@ RunMetrics ComputeRunMetrics(const TeachTrace& teach, const RunTrace& run,
     e.time_s = sw.time;
     e.from = sw.from;
     e.to = sw.to;
-    if (MapMatcher* matcher = index.Matcher(sw.to)) {
+    if (LocalTruth* matcher = index.Matcher(sw.to)) {
       matcher->Reset();
-      std::tie(e.error_m, e.error_rad) = EstimateError(sw.X_MnR, matcher->LocalTruth(sw.X_WR));
+      const PoseError error = Compare(sw.X_MnR, matcher->InMap(sw.X_WR));
+      e.error_m = error.distance;
+      e.error_rad = error.angle;
       m.switch_error_max_m = MaxSkipNaN(m.switch_error_max_m, e.error_m);
       m.switch_error_max_rad = MaxSkipNaN(m.switch_error_max_rad, e.error_rad);
     }

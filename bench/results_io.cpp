@@ -75,14 +75,16 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
   return teach;
 }
 
-void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run) {
+void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,
+                    const MetricsConfig& metrics) {
   std::vector<io::StampedPose> gt, est, odom;
   io::CsvWriter est_map(dir / "est_map.csv", {"time", "map", "x", "y", "theta"});
   std::optional<LocalTruth> local;
   int local_map = -1;
   for (const PlaybackSample& s : run.samples) {
     if (s.map_index != local_map) {
-      local.emplace(teach.maps.at(static_cast<std::size_t>(s.map_index)));
+      local.emplace(teach.maps.at(static_cast<std::size_t>(s.map_index)), metrics.match_window,
+                    metrics.match_fallback_distance);
       local_map = s.map_index;
     }
     local->InMap(s.X_WR);

@@ -19,6 +19,7 @@
 
 #include <filesystem>
 
+#include "bench/metrics.hpp"
 #include "bench/teach_drive.hpp"
 #include "bench/trace.hpp"
 
@@ -31,7 +32,8 @@ void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach);
 /// core::IoError naming the folder and the missing or malformed file.
 ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode);
 
-/// Writes one run's trajectories and events into `dir`.
-void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run);
+/// Writes one run's trajectories and events into `dir`; `metrics` sets the local-truth matching.
+void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,
+                    const MetricsConfig& metrics);
 
 }  // namespace retrace::bench

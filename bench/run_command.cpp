@@ -148,7 +148,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     StagedFolder folder(out / mode_name);
     if (phases != RunPhases::kPlaybackOnly) WriteTeachFolder(folder.path() / "teach", teach);
     for (const RunTrace& run : runs) {
-      WriteRunFolder(folder.path() / "runs" / std::to_string(run.run), teach.trace, run);
+      WriteRunFolder(folder.path() / "runs" / std::to_string(run.run), teach.trace, run, config.metrics);
     }
     ModeSummary summary{teach.mode, 0, 0, {}};
     if (repeats > 0) {
