@@ -68,7 +68,7 @@
 //   beams, precision = TP / (TP + FP), recall = TP / (TP + FN); NaN (null) when the
 //   denominator is 0. Aggregate: the same from the totals over all runs.
 //
-// cpu: localizer update time (Predict + Update thread CPU time) mean and max in ms over the
+// cpu: localizer measurement update time (thread CPU time of Update) mean and max in ms over the
 //   updates; the run's thread CPU time cpu_time_s, simulated time sim_time_s and
 //   real_time_factor = sim_time_s / cpu_time_s. Aggregate: totals, the factor of the totals,
 //   and the update time mean (pooled over all updates) and max.

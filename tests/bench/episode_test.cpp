@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -130,6 +132,35 @@ TEST(Episode, ASegmentThatRevisitsItselfFailsAsThePaperPredicts) {
   const RunMetrics b = ComputeRunMetrics(single.trace, bad, scenario.config.metrics);
   EXPECT_GT(b.localization_error_m.rms, 2.0 * g.localization_error_m.rms);
   EXPECT_LT(b.progress_m, 0.9 * scenario.route_length);
+}
+
+std::string ReadFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Episode, ParallelRunsGiveTheSameFilesAsASerialRun) {
+  const retrace::testing::TempDir tmp;
+  RunOptions options;
+  options.scenario = kSource / "scenarios/small.yaml";
+  options.mode = "all";
+  options.repeats = 1;
+  options.out = tmp.path() / "serial";
+  options.jobs = 1;
+  ASSERT_EQ(RunRunCommand(options, RunPhases::kAll, "serial"), 0);
+  options.out = tmp.path() / "parallel";
+  options.jobs = 3;
+  ASSERT_EQ(RunRunCommand(options, RunPhases::kAll, "parallel"), 0);
+  for (const char* mode : {"partial", "single", "consistent"}) {
+    for (const char* file : {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {
+      const std::filesystem::path rel = std::filesystem::path(mode) / file;
+      SCOPED_TRACE(rel.string());
+      const std::string serial = ReadFile(tmp.path() / "serial" / rel);
+      EXPECT_FALSE(serial.empty());
+      EXPECT_EQ(serial, ReadFile(tmp.path() / "parallel" / rel));
+    }
+  }
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "parallel/comparison.json"));
 }
 
 TEST(Scenarios, EveryShippedScenarioLoadsAndValidates) {
