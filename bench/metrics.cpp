@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "bench/local_truth.hpp"
+#include "io/csv_writer.hpp"
 #include "core/angle.hpp"
 #include "core/check.hpp"
 
@@ -778,12 +779,6 @@ nlohmann::json ToJson(const AggregateMetrics& a) {
     outcomes[std::string(name)] = a.outcome_counts[static_cast<std::size_t>(outcome)];
   }
   const Repeatability& r = a.repeatability;
-  nlohmann::json rows = nlohmann::json::array();
-  for (std::size_t k = 0; k < r.station_s_m.size(); ++k) {
-    nlohmann::json row = nlohmann::json::array({Num(RoundTenthMm(r.station_s_m[k]))});
-    for (double v : r.offsets_m[k]) row.push_back(Num(RoundTenthMm(v)));
-    rows.push_back(std::move(row));
-  }
   nlohmann::json collisions = ToJson(a.collisions);
   collisions["runs_with_collision"] = a.runs_with_collision;
   return {{"runs", a.runs},
@@ -805,8 +800,6 @@ nlohmann::json ToJson(const AggregateMetrics& a) {
           {"repeatability_m", Num(r.repeatability_m)},
           {"repeatability_max_spread_m", Num(r.max_spread_m)},
           {"repeatability_stations_used", r.stations_used},
-          {"repeatability_stations",
-           {{"spacing_m", Num(r.station_spacing_m)}, {"runs", r.runs}, {"rows", std::move(rows)}}},
           {"collisions", std::move(collisions)},
           {"switch_error",
            {{"count", a.switch_error.count},
@@ -816,6 +809,24 @@ nlohmann::json ToJson(const AggregateMetrics& a) {
             {"max_rad", Num(a.switch_error.max_rad)}}},
           {"dynamic_points", ToJson(a.dynamic_points)},
           {"cpu", ToJson(a.cpu)}};
+}
+
+void WriteRepeatabilityCsv(const std::filesystem::path& path, const Repeatability& r) {
+  std::vector<std::string> header = {"s_m"};
+  for (int run : r.runs) header.push_back("offset_run" + std::to_string(run) + "_m");
+  header.push_back("std_m");
+  header.push_back("spread_m");
+  io::CsvWriter csv(path, header);
+  std::vector<io::CsvCell> row;
+  for (std::size_t k = 0; k < r.station_s_m.size(); ++k) {
+    row.clear();
+    row.emplace_back(r.station_s_m[k]);
+    for (double v : r.offsets_m[k]) row.emplace_back(RoundTenthMm(v));
+    row.emplace_back(RoundTenthMm(r.std_m[k]));
+    row.emplace_back(RoundTenthMm(r.spread_m[k]));
+    csv.AddRow(row);
+  }
+  csv.Commit();
 }
 
 }  // namespace retrace::bench

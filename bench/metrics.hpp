@@ -90,14 +90,14 @@
 // outcomes {success, timeout, collision, lost}, taught_path_length_m, mean_time_s,
 // mean_path_length_m, mean_progress_m, tracking_error_m / localization_error_m /
 // localization_error_rad {pooled, run_mean}, lost_fraction {pooled, run_mean},
-// repeatability_m, repeatability_max_spread_m, repeatability_stations_used,
-// repeatability_stations {spacing_m, runs [RunTrace.run per column], rows [[s_m, offset_m of
-// each run...]] (rounded to 0.1 mm)}, collisions {as per run, totals and minima, plus
+// repeatability_m, repeatability_max_spread_m, repeatability_stations_used (the stations
+// themselves go to repeatability.csv: WriteRepeatabilityCsv), collisions {as per run, totals and minima, plus
 // runs_with_collision}, switch_error {count, mean_m, max_m, mean_rad, max_rad},
 // dynamic_points {as per run, of the totals}, cpu {as per run, totals}.
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -281,5 +281,9 @@ Repeatability ComputeRepeatability(const TeachTrace& teach, const std::vector<Ru
 nlohmann::json ToJson(const Summary& summary);
 nlohmann::json ToJson(const RunMetrics& metrics);
 nlohmann::json ToJson(const AggregateMetrics& metrics);
+
+/// repeatability.csv: one row per station — s_m, each run's lateral offset (m; nan where the
+/// run never crossed it), the standard deviation and the spread across runs; rounded to 0.1 mm.
+void WriteRepeatabilityCsv(const std::filesystem::path& path, const Repeatability& repeatability);
 
 }  // namespace retrace::bench

@@ -159,6 +159,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
       metrics["runs"] = nlohmann::json::array();
       for (const RunMetrics& r : run_metrics) metrics["runs"].push_back(ToJson(r));
       io::WriteJsonAtomic(folder.path() / "metrics.json", metrics);
+      WriteRepeatabilityCsv(folder.path() / "repeatability.csv", aggregate.repeatability);
       comparison[mode_name] = metrics["aggregate"];
       summary = SummarizeMode(teach.mode, aggregate);
       const bool required = std::find(config.limits.success_required.begin(), config.limits.success_required.end(),

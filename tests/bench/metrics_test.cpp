@@ -1,6 +1,9 @@
 #include "bench/metrics.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
+
+#include <fstream>
 
 #include <cmath>
 #include <limits>
@@ -553,7 +556,6 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                  "repeatability_m",
                  "repeatability_max_spread_m",
                  "repeatability_stations_used",
-                 "repeatability_stations",
                  "collisions",
                  "switch_error",
                  "dynamic_points",
@@ -562,18 +564,21 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   ExpectKeys(a["tracking_error_m"], {"pooled", "run_mean"});
   ExpectKeys(a["tracking_error_m"]["pooled"], {"mean", "rms", "p95", "max", "count"});
   ExpectKeys(a["lost_fraction"], {"pooled", "run_mean"});
-  ExpectKeys(a["repeatability_stations"], {"spacing_m", "runs", "rows"});
   ExpectKeys(a["switch_error"], {"count", "mean_m", "max_m", "mean_rad", "max_rad"});
   ExpectKeys(a["collisions"],
              {"static_incidents", "pedestrian_incidents", "static_events", "pedestrian_events",
               "min_clearance_m", "min_pedestrian_gap_m", "runs_with_collision"});
   EXPECT_EQ(a["outcomes"]["success"], 2);
-  EXPECT_EQ(a["repeatability_stations"]["runs"], nlohmann::json({3, 4}));
-  const nlohmann::json& rows = a["repeatability_stations"]["rows"];
-  ASSERT_EQ(rows.size(), 21u);
-  EXPECT_EQ(rows[2], nlohmann::json({1.0, 0.1, -0.1}));  // [s_m, run 3, run 4]
-  EXPECT_EQ(rows[20][0], 10.0);
-  EXPECT_TRUE(rows[20][2].is_null());  // run 4 stopped at 6 m
+  // The stations themselves go to a CSV: s, run 3, run 4, std, spread.
+  const retrace::testing::TempDir tmp;
+  WriteRepeatabilityCsv(tmp.path() / "repeatability.csv", Aggregate(teach, runs, metrics, config).repeatability);
+  std::ifstream in(tmp.path() / "repeatability.csv");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 22u);  // header + 21 stations
+  EXPECT_EQ(lines[0], "s_m,offset_run3_m,offset_run4_m,std_m,spread_m");
+  EXPECT_EQ(lines[3].substr(0, 11), "1,0.1,-0.1,");
+  EXPECT_EQ(lines[21], "10,0.1,nan,nan,nan");  // run 4 stopped at 6 m
   EXPECT_NEAR(a["repeatability_m"].get<double>(), std::sqrt(0.02), 1e-9);
   EXPECT_EQ(a["repeatability_stations_used"], 13);  // 0 .. 6 m
   EXPECT_TRUE(a["switch_error"]["mean_m"].is_null());
