@@ -8,6 +8,7 @@
 
 #include "bench/local_truth.hpp"
 #include "bench/scripted_events.hpp"
+#include "bench/snapshot.hpp"
 #include "core/angle.hpp"
 #include "core/rng.hpp"
 #include "nav/localizer.hpp"
@@ -113,7 +114,15 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
     if (s.lidar) {
       const double cpu0 = ThreadCpuSeconds();
       const nav::LocalizerUpdate update = localizer.Update(s.lidar->scan);
-      if (update.ran) trace.updates.push_back(Score(update, *s.lidar, t, ThreadCpuSeconds() - cpu0));
+      if (update.ran) {
+        trace.updates.push_back(Score(update, *s.lidar, t, ThreadCpuSeconds() - cpu0));
+        const int crowd = PedestrianBeams(update, *s.lidar);
+        if (crowd > 0 && (!trace.snapshot || crowd > trace.snapshot->pedestrian_beams)) {
+          const core::Pose2 X_WR = simulator.RobotPose();
+          trace.snapshot = CaptureSnapshot(localizer, update, *s.lidar, t, static_cast<int>(server.index()), X_WR,
+                                           local_truth->InMap(X_WR));
+        }
+      }
       latest_scan = s.lidar->scan;
     }
 

@@ -118,6 +118,7 @@ void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, c
   for (const Row& r : rows) events.AddRow({r.time, r.event, r.detail});
   events.AddRow({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});
   events.Commit();
+  if (run.snapshot) WriteSnapshot(dir / "snapshot.json", *run.snapshot);
 }
 
 }  // namespace retrace::bench

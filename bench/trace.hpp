@@ -5,9 +5,11 @@
 // (bench/metrics.cpp) are computed from them alone, after the run.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/snapshot.hpp"
 #include "core/config.hpp"
 #include "core/pose2.hpp"
 #include "core/twist.hpp"
@@ -90,6 +92,8 @@ struct RunTrace {
   std::vector<SwitchRecord> switches;
   std::vector<sim::CollisionEvent> collisions;
   std::vector<EventRecord> events;
+  /// The update in which the most tested beams hit pedestrians (none if no beam ever did).
+  std::optional<LocalizationSnapshot> snapshot;
   double sim_time_s = 0.0;   ///< simulated duration
   double cpu_time_s = 0.0;   ///< thread CPU time of the whole run
 };
