@@ -67,6 +67,16 @@ TEST(Episode, SmallScenarioPlaybackSucceedsWithPlausibleMetrics) {
   EXPECT_EQ(m.collisions.pedestrian_incidents, 0);
   EXPECT_GT(m.cpu.real_time_factor, 1.0);
   EXPECT_GT(m.dynamic_points.beams_tested, 0);
+
+  // The snapshot for the figures: the update with the most pedestrian beams.
+  ASSERT_TRUE(run.snapshot.has_value());
+  const LocalizationSnapshot& snap = *run.snapshot;
+  EXPECT_GT(snap.pedestrian_beams, 0);
+  EXPECT_EQ(snap.particles.size(), static_cast<std::size_t>(scenario.config.nav.localizer.particles));
+  EXPECT_EQ(snap.beam_use.size(), snap.scan.size());
+  EXPECT_EQ(snap.likelihood.size, 81);
+  EXPECT_EQ(snap.likelihood.all_beams.size(), 81u * 81u);
+  EXPECT_LT((snap.X_MR_estimate.translation() - snap.X_MR_truth.translation()).norm(), 0.5);
 }
 
 TEST(Episode, SameSeedSameTrajectoryOtherRunOtherTrajectory) {
