@@ -120,7 +120,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
         if (crowd > 0 && (!trace.snapshot || crowd > trace.snapshot->pedestrian_beams)) {
           const core::Pose2 X_WR = simulator.RobotPose();
           trace.snapshot = CaptureSnapshot(localizer, update, *s.lidar, t, static_cast<int>(server.index()), X_WR,
-                                           local_truth->InMap(X_WR));
+                                           local_truth->InMap(X_WR), simulator.PedestrianCircles());
         }
       }
       latest_scan = s.lidar->scan;

@@ -1,6 +1,7 @@
 #include "bench/snapshot.hpp"
 
 #include <cmath>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "io/json_writer.hpp"
@@ -17,7 +18,8 @@ int PedestrianBeams(const nav::LocalizerUpdate& update, const sim::LidarReading&
 
 LocalizationSnapshot CaptureSnapshot(const nav::Localizer& localizer, const nav::LocalizerUpdate& update,
                                      const sim::LidarReading& reading, double time, int map_index,
-                                     const core::Pose2& X_WR, const core::Pose2& X_MR_truth, double half_width,
+                                     const core::Pose2& X_WR, const core::Pose2& X_MR_truth,
+                                     std::vector<sim::DynamicCircle> pedestrians_W, double half_width,
                                      double resolution) {
   LocalizationSnapshot s;
   s.time = time;
@@ -27,6 +29,7 @@ LocalizationSnapshot CaptureSnapshot(const nav::Localizer& localizer, const nav:
   s.X_MR_truth = X_MR_truth;
   s.X_MR_estimate = localizer.Estimate();
   s.X_RL = localizer.config().lidar_mount;
+  s.pedestrians_W = std::move(pedestrians_W);
   for (const nav::Particle& p : localizer.particles()) {
     s.particles.push_back(p.X_MR);
     s.weights.push_back(p.weight);
@@ -78,6 +81,8 @@ void WriteSnapshot(const std::filesystem::path& path, const LocalizationSnapshot
   for (std::size_t j = 0; j < s.particles.size(); ++j) {
     particles.push_back({s.particles[j].x, s.particles[j].y, s.particles[j].theta, s.weights[j]});
   }
+  nlohmann::json pedestrians = nlohmann::json::array();
+  for (const sim::DynamicCircle& c : s.pedestrians_W) pedestrians.push_back({c.center.x(), c.center.y(), c.radius});
   nlohmann::json j = {
       {"time_s", s.time},
       {"map", s.map_index},
@@ -87,6 +92,7 @@ void WriteSnapshot(const std::filesystem::path& path, const LocalizationSnapshot
       {"X_MR_estimate", PoseJson(s.X_MR_estimate)},
       {"X_RL", PoseJson(s.X_RL)},
       {"particles", std::move(particles)},
+      {"pedestrians_W", std::move(pedestrians)},
       {"scan",
        {{"angle_min", s.scan.angle_min},
         {"angle_increment", s.scan.angle_increment},

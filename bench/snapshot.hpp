@@ -40,6 +40,7 @@ struct LocalizationSnapshot {
   core::LaserScan scan;
   std::vector<std::uint8_t> beam_use;    ///< nav::BeamUse per beam (0 unused, 1 used, 2 rejected)
   std::vector<std::uint8_t> pedestrian;  ///< 1 where the beam hit a pedestrian (simulator truth)
+  std::vector<sim::DynamicCircle> pedestrians_W;  ///< where the pedestrians were (W)
   LikelihoodSlice likelihood;
 };
 
@@ -51,6 +52,7 @@ int PedestrianBeams(const nav::LocalizerUpdate& update, const sim::LidarReading&
 LocalizationSnapshot CaptureSnapshot(const nav::Localizer& localizer, const nav::LocalizerUpdate& update,
                                      const sim::LidarReading& reading, double time, int map_index,
                                      const core::Pose2& X_WR, const core::Pose2& X_MR_truth,
+                                     std::vector<sim::DynamicCircle> pedestrians_W,
                                      double half_width = 2.0, double resolution = 0.05);
 
 /// snapshot.json in `dir` (compact arrays; see README "Results").
