@@ -1,6 +1,8 @@
 #include "nav/beam_model.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/check.hpp"
@@ -25,7 +27,8 @@ void BeamModelConfig::Validate() const {
   core::RequireNonNegative("z_max", z_max);
   core::RequireNonNegative("z_rand", z_rand);
   if (!(z_hit + z_short + z_max + z_rand > 0.0)) {
-    throw core::ConfigError("z_hit", "the mixture weights z_hit, z_short, z_max, z_rand must not all be 0");
+    throw core::ConfigError("z_hit",
+                            "the mixture weights z_hit, z_short, z_max, z_rand must not all be 0");
   }
   core::RequirePositive("sigma_hit", sigma_hit);
   core::RequirePositive("lambda_short", lambda_short);
@@ -48,8 +51,8 @@ BeamModel::BeamModel(const BeamModelConfig& config, double range_max)
 
 double BeamModel::HitNormaliser(double zs) const {
   const double sigma = config_.sigma_hit;
-  const bool interior = zs >= kNormaliserFreeSigmas * sigma &&
-                        range_max_ - zs >= kNormaliserFreeSigmas * sigma;
+  const bool interior =
+      zs >= kNormaliserFreeSigmas * sigma && range_max_ - zs >= kNormaliserFreeSigmas * sigma;
   return interior ? 1.0 : Phi((range_max_ - zs) / sigma) - Phi(-zs / sigma);
 }
 
@@ -92,6 +95,82 @@ BeamModel::Terms BeamModel::EvaluateFast(double z, double short_decay, double z_
   return terms;
 }
 
+BeamModel::Terms BeamModel::SumTerms(double z, double short_decay, std::span<const double> z_star,
+                                     std::span<const double> weights, Scratch* scratch) const {
+  // EvaluateFast's values by the same operations, in passes over the expected ranges: first
+  // everything before the exponentials, listing the ranges that need one; then the terms that
+  // need an exponential, each kind in a loop of its own with little else to keep in registers
+  // across the calls; then the sums, in the order in which EvaluateFast's terms would be summed.
+  // The lists also replace the test z <= z*, a coin toss for the branch predictor when the
+  // reading agrees with the map.
+  const std::size_t n = z_star.size();
+  RETRACE_CHECK(weights.empty() || weights.size() == n);
+  Terms sums;
+  if (z < 0.0 || n == 0) return sums;  // no term (EvaluateFast's early return)
+  Scratch& s = *scratch;
+  s.zs.resize(n);
+  s.exponent.resize(n);
+  s.p_hit.resize(n);
+  s.p_short.resize(n);
+  s.hit_side.resize(n);
+  s.short_side.resize(n);
+  const double sigma = config_.sigma_hit;
+  const bool in_range = z <= range_max_;
+  std::size_t num_hit = 0, num_short = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double zs = z_star[i] >= range_max_ ? range_max_ : std::max(z_star[i], 0.0);
+    s.zs[i] = zs;
+    // eq. (7): p_hit where the Gaussian does not underflow to exactly 0 (within 38.6 σ).
+    const double a = (z - zs) / sigma;
+    s.exponent[i] = -0.5 * a * a;
+    s.p_hit[i] = 0.0;
+    s.hit_side[num_hit] = static_cast<std::uint32_t>(i);
+    num_hit += in_range & (a * a < 1490.0) ? 1 : 0;
+    // eq. (8): p_short on the short side, z <= z* (and z* > 0).
+    s.p_short[i] = 0.0;
+    s.short_side[num_short] = static_cast<std::uint32_t>(i);
+    num_short += (zs > 0.0) & (z <= zs) ? 1 : 0;
+  }
+  const double gauss_scale = std::sqrt(2.0 * std::numbers::pi) * sigma;
+  for (std::size_t k = 0; k < num_hit; ++k) {
+    const std::size_t i = s.hit_side[k];
+    const double g = std::exp(s.exponent[i]) / gauss_scale;
+    const double zs = s.zs[i];
+    // HitNormaliser is exactly 1 in the interior, and g / 1 is g.
+    const bool interior =
+        zs >= kNormaliserFreeSigmas * sigma && range_max_ - zs >= kNormaliserFreeSigmas * sigma;
+    if (interior) {
+      s.p_hit[i] = g;
+    } else {
+      const double norm = zs == range_max_ ? hit_norm_at_max_ : HitNormaliser(zs);
+      s.p_hit[i] = norm > 0.0 ? g / norm : 0.0;
+    }
+  }
+  // The short part's term in its sum is w * (z_short * 0) = +0 off the short side, which leaves
+  // the sum unchanged: that sum runs over the short side only. (Two sums in two loops: GCC pairs
+  // two accumulators of one loop in a vector that it keeps in memory, a store-to-load round trip
+  // in every addition.)
+  double sum_short = 0.0;
+  for (std::size_t k = 0; k < num_short; ++k) {
+    const std::size_t i = s.short_side[k];
+    const double zs = s.zs[i];
+    s.p_short[i] = (zs == range_max_ ? short_scale_at_max_ : ShortScale(zs)) * short_decay;
+    sum_short += (weights.empty() ? 1.0 : weights[i]) * (w_short_ * s.p_short[i]);
+  }
+  const double p_max = z >= range_max_ ? 1.0 : 0.0;
+  const double p_rand = z < range_max_ ? 1.0 / range_max_ : 0.0;
+  const double max_part = w_max_ * p_max, rand_part = w_rand_ * p_rand;
+  double sum_total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = weights.empty() ? 1.0 : weights[i];
+    const double total = w_hit_ * s.p_hit[i] + w_short_ * s.p_short[i] + max_part + rand_part;
+    sum_total += w * total;
+  }
+  sums.short_part = sum_short;
+  sums.total = sum_total;
+  return sums;
+}
+
 void TestDynamicBeams(const BeamModel& model, const GridRayCaster& caster,
                       std::span<const core::Pose2> X_ML, std::span<const double> weights,
                       const core::LaserScan& scan, std::span<const int> beams, double chi,
@@ -126,33 +205,51 @@ void TestDynamicBeams(const BeamModel& model, const GridRayCaster& caster,
     if (pw[j] > 0.0) used.push_back(j);
   }
   const std::size_t nu = used.size();
-  std::vector<double> px(nu), py(nu), rx(nu), ry(nu), z_star(nu);
+  std::vector<double> w_used;  // empty for equal weights
+  if (!weights.empty()) {
+    for (const std::size_t j : used) w_used.push_back(pw[j]);
+  }
+  BeamModel::Scratch scratch;
+  // The rays are cast in the order of the particles' headings: consecutive rays of a beam then
+  // point in nearly the same direction, and CastMany clears their common start once per bundle.
+  // The sums below stay in particle order.
+  // (A NaN heading sorts last: it must not break the ordering std::sort relies on.)
+  std::vector<std::size_t> order(nu);
+  std::vector<double> heading(nu);
   for (std::size_t u = 0; u < nu; ++u) {
-    px[u] = X_ML[used[u]].x;
-    py[u] = X_ML[used[u]].y;
+    order[u] = u;
+    const double theta = X_ML[used[u]].theta;
+    heading[u] = std::isnan(theta) ? std::numeric_limits<double>::infinity() : theta;
+  }
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return heading[a] < heading[b] || (heading[a] == heading[b] && a < b);
+  });
+  std::vector<double> px(nu), py(nu), c(nu), s(nu), rx(nu), ry(nu), z_cast(nu), z_star(nu);
+  for (std::size_t k = 0; k < nu; ++k) {
+    const std::size_t j = used[order[k]];
+    px[k] = X_ML[j].x;
+    py[k] = X_ML[j].y;
+    c[k] = pc[j];
+    s[k] = ps[j];
   }
   // Beam-major order: the particles' rays of one beam run side by side over the same cells,
   // so consecutive casts hit the cache.
   for (std::size_t b = 0; b < nb; ++b) {
-    for (std::size_t u = 0; u < nu; ++u) {
-      const std::size_t j = used[u];
-      rx[u] = pc[j] * ux[b] - ps[j] * uy[b];
-      ry[u] = ps[j] * ux[b] + pc[j] * uy[b];
+    for (std::size_t k = 0; k < nu; ++k) {
+      rx[k] = c[k] * ux[b] - s[k] * uy[b];
+      ry[k] = s[k] * ux[b] + c[k] * uy[b];
     }
     if (method == RayCastMethod::kSphereTracing) {
-      caster.CastMany(px, py, rx, ry, range_max, z_star);
+      caster.CastMany(px, py, rx, ry, range_max, z_cast);
+      for (std::size_t k = 0; k < nu; ++k) z_star[order[k]] = z_cast[k];
     } else {
-      for (std::size_t u = 0; u < nu; ++u) z_star[u] = caster.CastDda(px[u], py[u], rx[u], ry[u], range_max);
+      for (std::size_t k = 0; k < nu; ++k) {
+        z_star[order[k]] = caster.CastDda(px[k], py[k], rx[k], ry[k], range_max);
+      }
     }
-    double sum_short = 0.0, sum_total = 0.0;
-    for (std::size_t u = 0; u < nu; ++u) {
-      const double w = pw[used[u]];
-      const BeamModel::Terms t = model.EvaluateFast(z[b], decay[b], z_star[u]);
-      sum_short += w * t.short_part;
-      sum_total += w * t.total;
-    }
-    num[b] = sum_short;
-    den[b] = sum_total;
+    const BeamModel::Terms sums = model.SumTerms(z[b], decay[b], z_star, w_used, &scratch);
+    num[b] = sums.short_part;
+    den[b] = sums.total;
   }
   for (std::size_t b = 0; b < nb; ++b) {
     const double r = den[b] > 0.0 ? num[b] / den[b] : 0.0;  // eq. (9)

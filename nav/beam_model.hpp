@@ -86,6 +86,18 @@ class BeamModel {
   /// Evaluate with ShortDecay(z) precomputed; identical results.
   Terms EvaluateFast(double z, double short_decay, double z_star) const;
 
+  /// Reused storage for SumTerms.
+  struct Scratch {
+    std::vector<double> zs, exponent, p_hit, p_short;
+    std::vector<std::uint32_t> hit_side, short_side;
+  };
+  /// The two sums of eq. (9) for a reading z (m) over many expected ranges z_star (m):
+  /// Σ_i w_i t_i.short_part and Σ_i w_i t_i.total with t_i = EvaluateFast(z, short_decay,
+  /// z_star[i]), accumulated in the order i = 0, 1, ..., so bit for bit the sums of EvaluateFast's
+  /// terms. weights: one per z_star, or empty for weights 1.
+  Terms SumTerms(double z, double short_decay, std::span<const double> z_star,
+                 std::span<const double> weights, Scratch* scratch) const;
+
   const BeamModelConfig& config() const { return config_; }
   double range_max() const { return range_max_; }
 

@@ -5,10 +5,11 @@
 // every cell it passes through, in order, and the range is the ray parameter t (m) at which it
 // enters the first occupied cell (0 if it starts in one). Cell-boundary crossings are computed
 // in closed form, t = (boundary - start) / direction, never accumulated, so a traversal resumed
-// at any t reproduces the full traversal's numbers bit for bit. `Cast` sphere-traces on the
-// likelihood field's distance field and finishes with that traversal over the last cells; it
-// returns exactly what `CastDda` (the straightforward reference) returns. `CastMany` does the
-// same for a batch of rays, sphere-tracing several of them in lockstep.
+// at any t reproduces the full traversal's numbers bit for bit. `Cast` sphere-traces on a
+// clearance grid (the exact distance from a cell to the nearest occupied cell) and finishes with
+// that traversal over the last cells; it returns exactly what `CastDda` (the straightforward
+// reference) returns. `CastMany` does the same for a batch of rays: it first clears a common
+// start for each bundle of coherent rays, then sphere-traces and traverses many rays in lockstep.
 
 #include <array>
 #include <cstdint>
@@ -29,22 +30,25 @@ inline constexpr double kNoHit = std::numeric_limits<double>::infinity();
 class GridRayCaster {
  public:
   /// Keeps a reference to `field`, which must outlive the caster, and builds a one-byte
-  /// clearance grid from its distance field (width x height bytes).
+  /// clearance grid from its occupancy mask ((width + 2) x (height + 2) bytes; one distance
+  /// transform) and a table of the grid lines.
   explicit GridRayCaster(const LikelihoodField& field);
 
   /// Range (m) from origin (M) along the unit direction (dx, dy) to where the ray enters the
   /// first occupied cell, or kNoHit (+inf) when there is none within range_max (m) or before the
   /// ray leaves the map. A ray starting outside the map is clipped to it first. Sphere tracing
-  /// on the distance field; bit-identical to CastDda.
+  /// on the clearance grid; bit-identical to CastDda.
   double Cast(double x, double y, double dx, double dy, double range_max) const;
   double Cast(const core::Vec2& origin_M, const core::Vec2& dir_M, double range_max) const {
     return Cast(origin_M.x(), origin_M.y(), dir_M.x(), dir_M.y(), range_max);
   }
 
   /// Cast for a batch of rays: out[i] = Cast(x[i], y[i], dx[i], dy[i], range_max), bit for bit.
-  /// The sphere-tracing steps of several rays are interleaved so that their dependent chains
-  /// (position, cell, clearance load, step) overlap instead of running one after the other,
-  /// in rounds whose only data-dependent branch is once per round, not once per ray's end.
+  /// Fastest when consecutive rays are coherent, like the rays of one beam from a particle cloud
+  /// in the order of the particles' headings: for each group of 32 consecutive rays it finds a
+  /// length over which all of them are provably clear and starts them there. The steps of many
+  /// rays are interleaved so that their dependent chains (position, cell, clearance load, step)
+  /// overlap instead of running one after the other, in rounds without data-dependent branches.
   /// All spans must have the same size (checked).
   void CastMany(std::span<const double> x, std::span<const double> y, std::span<const double> dx,
                 std::span<const double> dy, double range_max, std::span<double> out) const;
@@ -59,9 +63,29 @@ class GridRayCaster {
 
  private:
   struct Ray;
+  struct Batch;
   // Direction, crossings and clipping of one ray; false when the ray misses the map or starts
   // beyond range_max (the result is kNoHit).
   bool Setup(double x, double y, double dx, double dy, double range_max, Ray* ray) const;
+  // CastMany for at most Batch::kCapacity rays, in three passes over *batch: SetupBatch lists
+  // the rays to trace (and answers the others), SphereTraceBatch steps the listed rays until
+  // each is near an obstacle or past its end, WalkBatch finishes those near an obstacle cell by
+  // cell, exactly, or lists them for sphere tracing again when they reach open space.
+  void CastBatch(std::span<const double> x, std::span<const double> y, std::span<const double> dx,
+                 std::span<const double> dy, double range_max, std::span<double> out,
+                 Batch* batch) const;
+  std::size_t SetupBatch(std::span<const double> x, std::span<const double> y,
+                         std::span<const double> dx, std::span<const double> dy, double range_max,
+                         std::span<double> out, Batch* batch) const;
+  // For each bundle of kBundle consecutive rays (from nearby origins in similar directions), the
+  // length t_clear[g] (m) for which all are clear: x[r] + t' dx[r] misses every occupied cell
+  // for all t' in [0, t_clear[g]]. 0 when the rays are not coherent enough.
+  void BundleClearLengths(std::span<const double> x, std::span<const double> y,
+                          std::span<const double> dx, std::span<const double> dy,
+                          std::span<double> t_clear) const;
+  std::size_t SphereTraceBatch(std::size_t num_sphere, Batch* batch) const;
+  std::size_t WalkBatch(std::size_t num_walk, double range_max, std::span<double> out,
+                        Batch* batch) const;
   // The traversal from ray parameter t (m), after every segment before t has been found clear.
   // kSphere: sphere-trace first (and again whenever the traversal reaches open space).
   // sphere_now: whether to start with a sphere step (false right after a sphere step stopped).
@@ -71,14 +95,24 @@ class GridRayCaster {
   const LikelihoodField* field_;
   double ox_, oy_, res_;
   int width_, height_;
-  double margin_;  // m subtracted from the clearance for a step that cannot skip a cell
-  // Per cell: a code for a lower bound of the distance field (1/16 cell up to 9 cells, then 2
-  // cells, saturated at 255); 0 exactly on occupied cells. One byte per cell serves both the
-  // occupancy test and the sphere steps, so tracing a ray touches a quarter of the memory of the
-  // float field. Rows of stride_ = width + 1 bytes, plus one row: the padding is 0.
+  double margin_;  // m subtracted from every sphere step for rounding
+  // Per cell: a code for a lower bound of the distance (cells) from any point of the cell to
+  // any point of an occupied cell (1/16 cell up to 8 cells, then 2 cells, saturated at 255);
+  // 0 exactly on occupied cells. One byte per cell serves both the occupancy test and the sphere
+  // steps. A ring of padding cells (code 0) surrounds the map, so that a position up to one cell
+  // outside it has a code: rows of stride_ = width + 2 bytes, height + 2 rows.
   std::vector<std::uint8_t> clearance_;
-  std::size_t stride_ = 1;
-  // Per clearance code c: the sphere step D_c res (1 - 1e-6) - margin (m), D_c the code's lower
+  std::ptrdiff_t stride_ = 2;
+  // The code of cell (ix, iy), -1 <= ix <= width, -1 <= iy <= height.
+  const std::uint8_t* ClearanceRow(int iy) const {
+    return clearance_.data() + (iy + 1) * stride_ + 1;
+  }
+  std::uint8_t ClearanceAt(int ix, int iy) const { return ClearanceRow(iy)[ix]; }
+  // The grid lines' coordinates o + i res (m) of each axis (0: x, 1: y) for i = -1..n + 1, as
+  // Crossing computes them: a table lookup instead of a conversion, a product and a sum.
+  std::array<std::vector<double>, 2> grid_lines_;
+  const double* GridLines(std::size_t axis) const { return grid_lines_[axis].data() + 1; }
+  // Per clearance code c: the sphere step L_c res (1 - 1e-6) - margin (m), L_c the code's lower
   // bound (cells), that is safe from any point of the cell (NaN below min_step_clearance_); and
   // the smallest code whose step gains enough to be worth taking.
   std::array<double, 256> step_{};

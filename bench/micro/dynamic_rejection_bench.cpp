@@ -3,8 +3,10 @@
 // 300 m x 300 m campus at 0.1 m of likelihood_bench.cpp with a 30 m LiDAR and pedestrians
 // shortening 20 % of the beams. Three implementations in the same run:
 //
-//   SphereTracing      retrace's TestDynamicBeams (GridRayCaster::CastMany: sphere tracing on
-//                      the distance field in lockstep, exact traversal over the last cells)
+//   SphereTracing      retrace's TestDynamicBeams (GridRayCaster::CastMany: a provably clear
+//                      common start per bundle of 32 rays of similar heading, then sphere
+//                      tracing on an exact clearance grid and the exact traversal over the last
+//                      cells, many rays in lockstep; BeamModel::SumTerms)
 //   PerCellReference   the straightforward reference of the issue, written here: per particle
 //                      and beam an Amanatides-Woo traversal of the occupancy grid's cells,
 //                      testing each cell's log-odds against the occupied threshold, then

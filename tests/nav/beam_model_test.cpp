@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -64,6 +66,40 @@ TEST(BeamModel, TermsFollowTheEquations) {
   EXPECT_NEAR(m.Evaluate(30.0, 10.0).total - m.Evaluate(29.99, 10.0).total, c.z_max / sum, 1e-3);
   // EvaluateFast is Evaluate with the decay precomputed.
   EXPECT_EQ(m.EvaluateFast(z, m.ShortDecay(z), zs).total, t.total);
+}
+
+TEST(BeamModel, SumTermsIsBitIdenticalToSummingEvaluateFast) {
+  // Expected ranges of every kind: no hit, beyond and at range_max, 0 and negative, within 0.9 m
+  // of either end (where the hit normaliser is not 1), on both sides of the reading and far
+  // from it (the Gaussian underflows); readings in range, at and beyond range_max, and below 0.
+  core::Rng rng(5);
+  const BeamModel m({}, 30.0);
+  std::vector<double> z_star = {kNoHit, 30.0, 45.0, 0.0, -0.0, -1.0, 0.01, 0.5, 29.5, 29.99};
+  for (int i = 0; i < 500; ++i) {
+    z_star.push_back(i % 3 == 0 ? rng.Uniform(0.0, 30.0) : 5.0 + 0.3 * rng.Normal());
+  }
+  std::vector<double> weights(z_star.size());
+  for (double& w : weights) w = rng.Uniform(0.0, 1.0);
+  BeamModel::Scratch scratch;
+  for (const double z : {5.0, 5.2, 0.3, 29.8, 30.0, 31.0, 0.0, -1.0}) {
+    for (const bool weighted : {false, true}) {
+      double sum_short = 0.0, sum_total = 0.0;
+      for (std::size_t i = 0; i < z_star.size(); ++i) {
+        const double w = weighted ? weights[i] : 1.0;
+        const BeamModel::Terms t = m.EvaluateFast(z, m.ShortDecay(z), z_star[i]);
+        sum_short += w * t.short_part;
+        sum_total += w * t.total;
+      }
+      const BeamModel::Terms sums = m.SumTerms(
+          z, m.ShortDecay(z), z_star, weighted ? weights : std::vector<double>{}, &scratch);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(sums.short_part),
+                std::bit_cast<std::uint64_t>(sum_short))
+          << "z = " << z << (weighted ? " weighted" : "");
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(sums.total), std::bit_cast<std::uint64_t>(sum_total))
+          << "z = " << z << (weighted ? " weighted" : "");
+    }
+  }
+  EXPECT_EQ(m.SumTerms(5.0, m.ShortDecay(5.0), {}, {}, &scratch).total, 0.0);
 }
 
 TEST(BeamModel, NoObstacleOnTheRayMeansExpectedRangeIsRangeMax) {

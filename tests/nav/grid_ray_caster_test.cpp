@@ -2,12 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "core/angle.hpp"
+#include "core/pose2.hpp"
 #include "core/rng.hpp"
 
 namespace retrace::nav {
@@ -193,6 +195,93 @@ TEST(GridRayCaster, CastManyIsBitIdenticalToDdaAtTheMapEdgesAndFromFarAway) {
   EXPECT_GT(hits, 1000);
 }
 
+// A 120 m x 120 m map at 0.1 m with thin walls at random angles and round trees, large enough
+// that rays of 30 m from its middle never reach its edges.
+core::OccupancyGrid LargeMap(std::uint64_t seed) {
+  constexpr int kCells = 1200;
+  core::OccupancyGrid g(kCells, kCells, 0.1, Vec2(-60.0, -60.0));
+  std::vector<float>& l = g.log_odds();
+  std::fill(l.begin(), l.end(), static_cast<float>(core::Logit(0.05)));
+  const auto set = [&](int x, int y) {
+    if (x >= 0 && y >= 0 && x < kCells && y < kCells) {
+      l[static_cast<std::size_t>(y) * kCells + static_cast<std::size_t>(x)] =
+          static_cast<float>(core::Logit(0.95));
+    }
+  };
+  core::Rng rng(seed);
+  for (int k = 0; k < 60; ++k) {  // walls, 1-2 cells thick, 5-40 m long
+    const double x = rng.Uniform(0, kCells), y = rng.Uniform(0, kCells);
+    const double a = rng.Uniform(-core::kPi, core::kPi), len = rng.Uniform(50, 400);
+    const int thick = 1 + static_cast<int>(rng.UniformIndex(2));
+    for (double d = 0; d < len; d += 0.5) {
+      for (int t = 0; t < thick; ++t) {
+        set(static_cast<int>(x + d * std::cos(a)) + t, static_cast<int>(y + d * std::sin(a)));
+      }
+    }
+  }
+  for (int k = 0; k < 600; ++k) {  // trees, radius 0-4 cells
+    const int cx = static_cast<int>(rng.UniformIndex(kCells));
+    const int cy = static_cast<int>(rng.UniformIndex(kCells));
+    const int r = static_cast<int>(rng.UniformIndex(5));
+    for (int y = -r; y <= r; ++y) {
+      for (int x = -r; x <= r; ++x) {
+        if (x * x + y * y <= r * r) set(cx + x, cy + y);
+      }
+    }
+  }
+  return g;
+}
+
+TEST(GridRayCaster, CastManyIsBitIdenticalToDdaOnParticleCloudsInALargeMap) {
+  // The localizer's bundles: the rays of one beam from 300 particles scattered around a pose
+  // (0.1 m, 0.02 rad), in the order of their headings, so that CastMany clears a common start
+  // for each group of rays. Clouds in the middle of the map (rays that cannot leave it), near
+  // and across its edges, and short range limits (a group clear beyond its end).
+  int total = 0, hits = 0;
+  for (std::uint64_t seed = 0; seed < 2; ++seed) {
+    const core::OccupancyGrid g = LargeMap(seed);
+    const LikelihoodField f(g, {}, 30.0);
+    const GridRayCaster caster(f);
+    core::Rng rng(seed + 300);
+    for (int cloud = 0; cloud < 12; ++cloud) {
+      const bool middle = cloud % 3 != 2;
+      const double cx = middle ? rng.Uniform(-25.0, 25.0) : rng.Uniform(-62.0, 62.0);
+      const double cy = middle ? rng.Uniform(-25.0, 25.0) : rng.Uniform(-62.0, 62.0);
+      const double theta = rng.Uniform(-core::kPi, core::kPi);
+      const double range_max = cloud % 4 == 3 ? rng.Uniform(0.5, 4.0) : 30.0;
+      std::vector<core::Pose2> particles;
+      for (int j = 0; j < 300; ++j) {
+        particles.emplace_back(cx + 0.1 * rng.Normal(), cy + 0.1 * rng.Normal(),
+                               theta + 0.02 * rng.Normal());
+      }
+      std::sort(particles.begin(), particles.end(),
+                [](const core::Pose2& a, const core::Pose2& b) { return a.theta < b.theta; });
+      const std::size_t n = particles.size();
+      for (int beam = 0; beam < 24; ++beam) {
+        const double angle = -0.75 * core::kPi + beam * (1.5 * core::kPi / 23.0);
+        std::vector<double> x(n), y(n), dx(n), dy(n), out(n);
+        for (std::size_t j = 0; j < n; ++j) {
+          x[j] = particles[j].x;
+          y[j] = particles[j].y;
+          dx[j] = std::cos(particles[j].theta + angle);
+          dy[j] = std::sin(particles[j].theta + angle);
+        }
+        caster.CastMany(x, y, dx, dy, range_max, out);
+        for (std::size_t j = 0; j < n; ++j) {
+          const double ref = caster.CastDda(x[j], y[j], dx[j], dy[j], range_max);
+          ASSERT_EQ(std::bit_cast<std::uint64_t>(out[j]), std::bit_cast<std::uint64_t>(ref))
+              << "seed " << seed << " cloud " << cloud << " beam " << beam << " ray " << j;
+          ++total;
+          hits += std::isinf(ref) ? 0 : 1;
+        }
+      }
+    }
+  }
+  std::printf("[ report ] %d rays from particle clouds, %d hits; all identical\n", total, hits);
+  EXPECT_GT(hits, total / 3);
+  EXPECT_LT(hits, total);
+}
+
 core::OccupancyGrid BoxRoom() {
   // 10 m x 10 m at 0.1 m, origin (0, 0); wall cells at x = 80 (x in [8, 8.1)).
   core::OccupancyGrid g(100, 100, 0.1, Vec2(0.0, 0.0));
@@ -214,6 +303,45 @@ TEST(GridRayCaster, DistanceToWhereTheRayEntersTheOccupiedCell) {
   EXPECT_EQ(caster.Cast(Vec2(8.05, 5.0), Vec2(1.0, 0.0), 30.0), 0.0);
   // A ray starting left of the map enters it and still finds the wall.
   EXPECT_NEAR(caster.Cast(Vec2(-2.0, 5.05), Vec2(1.0, 0.0), 30.0), 10.0, 1e-9);
+}
+
+TEST(GridRayCaster, CastManyIsBitIdenticalToDdaFromOneUlpAroundGridLines) {
+  // Origins on grid lines and one ulp to either side of them, in a grid of walls (so that the
+  // exact traversal often starts right at the origin): rounding may put such an origin in the
+  // cell beyond the line in cell units while the crossings put it before, or the other way round.
+  core::OccupancyGrid g(200, 150, 0.1, Vec2(-3.3, -1.7));
+  for (int y = 0; y < 150; ++y) {
+    for (int x = 0; x < 200; ++x) g.SetProbability({x, y}, x % 7 == 0 || y % 9 == 0 ? 0.95 : 0.05);
+  }
+  const LikelihoodField f(g, {}, 30.0);
+  const GridRayCaster caster(f);
+  core::Rng rng(17);
+  std::vector<double> x, y, dx, dy;
+  for (int k = 1; k < 200; k += 2) {
+    for (int j = 1; j < 150; j += 5) {
+      const double line_x = -3.3 + k * 0.1, line_y = -1.7 + j * 0.1;
+      for (const double px : {std::nextafter(line_x, -1e9), line_x, std::nextafter(line_x, 1e9)}) {
+        for (const double py :
+             {std::nextafter(line_y, -1e9), line_y + 0.03, std::nextafter(line_y, 1e9)}) {
+          const double a = rng.Uniform(-core::kPi, core::kPi);
+          x.push_back(px);
+          y.push_back(py);
+          dx.push_back(std::cos(a));
+          dy.push_back(std::sin(a));
+        }
+      }
+    }
+  }
+  std::vector<double> out(x.size());
+  caster.CastMany(x, y, dx, dy, 30.0, out);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double ref = caster.CastDda(x[i], y[i], dx[i], dy[i], 30.0);
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(out[i]), std::bit_cast<std::uint64_t>(ref))
+        << "ray " << i << " from (" << x[i] << ", " << y[i] << ")";
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(caster.Cast(x[i], y[i], dx[i], dy[i], 30.0)),
+              std::bit_cast<std::uint64_t>(ref))
+        << "ray " << i;
+  }
 }
 
 TEST(GridRayCaster, NoObstacleOnTheRayIsInfinityNotZero) {
