@@ -91,14 +91,20 @@ TEST(Episode, SameSeedSameTrajectoryOtherRunOtherTrajectory) {
   EXPECT_EQ(again.modes.front().trace.X_WR.back(), teach.trace.X_WR.back());
 }
 
-TEST(Episode, RunCommandWritesFilesThatParseBack) {
-  const retrace::testing::TempDir tmp;
+// `retrace run scenarios/small.yaml --mode <mode> --repeats 1 --out <out> --jobs <jobs>`.
+RunOptions SmallRun(const std::string& mode, const std::filesystem::path& out, int jobs) {
   RunOptions options;
   options.scenario = kSource / "scenarios/small.yaml";
-  options.mode = "partial";
+  options.mode = mode;
   options.repeats = 1;
-  options.out = tmp.path() / "small";
-  options.jobs = 1;
+  options.out = out;
+  options.jobs = jobs;
+  return options;
+}
+
+TEST(Episode, RunCommandWritesFilesThatParseBack) {
+  const retrace::testing::TempDir tmp;
+  const RunOptions options = SmallRun("partial", tmp.path() / "small", 1);
   EXPECT_EQ(RunRunCommand(options, RunPhases::kAll, "retrace run (test)"), 0);
   const std::filesystem::path dir = options.out / "partial";
   const nlohmann::json metrics = io::ReadJsonFile(dir / "metrics.json");
@@ -151,16 +157,8 @@ std::string ReadFile(const std::filesystem::path& path) {
 
 TEST(Episode, ParallelRunsGiveTheSameFilesAsASerialRun) {
   const retrace::testing::TempDir tmp;
-  RunOptions options;
-  options.scenario = kSource / "scenarios/small.yaml";
-  options.mode = "all";
-  options.repeats = 1;
-  options.out = tmp.path() / "serial";
-  options.jobs = 1;
-  ASSERT_EQ(RunRunCommand(options, RunPhases::kAll, "serial"), 0);
-  options.out = tmp.path() / "parallel";
-  options.jobs = 3;
-  ASSERT_EQ(RunRunCommand(options, RunPhases::kAll, "parallel"), 0);
+  ASSERT_EQ(RunRunCommand(SmallRun("all", tmp.path() / "serial", 1), RunPhases::kAll, "serial"), 0);
+  ASSERT_EQ(RunRunCommand(SmallRun("all", tmp.path() / "parallel", 3), RunPhases::kAll, "parallel"), 0);
   for (const char* mode : {"partial", "single", "consistent"}) {
     for (const char* file : {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {
       const std::filesystem::path rel = std::filesystem::path(mode) / file;

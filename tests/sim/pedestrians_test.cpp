@@ -12,6 +12,7 @@
 #include "sim/physics_world.hpp"
 #include "sim/robot.hpp"
 #include "tests/support/config_key.hpp"
+#include "tests/support/pedestrian_group.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -45,17 +46,7 @@ StaticGeometry RoomsAndCorridor() {
   return g;
 }
 
-PedestrianGroupConfig Group(int count, Vec2 lo, Vec2 hi,
-                            PedestrianMode mode = PedestrianMode::kWander,
-                            std::vector<Vec2> waypoints = {}) {
-  PedestrianGroupConfig g;
-  g.count = count;
-  g.region_min = lo;
-  g.region_max = hi;
-  g.mode = mode;
-  g.waypoints = std::move(waypoints);
-  return g;
-}
+using retrace::testing::Group;
 
 std::vector<PedestrianGroupConfig> RoomsAndCorridorGroups() {
   return {Group(5, {0.0, 0.0}, {11.9, 5.8}), Group(5, {12.1, 0.0}, {24.0, 5.8}),

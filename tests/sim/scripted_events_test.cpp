@@ -19,6 +19,7 @@
 #include "sim/simulator.hpp"
 #include "sim/walk_planner.hpp"
 #include "sim/world_file.hpp"
+#include "tests/support/pedestrian_group.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -59,17 +60,7 @@ CircleConfig Disc(double x, double y, double r) {
   return c;
 }
 
-PedestrianGroupConfig Group(int count, Vec2 lo, Vec2 hi,
-                            PedestrianMode mode = PedestrianMode::kWander,
-                            std::vector<Vec2> waypoints = {}) {
-  PedestrianGroupConfig g;
-  g.count = count;
-  g.region_min = lo;
-  g.region_max = hi;
-  g.mode = mode;
-  g.waypoints = std::move(waypoints);
-  return g;
-}
+using retrace::testing::Group;
 
 // Steps with a zero command until the next LiDAR scan.
 LidarReading NextScan(Simulator& sim) {
