@@ -119,6 +119,16 @@ void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, c
   events.AddRow({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});
   events.Commit();
   if (run.snapshot) WriteSnapshot(dir / "snapshot.json", *run.snapshot);
+
+  // The errors along the route, per control tick, for plots (errors.png) and the user's own.
+  const RunSeries series = ComputeRunSeries(teach, run, metrics);
+  io::CsvWriter errors(dir / "errors.csv", {"time", "map", "arc_length_m", "lateral_offset_m", "tracking_error_m",
+                                            "localization_error_m", "localization_error_rad"});
+  for (std::size_t i = 0; i < run.samples.size(); ++i) {
+    errors.AddRow({run.samples[i].time, run.samples[i].map_index, series.progress_m[i], series.lateral_offset_m[i],
+                   series.tracking_error_m[i], series.localization_error_m[i], series.localization_error_rad[i]});
+  }
+  errors.Commit();
 }
 
 }  // namespace retrace::bench

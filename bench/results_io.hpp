@@ -14,6 +14,9 @@
 //                  odom.tum       wheel odometry X_OR
 //                  events.csv     time, event, detail: map switches, collisions, scripted events,
 //                                 the outcome
+//                  errors.csv     per control tick: time, map, arc length along the taught path,
+//                                 signed lateral offset, tracking and localization errors
+//                  snapshot.json  see bench/snapshot.hpp
 //
 // TUM lines are `t x y z qx qy qz qw` (z = 0, rotation about z), readable by evo.
 
