@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bench/campus_command.hpp"
+#include "bench/render_results.hpp"
 #include "bench/run_command.hpp"
 #include "bench/world_command.hpp"
 #include "core/errors.hpp"
@@ -58,6 +59,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   world_cmd->add_option("--seed", world.seed, "Seed for the pedestrians' spawn points");
 
+  std::filesystem::path render_dir;
+  CLI::App* render_cmd = app.add_subcommand("render", "Render the figures of a results folder again, without rerunning");
+  render_cmd->add_option("results", render_dir, "Results folder of `retrace run` (results/<scenario>)")->required();
+
   bench::GenerateCampusOptions campus;
   CLI::App* campus_cmd = app.add_subcommand(
       "generate-campus", "Turn a route into a campus world: buildings, hedges, trees, poles, benches, pedestrians");
@@ -81,6 +86,10 @@ int main(int argc, char** argv) {
     if (*playback_cmd) return bench::RunRunCommand(playback, bench::RunPhases::kPlaybackOnly, command_line);
     if (*world_cmd) std::cout << bench::RunWorldCommand(world) << "\n";
     if (*campus_cmd) std::cout << bench::RunGenerateCampusCommand(campus) << "\n";
+    if (*render_cmd) {
+      const auto files = bench::RenderResults(render_dir);
+      std::cout << files.size() << " figures in " << render_dir.string() << "\n";
+    }
   } catch (const core::Error& e) {
     std::cerr << "retrace: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -13,6 +13,7 @@
 #include "bench/metrics.hpp"
 #include "bench/parallel.hpp"
 #include "bench/progress.hpp"
+#include "bench/render_results.hpp"
 #include "bench/results_io.hpp"
 #include "bench/scenario.hpp"
 #include "bench/summary.hpp"
@@ -90,6 +91,9 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   command->add_option("--seed", options->seed, "Scenario seed (overrides the file's)");
   command->add_option("--out", options->out, "Results folder (default: results/<scenario name>)");
   command->add_option("--set", options->overrides, "Override a scenario key: a.b.c=value (repeatable)");
+  if (phases != RunPhases::kTeachOnly) {
+    command->add_flag("!--no-figures", options->figures, "Do not render the figures (retrace render does it later)");
+  }
 }
 
 int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string& command_line) {
@@ -176,6 +180,16 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     summaries.push_back(summary);
   }
   if (modes > 1 && repeats > 0) io::WriteJsonAtomic(out / "comparison.json", comparison);
+
+  // Figures last: a rendering failure (no OSMesa context, say) leaves the numbers intact.
+  if (options.figures) {
+    try {
+      RenderResults(out);
+    } catch (const core::Error& e) {
+      std::cerr << "retrace: warning: no figures: " << e.what() << " (the results are complete; retry with `retrace render "
+                << out.string() << "`)\n";
+    }
+  }
 
   std::cout << SummaryText(scenario, summaries, out, wall_time);
   return exit_code;

@@ -23,6 +23,7 @@ struct RunOptions {
   std::vector<std::string> overrides;
   int jobs = 0;                     ///< worker threads; 0: one per core
   std::filesystem::path teach_dir;  ///< playback: a teach/ folder of an earlier run
+  bool figures = true;              ///< render the figures at the end (bench/render_results)
 };
 
 enum class RunPhases { kAll, kTeachOnly, kPlaybackOnly };

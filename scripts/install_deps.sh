@@ -7,6 +7,7 @@ packages=(
   libbox2d-dev libeigen3-dev libyaml-cpp-dev libopencv-dev
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libosmesa6-dev
 )
 
 missing=()
