@@ -21,13 +21,6 @@
 namespace retrace::bench {
 namespace {
 
-std::vector<core::Pose2> Poses(const std::vector<io::StampedPose>& stamped) {
-  std::vector<core::Pose2> out;
-  out.reserve(stamped.size());
-  for (const io::StampedPose& p : stamped) out.push_back(p.pose);
-  return out;
-}
-
 viz::WorldShapes Shapes(const sim::StaticGeometry& geometry) {
   viz::WorldShapes shapes;
   shapes.polygons = geometry.polygons();

@@ -47,7 +47,13 @@ FigureInfo RenderComparisonFigure(const ComparisonFigureData& data,
   header.title = options.title.empty()
                      ? "Map modes compared" + (data.scenario.empty() ? std::string() : ": " + data.scenario)
                      : options.title;
-  header.subtitle = "Bars: value; whiskers: the interval given with it (e.g. a 95% confidence interval).";
+  bool intervals = false;
+  for (const auto& m : data.modes) {
+    for (const auto& v : m.metrics) intervals |= std::isfinite(v.lower) && std::isfinite(v.upper);
+  }
+  if (intervals) {
+    header.subtitle = "Bars: value; whiskers: the interval given with it (e.g. a 95% confidence interval).";
+  }
   for (int i = 0; i < n_modes; ++i) {
     header.legend.push_back({data.modes[static_cast<std::size_t>(i)].mode,
                              ModeColor(data.modes[static_cast<std::size_t>(i)].mode, i),

@@ -76,7 +76,7 @@ FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::p
                              LegendSymbol::kLine, Marker::kDisc, 3.0});
   }
   header.legend.push_back(internal::StartLegend());
-  header.legend.push_back(internal::SwitchLegend());
+  if (!data.switch_poses.empty()) header.legend.push_back(internal::SwitchLegend());
   header.legend.push_back(internal::WorldLegend());
   header.legend.push_back({"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch});
 
@@ -162,9 +162,12 @@ FigureInfo RenderMapsCompareFigure(const MapsCompareFigureData& data,
   header.title = options.title.empty() ? "Maps of the same route" : options.title;
   header.subtitle = "Each map in its own frame; the same teaching drive, mapped with different poses.";
   header.legend = {{"taught path", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 2.5},
-                   internal::StartLegend(),
-                   internal::SwitchLegend(),
-                   {"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch}};
+                   internal::StartLegend()};
+  if (std::any_of(data.maps.begin(), data.maps.end(),
+                  [](const PartialMapView& m) { return m.switch_pose.has_value(); })) {
+    header.legend.push_back(internal::SwitchLegend());
+  }
+  header.legend.push_back({"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch});
 
   const int cols = MapColumns(n);
   const int rows = static_cast<int>((n + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
