@@ -120,6 +120,10 @@ TEST(Episode, RunCommandWritesFilesThatParseBack) {
   EXPECT_EQ(reread.bundle.maps.size(), 2u);
   EXPECT_EQ(reread.trace.maps.size(), 2u);
   EXPECT_FALSE(std::filesystem::exists(options.out / "partial.tmp"));
+  for (const char* figure : {"maps.png", "playback_partial.png", "odometry.png", "errors.png", "snapshot.png",
+                             "likelihood.png"}) {
+    EXPECT_GT(std::filesystem::file_size(dir / "figures" / figure), 10000u) << figure;
+  }
 
   // Playback again from the written teach folder.
   RunOptions again = options;
