@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "bench/episode.hpp"
+#include "bench/experiment.hpp"
 #include "bench/manifest.hpp"
 #include "bench/metrics.hpp"
 #include "bench/parallel.hpp"
@@ -17,7 +17,6 @@
 #include "bench/results_io.hpp"
 #include "bench/scenario.hpp"
 #include "bench/summary.hpp"
-#include "bench/teach_drive.hpp"
 #include "core/errors.hpp"
 #include "io/config_override.hpp"
 #include "io/json_writer.hpp"
@@ -62,14 +61,6 @@ class StagedFolder {
   bool committed_ = false;
 };
 
-// Turns the episode's absolute progress reports into increments for the shared line.
-ProgressFn Reporter(ProgressLine& line) {
-  return [&line, last = 0.0](double t) mutable {
-    line.AddSimTime(t - last);
-    last = t;
-  };
-}
-
 }  // namespace
 
 void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
@@ -109,46 +100,33 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   for (const std::string& warning : scenario.warnings) std::cerr << "retrace: warning: " << warning << "\n";
 
   // Read a reused teach folder before anything is run or written.
-  std::vector<ModeTeach> teaches;
-  double teach_duration = 0.0;
   ProgressLine progress;
+  ExperimentOptions run_options;
+  run_options.repeats = phases == RunPhases::kTeachOnly ? 0 : config.playback.repeats;
+  run_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+  run_options.progress = &progress;
+  Experiment experiment;
   if (phases == RunPhases::kPlaybackOnly) {
+    std::vector<ModeTeach> teaches;
     teaches.push_back(ReadTeachFolder(options.teach_dir, config.modes.front()));
-    teach_duration = teaches.front().trace.time.back();
+    const double teach_duration = teaches.front().trace.time.back();
+    experiment = RunPlaybacks(scenario, std::move(teaches), teach_duration, run_options);
   } else {
-    progress.Phase("teach", 1);
-    TeachResult teach = RunTeachDrive(scenario, config.modes, Reporter(progress));
-    teach_duration = teach.duration_s;
-    teaches = std::move(teach.modes);
-  }
-
-  const int repeats = phases == RunPhases::kTeachOnly ? 0 : config.playback.repeats;
-  const std::size_t modes = teaches.size();
-  std::vector<RunTrace> traces(modes * static_cast<std::size_t>(repeats));
-  if (!traces.empty()) {
-    const double timeout = PlaybackTimeout(scenario, teach_duration);
-    progress.Phase("playback", static_cast<int>(traces.size()));
-    ParallelFor(options.jobs > 0 ? options.jobs : DefaultJobs(), traces.size(), [&](std::size_t i) {
-      const ModeTeach& teach = teaches[i / static_cast<std::size_t>(repeats)];
-      const int run = static_cast<int>(i % static_cast<std::size_t>(repeats));
-      traces[i] = RunPlayback(scenario, teach.bundle, teach.trace, run, timeout, Reporter(progress));
-      progress.UnitDone();
-    });
+    experiment = RunExperiment(scenario, config.modes, run_options);
   }
   progress.Clear();
+  const int repeats = run_options.repeats;
 
   // Metrics, then the files: one staged folder per mode.
   int exit_code = 0;
   std::vector<ModeSummary> summaries;
   nlohmann::json comparison = nlohmann::json::object();
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  for (std::size_t m = 0; m < modes; ++m) {
-    const ModeTeach& teach = teaches[m];
+  for (const ModeResult& result : experiment.modes) {
+    const ModeTeach& teach = result.teach;
     const std::string mode_name(core::EnumName(teach.mode));
-    const std::vector<RunTrace> runs(traces.begin() + static_cast<std::ptrdiff_t>(m * repeats),
-                                     traces.begin() + static_cast<std::ptrdiff_t>((m + 1) * repeats));
-    std::vector<RunMetrics> run_metrics;
-    for (const RunTrace& run : runs) run_metrics.push_back(ComputeRunMetrics(teach.trace, run, config.metrics));
+    const std::vector<RunTrace>& runs = result.runs;
+    const std::vector<RunMetrics>& run_metrics = result.run_metrics;
     StagedFolder folder(out / mode_name);
     if (phases != RunPhases::kPlaybackOnly) WriteTeachFolder(folder.path() / "teach", teach);
     for (const RunTrace& run : runs) {
@@ -156,7 +134,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     }
     ModeSummary summary{teach.mode, 0, 0, {}};
     if (repeats > 0) {
-      const AggregateMetrics aggregate = Aggregate(teach.trace, runs, run_metrics, config.metrics);
+      const AggregateMetrics& aggregate = result.aggregate;
       nlohmann::json metrics;
       metrics["mode"] = mode_name;
       metrics["aggregate"] = ToJson(aggregate);
@@ -179,7 +157,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     folder.Commit();
     summaries.push_back(summary);
   }
-  if (modes > 1 && repeats > 0) io::WriteJsonAtomic(out / "comparison.json", comparison);
+  if (experiment.modes.size() > 1 && repeats > 0) io::WriteJsonAtomic(out / "comparison.json", comparison);
 
   // Figures last: a rendering failure (no OSMesa context, say) leaves the numbers intact.
   if (options.figures) {
