@@ -58,7 +58,7 @@ core::Rng PlaybackRng(const ScenarioConfig& config, int run) {
 }
 
 RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, const TeachTrace& teach,
-                     int run, double timeout_s, const ProgressFn& progress) {
+                     int run, double timeout_s, const ProgressFn& progress, PlaybackObserver* observer) {
   const double cpu_start = ThreadCpuSeconds();
   const ScenarioConfig& config = scenario.config;
   const NavConfig& nav_config = config.nav;
@@ -95,6 +95,10 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
   const double control_dt = static_cast<double>(control_steps) * simulator.time_step();
   const double radius = config.sim.robot.radius;
   std::optional<core::LaserScan> latest_scan;
+  // Kept for an observer only (the video); the run never reads them.
+  std::optional<sim::LidarReading> observed_lidar;
+  std::optional<nav::LocalizerUpdate> observed_update;
+  double last_switch_time = -std::numeric_limits<double>::infinity();
   core::Twist command;
   double lost_since = -1.0;
   // Progress for the stall check: the maps passed and the path length left in the current one.
@@ -124,6 +128,10 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
         }
       }
       latest_scan = s.lidar->scan;
+      if (observer) {
+        observed_lidar = *s.lidar;
+        if (update.ran) observed_update = update;
+      }
     }
 
     if (step % control_steps != 0) continue;
@@ -136,6 +144,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
       trace.switches.push_back({t, static_cast<int>(sw.from), static_cast<int>(sw.to), X_WR, sw.X_MnR});
       local_truth.emplace(teach.maps.at(sw.to), config.metrics.match_window, config.metrics.match_fallback_distance);
       follow = follower.Compute(localizer.Estimate(), control_dt);
+      last_switch_time = t;
     }
     const core::Pose2 X_MR = localizer.Estimate();
 
@@ -157,11 +166,19 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
     sample.avoiding = avoid.modified;
     trace.samples.push_back(sample);
 
+    const core::Pose2 X_MR_truth = local_truth->InMap(X_WR);
+    if (observer) {
+      const std::vector<sim::DynamicCircle> pedestrians = simulator.PedestrianCircles();
+      observer->OnTick({t, localizer, server, X_WR, X_MR_truth, command.v,
+                        t - last_switch_time, observed_lidar ? &*observed_lidar : nullptr,
+                        observed_update ? &*observed_update : nullptr, pedestrians});
+    }
+
     // 5. Scripted events and the end conditions.
     for (const std::string& name : events.Fire(t, route_progress.Update(X_WR.translation()), simulator)) {
       trace.events.push_back({t, name});
     }
-    const double error = Compare(X_MR, local_truth->InMap(X_WR)).distance;
+    const double error = Compare(X_MR, X_MR_truth).distance;
     if (error > config.limits.lost_distance) {
       if (lost_since < 0.0) lost_since = t;
     } else {
@@ -185,6 +202,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, c
       next_report += kProgressPeriod;
     }
   }
+  if (observer) observer->OnEnd();
   trace.outcome = *outcome;
   trace.sim_time_s = simulator.time();
   trace.cpu_time_s = ThreadCpuSeconds() - cpu_start;

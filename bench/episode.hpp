@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "bench/playback_observer.hpp"
 #include "bench/scenario.hpp"
 #include "bench/teach_drive.hpp"
 #include "bench/trace.hpp"
@@ -20,8 +21,10 @@ core::Rng PlaybackRng(const ScenarioConfig& config, int run);
 /// teaching drive's ground truth and the bundle's references). `timeout_s` ends a run that has
 /// not reached the end of the last path. Returns everything the metrics need; expected outcomes
 /// (timeout, lost, collision) are in RunTrace::outcome, not exceptions. Throws core::WorldError
-/// only when the world refuses the start pose or a scripted event.
+/// only when the world refuses the start pose or a scripted event. An `observer` sees every
+/// control tick and cannot change the run.
 RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle, const TeachTrace& teach,
-                     int run, double timeout_s, const ProgressFn& progress = {});
+                     int run, double timeout_s, const ProgressFn& progress = {},
+                     PlaybackObserver* observer = nullptr);
 
 }  // namespace retrace::bench

@@ -53,8 +53,10 @@ Experiment RunPlaybacks(const Scenario& scenario, std::vector<ModeTeach> teaches
   ParallelFor(options.jobs, total, [&](std::size_t i) {
     ModeResult& mode = experiment.modes[i / repeats];
     const std::size_t run = i % repeats;
+    std::unique_ptr<PlaybackObserver> observer =
+        options.observe ? options.observe(mode.teach, static_cast<int>(run)) : nullptr;
     mode.runs[run] = RunPlayback(scenario, mode.teach.bundle, mode.teach.trace, static_cast<int>(run), timeout,
-                                 Reporter(options.progress));
+                                 Reporter(options.progress), observer.get());
     mode.run_metrics[run] = ComputeRunMetrics(mode.teach.trace, mode.runs[run], scenario.config.metrics);
     if (options.progress) options.progress->UnitDone();
   });

@@ -4,11 +4,14 @@
 // a results folder; suites, sweeps and comparisons (bench/suite*, bench/sweep*, bench/compare*)
 // only keep its numbers.
 
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bench/metrics.hpp"
+#include "bench/playback_observer.hpp"
 #include "bench/progress.hpp"
 #include "bench/scenario.hpp"
 #include "bench/teach_drive.hpp"
@@ -33,6 +36,8 @@ struct ExperimentOptions {
   int repeats = 0;                 ///< playback runs per mode (0: teach only)
   int jobs = 1;                    ///< worker threads for the runs
   ProgressLine* progress = nullptr;  ///< optional
+  /// Optional: an observer for run `run` of a mode (nullptr: none), e.g. a video recorder.
+  std::function<std::unique_ptr<PlaybackObserver>(const ModeTeach& teach, int run)> observe;
 };
 
 /// Teaches the scenario's route for `modes` with one drive, then plays back. Results do not

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -17,6 +19,7 @@
 #include "bench/results_io.hpp"
 #include "bench/scenario.hpp"
 #include "bench/summary.hpp"
+#include "bench/video_recorder.hpp"
 #include "core/errors.hpp"
 #include "io/config_override.hpp"
 #include "io/json_writer.hpp"
@@ -84,6 +87,13 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   command->add_option("--set", options->overrides, "Override a scenario key: a.b.c=value (repeatable)");
   if (phases != RunPhases::kTeachOnly) {
     command->add_flag("!--no-figures", options->figures, "Do not render the figures (retrace render does it later)");
+    command->add_flag("--video", options->video,
+                      "Record a video of one playback run per mode: <mode>/runs/<run>/video.mp4");
+    command->add_option("--video-run", options->video_run, "The run to record (default 0)")
+        ->check(CLI::NonNegativeNumber);
+    command->add_option("--video-speed", options->video_speedup,
+                        "Seconds of the run per second of video (default 10)")
+        ->check(CLI::PositiveNumber);
   }
 }
 
@@ -99,23 +109,53 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   const std::filesystem::path out = options.out.empty() ? std::filesystem::path("results") / config.name : options.out;
   for (const std::string& warning : scenario.warnings) std::cerr << "retrace: warning: " << warning << "\n";
 
+  const int repeats = phases == RunPhases::kTeachOnly ? 0 : config.playback.repeats;
+  if (options.video && options.video_run >= repeats) {
+    throw core::ConfigError("--video-run", "run " + std::to_string(options.video_run) + " is not played back (" +
+                                               std::to_string(repeats) + " runs per mode)");
+  }
+
   // Read a reused teach folder before anything is run or written.
+  std::vector<ModeTeach> reused;
+  if (phases == RunPhases::kPlaybackOnly) reused.push_back(ReadTeachFolder(options.teach_dir, config.modes.front()));
+
+  // One staged folder per mode: a video is written into it while its run drives.
+  std::map<MapMode, std::unique_ptr<StagedFolder>> folders;
+  for (const MapMode mode : config.modes) {
+    folders[mode] = std::make_unique<StagedFolder>(out / std::string(core::EnumName(mode)));
+  }
+
   ProgressLine progress;
   ExperimentOptions run_options;
-  run_options.repeats = phases == RunPhases::kTeachOnly ? 0 : config.playback.repeats;
+  run_options.repeats = repeats;
   run_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
   run_options.progress = &progress;
+  if (options.video) {
+    VideoOptions video;
+    video.speedup = options.video_speedup;
+    run_options.observe = [&](const ModeTeach& teach, int run) -> std::unique_ptr<PlaybackObserver> {
+      if (run != options.video_run) return nullptr;
+      const std::string mode_name(core::EnumName(teach.mode));
+      try {
+        return std::make_unique<VideoRecorder>(folders.at(teach.mode)->path() / "runs" / std::to_string(run) /
+                                                   "video.mp4",
+                                               mode_name + " maps, run " + std::to_string(run),
+                                               config.sim.robot.radius, video);
+      } catch (const core::Error& e) {
+        std::cerr << "retrace: warning: no video of " << mode_name << ": " << e.what() << "\n";
+        return nullptr;
+      }
+    };
+  }
   Experiment experiment;
   if (phases == RunPhases::kPlaybackOnly) {
-    std::vector<ModeTeach> teaches;
-    teaches.push_back(ReadTeachFolder(options.teach_dir, config.modes.front()));
-    const double teach_duration = teaches.front().trace.time.back();
-    experiment = RunPlaybacks(scenario, std::move(teaches), teach_duration, run_options);
+    const double teach_duration = reused.front().trace.time.back();
+    experiment = RunPlaybacks(scenario, std::move(reused), teach_duration, run_options);
   } else {
     experiment = RunExperiment(scenario, config.modes, run_options);
   }
   progress.Clear();
-  const int repeats = run_options.repeats;
+
 
   // Metrics, then the files: one staged folder per mode.
   int exit_code = 0;
@@ -127,7 +167,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     const std::string mode_name(core::EnumName(teach.mode));
     const std::vector<RunTrace>& runs = result.runs;
     const std::vector<RunMetrics>& run_metrics = result.run_metrics;
-    StagedFolder folder(out / mode_name);
+    StagedFolder& folder = *folders.at(teach.mode);
     if (phases != RunPhases::kPlaybackOnly) WriteTeachFolder(folder.path() / "teach", teach);
     for (const RunTrace& run : runs) {
       WriteRunFolder(folder.path() / "runs" / std::to_string(run.run), teach.trace, run, config.metrics);

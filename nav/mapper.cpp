@@ -214,10 +214,14 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
             return true;
           });
     } else {
+      // A beam without a usable return cannot tell open space from a dropout on a wall: it
+      // clears only up to the first cell the map already holds as occupied, so that dropouts
+      // neither wear walls away nor paint free space behind them.
       ++stats.beams_cleared;
+      const std::vector<float>& before = grid_.log_odds();
       TraverseCells(grid_, p_ML, dir, plan.length,
                     [&](core::CellIndex c, double /*t_in*/, double t_out) {
-                      if (t_out > plan.clear_to) return false;
+                      if (t_out > plan.clear_to || before[grid_.Index(c)] > 0.0f) return false;
                       ProposeUpdate(c, miss, false);
                       return true;
                     });

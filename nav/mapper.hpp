@@ -30,7 +30,8 @@ struct MapperConfig {
   double log_odds_max = 8.0;
   /// m: finite readings longer than this mark no hit; they only clear free space, like +inf.
   double hit_range_max = 30.0;
-  /// m: no-return (+inf) beams clear free cells up to this range, without marking a hit.
+  /// m: no-return (+inf) beams clear free cells up to this range, without marking a hit, and
+  /// never beyond a cell the map already holds as occupied (a dropout is not open space).
   double no_return_range = 10.0;
   core::Pose2 lidar_mount;  ///< X_RL: the LiDAR frame L in the robot frame R
   InverseSensorModelConfig inverse_model;
