@@ -12,6 +12,7 @@
 #include "bench/metrics.hpp"
 #include "bench/results_io.hpp"
 #include "core/errors.hpp"
+#include "bench/world_shapes.hpp"
 #include "io/json_writer.hpp"
 #include "io/tum.hpp"
 #include "sim/world_file.hpp"
@@ -20,14 +21,6 @@
 
 namespace retrace::bench {
 namespace {
-
-viz::WorldShapes Shapes(const sim::StaticGeometry& geometry) {
-  viz::WorldShapes shapes;
-  shapes.polygons = geometry.polygons();
-  for (const sim::Circle& c : geometry.circles()) shapes.circles.push_back({c.center, c.radius});
-  for (const sim::Segment& s : geometry.segments()) shapes.segments.emplace_back(s.a, s.b);
-  return shapes;
-}
 
 // The world of a results folder: the scenario's world file, as the manifest names it.
 sim::World LoadResultsWorld(const std::filesystem::path& mode_dir) {
@@ -180,7 +173,7 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
     const MapMode mode = *core::ParseEnum<MapMode>(mode_name);
     ModeTeach teach = ReadTeachFolder(dir / "teach", mode);
     const sim::World world = LoadResultsWorld(dir);
-    const viz::WorldShapes shapes = Shapes(world.geometry);
+    const viz::WorldShapes shapes = WorldShapesOf(world.geometry);
     const std::filesystem::path figures = dir / "figures";
     std::filesystem::create_directories(figures);
 

@@ -1,7 +1,9 @@
 #include "bench/world_command.hpp"
 
+#include <algorithm>
 #include <sstream>
 
+#include "bench/world_shapes.hpp"
 #include "core/errors.hpp"
 #include "io/config_yaml.hpp"
 #include "io/route_file.hpp"
@@ -11,7 +13,7 @@
 #include "sim/robot.hpp"
 #include "sim/route_check.hpp"
 #include "sim/world_file.hpp"
-#include "viz/world_sketch.hpp"
+#include "viz/figures.hpp"
 
 namespace retrace::bench {
 
@@ -20,20 +22,14 @@ std::string RunWorldCommand(const WorldCommandOptions& options) {
   for (const auto& s : options.overrides) overrides.push_back(io::ParseOverride(s));
   const sim::World world = sim::LoadWorld(options.world_file, overrides);
 
-  viz::SketchScene scene;
   const auto& g = world.geometry;
-  scene.solids = g.polygons();
-  // Edges that are not polygon outlines (imported maps) are drawn as lines.
-  std::size_t polygon_edges = 0;
-  for (const auto& ring : g.polygons()) polygon_edges += ring.size();
-  for (std::size_t i = polygon_edges; i < g.segments().size(); ++i) {
-    scene.edges.emplace_back(g.segments()[i].a, g.segments()[i].b);
-  }
-  for (const auto& c : g.circles()) scene.discs.emplace_back(c.center, c.radius);
+  viz::WorldFigureData figure;
+  figure.name = world.source.stem().string();
+  figure.world = WorldShapesOf(g);
   if (!options.route_file.empty()) {
-    scene.route = io::ReadRouteFile(options.route_file);
+    figure.route = io::ReadRouteFile(options.route_file);
     try {
-      sim::CheckRouteIsDrivable(g, scene.route, sim::RobotConfig{}.radius);
+      sim::CheckRouteIsDrivable(g, figure.route, sim::RobotConfig{}.radius);
     } catch (const core::WorldError& e) {
       throw core::WorldError(options.route_file.string() + ": " + e.what());
     }
@@ -41,15 +37,20 @@ std::string RunWorldCommand(const WorldCommandOptions& options) {
 
   // Spawning the pedestrians checks that their regions and loops work in this geometry.
   std::vector<sim::Circle> keep_clear;
-  if (!scene.route.empty()) keep_clear.push_back({scene.route.front(), sim::RobotConfig{}.radius});
+  if (!figure.route.empty()) keep_clear.push_back({figure.route.front(), sim::RobotConfig{}.radius});
   sim::PhysicsWorld physics(g);
   const sim::Pedestrians crowd(world.config.pedestrians, sim::CrowdConfig{}, g,
                                core::Rng(options.seed).Split("pedestrians"), keep_clear, physics);
-  for (const auto& c : physics.PedestrianCircles()) scene.pedestrians.emplace_back(c.center, c.radius);
+  for (const auto& c : physics.PedestrianCircles()) figure.pedestrians.push_back({c.center, c.radius});
 
-  viz::SketchOptions sketch;
-  sketch.pixels_per_meter = options.pixels_per_meter;
-  viz::RenderSketchPng(scene, options.png, sketch);
+  // The figure's width follows the requested scale, within what the renderer allows.
+  const viz::Box2 extent = figure.world.Bounds();
+  viz::FigureOptions figure_options;
+  if (options.pixels_per_meter > 0.0 && !extent.IsEmpty()) {
+    const double width = extent.Size().x() * options.pixels_per_meter + 160.0;
+    figure_options.width = static_cast<int>(std::clamp(width, 400.0, 8000.0));
+  }
+  viz::RenderWorldFigure(figure, options.png, figure_options);
 
   const sim::Aabb box = g.Bounds();
   std::ostringstream out;

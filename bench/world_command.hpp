@@ -12,7 +12,7 @@ struct WorldCommandOptions {
   std::filesystem::path png;
   std::filesystem::path route_file;  ///< optional route to draw
   std::vector<std::string> overrides;
-  double pixels_per_meter = 20.0;
+  double pixels_per_meter = 0.0;  ///< 0: a figure 1600 px wide
   std::uint64_t seed = 1;  ///< seed of the pedestrians' spawn points
 };
 

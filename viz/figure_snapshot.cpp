@@ -52,7 +52,7 @@ FigureInfo RenderSnapshotFigure(const SnapshotData& data, const std::filesystem:
   header.title = fo.title.empty() ? title : fo.title;
   char sub[256];
   std::snprintf(sub, sizeof(sub),
-                "Map frame M_%d. %zu particles (opacity: weight), %zu scan points: %d used, %d "
+                "Map frame M_%d. %zu particles (opacity: weight), %zu scan points: %d not rejected, %d "
                 "rejected, %d hit pedestrians. Position error %.2f m.",
                 data.map_index, data.particles.size(), data.scan.size(), used, rejected, ped,
                 core::Distance(data.estimate, data.truth));

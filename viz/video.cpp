@@ -55,8 +55,8 @@ class VideoFrameRenderer::Impl {
 
     // Status box, top left.
     char line[160];
-    std::snprintf(line, sizeof(line), "t = %.1f s   v = %.2f m/s   map %d / %d", f.time_s, f.speed,
-                  f.map_index, std::max(1, f.map_count));
+    std::snprintf(line, sizeof(line), "t = %.1f s   v = %.2f m/s   map %d (of maps 0-%d)", f.time_s, f.speed,
+                  f.map_index, std::max(1, f.map_count) - 1);
     char err[96];
     std::snprintf(err, sizeof(err), "estimate vs truth: %.2f m", core::Distance(f.estimate, f.truth));
     std::vector<std::string> lines;

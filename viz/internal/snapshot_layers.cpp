@@ -56,7 +56,7 @@ void DrawLocalizationLayers(GlCanvas& c, const core::OccupancyGrid& grid,
 
 std::vector<LegendEntry> LocalizationLegend() {
   return {{"taught path", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 2.0},
-          {"scan point (used)", palette::kStaticPoint, LegendSymbol::kMarker, Marker::kDisc, 4.0},
+          {"scan point", palette::kStaticPoint, LegendSymbol::kMarker, Marker::kDisc, 4.0},
           {"rejected as dynamic", palette::kRejectedPoint, LegendSymbol::kMarker, Marker::kDisc, 4.0},
           {"hit a pedestrian (truth)", palette::kPedestrian, LegendSymbol::kRing},
           {"pedestrian", palette::kPedestrian.WithAlpha(255), LegendSymbol::kMarker, Marker::kDisc, 7.0},
