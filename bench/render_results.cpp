@@ -75,6 +75,26 @@ std::vector<RunTrace> ReadRuns(const std::filesystem::path& mode_dir) {
   return runs;
 }
 
+// "run i", with the outcome of a run that did not succeed ("run 2 (timeout)"), from
+// metrics.json when the folder has one.
+std::vector<std::string> RunLabels(const std::filesystem::path& mode_dir, const std::vector<RunTrace>& runs) {
+  std::vector<std::string> labels;
+  nlohmann::json metrics;
+  if (std::filesystem::is_regular_file(mode_dir / "metrics.json")) metrics = io::ReadJsonFile(mode_dir / "metrics.json");
+  for (const RunTrace& run : runs) {
+    std::string label = "run " + std::to_string(run.run);
+    if (metrics.contains("runs")) {
+      for (const nlohmann::json& r : metrics["runs"]) {
+        if (r.value("run", -1) == run.run && r.value("outcome", "success") != "success") {
+          label += " (" + r.value("outcome", std::string()) + ")";
+        }
+      }
+    }
+    labels.push_back(label);
+  }
+  return labels;
+}
+
 std::vector<viz::PartialMapView> MapViews(const ModeTeach& teach) {
   std::vector<viz::PartialMapView> views;
   for (std::size_t k = 0; k < teach.bundle.maps.size(); ++k) {
@@ -194,13 +214,13 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
       viz::ErrorsFigureData errors;
       errors.mode = mode_name;
       MetricsConfig metrics;
-      for (const RunTrace& run : runs) {
+      const std::vector<std::string> labels = RunLabels(dir, runs);
+      for (std::size_t i = 0; i < runs.size(); ++i) {
         std::vector<core::Pose2> poses;
-        for (const PlaybackSample& s : run.samples) poses.push_back(s.X_WR);
-        playback.runs.push_back({"run " + std::to_string(run.run), poses});
-        const RunSeries series = ComputeRunSeries(teach.trace, run, metrics);
-        errors.runs.push_back({"run " + std::to_string(run.run), series.progress_m, series.tracking_error_m,
-                               series.localization_error_m});
+        for (const PlaybackSample& s : runs[i].samples) poses.push_back(s.X_WR);
+        playback.runs.push_back({labels[i], poses});
+        const RunSeries series = ComputeRunSeries(teach.trace, runs[i], metrics);
+        errors.runs.push_back({labels[i], series.progress_m, series.tracking_error_m, series.localization_error_m});
       }
       double s = 0.0;
       for (std::size_t k = 0; k + 1 < teach.trace.maps.size(); ++k) {

@@ -115,10 +115,10 @@ ObstacleAvoidance::ObstacleAvoidance(const ObstacleAvoidanceConfig& config)
     : config_(Validated(config)) {}
 
 ObstacleAvoidance::Clearance ObstacleAvoidance::Evaluate(double v, double omega, double distance,
-                                                         bool want_clearance) {
+                                                         bool want_clearance, bool margin) {
   RETRACE_CHECK(v > 0.0);
   const double kappa = omega / v;
-  const double inflated = config_.robot_radius + config_.safety_margin;
+  const double inflated = config_.robot_radius + (margin ? config_.safety_margin : 0.0);
   const double inflated2 = inflated * inflated;
   Clearance out;
   const std::size_t n = points_R_.size();
@@ -206,7 +206,8 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
   // Candidates must stay free over candidate_reach times the prediction distance: otherwise
   // the closest free arc is one that merely meets the obstacle just beyond the prediction,
   // and the robot creeps towards it until no arc is free any more. Where nothing is free that
-  // far (tight spaces), the prediction distance itself is the fallback before giving up.
+  // far (tight spaces), the prediction distance itself is the fallback, then the same without
+  // the safety margin (only the footprint must stay clear), before giving up.
   const int steps = static_cast<int>(std::floor(config_.omega_window / config_.omega_step + 1e-9));
   const std::size_t no_factor = config_.speed_factors.size();
   struct Candidate {
@@ -214,7 +215,12 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
     std::size_t factor = 0;
     double cost = kInf;
   };
-  for (const double reach : {config_.candidate_reach * distance, distance}) {
+  struct Tier {
+    double reach;
+    bool margin;
+  };
+  for (const Tier tier : {Tier{config_.candidate_reach * distance, true}, Tier{distance, true}, Tier{distance, false}}) {
+    const double reach = tier.reach;
     Candidate best[2];  // [0]: left (omega >= omega_d), [1]: right
     for (int side = 0; side < 2; ++side) {
       const int sign = side == 0 ? 1 : -1;
@@ -223,7 +229,7 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
         if (std::abs(omega) > config_.max_yaw_rate + 1e-12) break;
         for (std::size_t f = 0; f < no_factor; ++f) {
           const double v = desired.v * config_.speed_factors[f];
-          if (std::isfinite(Evaluate(v, omega, reach, false).contact)) continue;
+          if (std::isfinite(Evaluate(v, omega, reach, false, tier.margin).contact)) continue;
           const bool switches = k > 0 && last_side_ != 0 && last_side_ != sign;
           best[side] = {{v, omega}, f, k * config_.omega_step +
                                            (switches ? config_.side_switch_penalty : 0.0)};
@@ -238,9 +244,9 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
           pick = best[1].factor < best[0].factor ? 1 : 0;
         } else {
           const double left =
-              Evaluate(best[0].command.v, best[0].command.omega, reach, true).clearance;
+              Evaluate(best[0].command.v, best[0].command.omega, reach, true, tier.margin).clearance;
           const double right =
-              Evaluate(best[1].command.v, best[1].command.omega, reach, true).clearance;
+              Evaluate(best[1].command.v, best[1].command.omega, reach, true, tier.margin).clearance;
           pick = right > left ? 1 : 0;
         }
       }

@@ -16,6 +16,11 @@
 // cannot hold a detour against a follower that pulls back to the path: once beside the
 // obstacle the follower asks for about +-1 rad/s and every candidate in the window turns
 // back into it.
+//
+// The safety margin is a preference, the bare footprint the constraint: when no candidate
+// keeps the margin, candidates that only keep the footprint clear are taken before stopping.
+// Otherwise a robot that has come within a little more than the margin of an obstacle beside
+// it (a bin it is passing) finds every forward arc "blocked" and stops there for good.
 
 #include <limits>
 #include <vector>
@@ -126,7 +131,8 @@ class ObstacleAvoidance {
     double contact = std::numeric_limits<double>::infinity();  // m of arc to first contact
     double clearance = std::numeric_limits<double>::infinity();  // m, only if requested
   };
-  Clearance Evaluate(double v, double omega, double distance, bool want_clearance);
+  /// `margin`: keep safety_margin from points farther than it (false: the bare footprint).
+  Clearance Evaluate(double v, double omega, double distance, bool want_clearance, bool margin = true);
 
   ObstacleAvoidanceConfig config_;
   std::vector<core::Vec2> points_R_;  // scan points of the current Filter call, in R

@@ -258,6 +258,26 @@ TEST(ObstacleAvoidance, SteersPastABoxPartlyBlockingThePath) {
   RecordProperty("box_max_deviation", std::to_string(max_deviation));
 }
 
+TEST(ObstacleAvoidance, DrivesOnPastABinBesideItWhenOnlyTheMarginIsViolated) {
+  // The campus deadlock: a bin on the taught path, the robot already beside its corner (0.42 m
+  // from the centre, just outside the margin) while the follower pulls back towards the path
+  // behind the bin. No arc keeps the 0.1 m margin, but the bare footprint passes: the robot
+  // must drive on past the bin, not stop there for good.
+  const std::vector<Segment> world = Box(0.29, -1.11, 1.09, -0.31);
+  PathFollower follower({});
+  follower.SetPath(core::Path({Pose2(-2.0, -0.71, 0), Pose2(1.0, -0.71, 0), Pose2(5.0, -0.71, 0)}));
+  ObstacleAvoidance avoidance({});
+  bool reached = false;
+  const Rollout r = Roll(avoidance, world, Pose2(0.0, 0.0, 0.0), 30.0, [&](const Pose2& X, bool* done) {
+    const FollowerOutput f = follower.Compute(X, kDt);
+    reached = *done = f.goal_reached;
+    return f.command;
+  });
+  EXPECT_TRUE(reached);
+  EXPECT_GT(r.min_clearance, 0.0);  // the footprint never touched the bin
+  RecordProperty("bin_min_clearance", std::to_string(r.min_clearance));
+}
+
 TEST(ObstacleAvoidance, ChosenCommandIsFreeWithinLimitsAndSlowsDown) {
   ObstacleAvoidance avoidance({});
   const std::vector<Segment> world = Box(1.5, -0.3, 2.0, 0.3);
