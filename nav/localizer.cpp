@@ -144,6 +144,27 @@ void Localizer::Initialize(const core::Pose2& X_MR, double sigma_xy, double sigm
   ResetAverages();
 }
 
+void Localizer::SetParticles(std::vector<Particle> particles) {
+  if (particles.empty()) throw core::ConfigError("particles", "must not be empty");
+  double total = 0.0;
+  for (const Particle& p : particles) {
+    if (!std::isfinite(p.X_MR.x) || !std::isfinite(p.X_MR.y) || !std::isfinite(p.X_MR.theta)) {
+      throw core::ConfigError("particles", "poses must be finite");
+    }
+    if (!(p.weight >= 0.0) || !std::isfinite(p.weight)) {
+      throw core::ConfigError("particles", "weights must be finite and >= 0");
+    }
+    total += p.weight;
+  }
+  if (!(total > 0.0)) throw core::ConfigError("particles", "weights must not all be 0");
+  for (Particle& p : particles) p.weight /= total;
+  particles_ = std::move(particles);
+  injected_.assign(particles_.size(), 0);
+  odometry_since_update_ = core::Pose2::Identity();
+  force_update_ = true;
+  ResetAverages();
+}
+
 void Localizer::Predict(const core::OdometryDelta& delta) {
   odometry_since_update_ = core::IntegrateOdometry(odometry_since_update_, delta);
   if (delta.distance == 0.0 && delta.dtheta == 0.0) return;
@@ -371,27 +392,47 @@ std::optional<core::Pose2> LocalMean(const std::vector<Particle>& particles,
 
 core::Pose2 Localizer::Estimate() const {
   if (particles_.empty()) return core::Pose2::Identity();
-  // The heaviest cell of a 3-D histogram seeds the estimate, then two mean-shift steps refine
-  // it within kClusterRadius / kClusterAngle: particles of other modes and freshly injected
-  // random particles do not drag the estimate away from the main cluster.
+  // The heaviest neighbourhood of a 3-D histogram (a cell and the 26 around it, heading
+  // wrapping) seeds the estimate, then mean-shift steps refine it within kClusterRadius /
+  // kClusterAngle: particles of other modes and freshly injected random particles do not drag
+  // the estimate away from the main cluster. Summing neighbourhoods matters: a converged cloud
+  // that straddles cell borders (a heading of exactly -90 deg lies on one) splits over up to
+  // eight cells, and a lone heavy injected particle elsewhere could then outweigh each part.
   constexpr double kBinXy = 0.5;
-  const double bin_theta = core::DegToRad(30.0);
+  constexpr int kHeadingBins = 12;  // 30 deg
+  const double bin_theta = 2.0 * core::kPi / kHeadingBins;
+  using Key = std::tuple<std::int64_t, std::int64_t, std::int64_t>;
   struct Bin {
     double weight = 0.0;
     std::size_t first = 0;  // a particle of the bin, for the seed
   };
-  std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t>, Bin> bins;
+  std::map<Key, Bin> bins;
   for (std::size_t j = 0; j < particles_.size(); ++j) {
     const core::Pose2& X = particles_[j].X_MR;
-    const auto key = std::make_tuple(static_cast<std::int64_t>(std::floor(X.x / kBinXy)),
-                                     static_cast<std::int64_t>(std::floor(X.y / kBinXy)),
-                                     static_cast<std::int64_t>(std::floor(X.theta / bin_theta)));
+    const auto heading = static_cast<std::int64_t>(std::floor(X.theta / bin_theta));
+    const Key key{static_cast<std::int64_t>(std::floor(X.x / kBinXy)),
+                  static_cast<std::int64_t>(std::floor(X.y / kBinXy)),
+                  ((heading % kHeadingBins) + kHeadingBins) % kHeadingBins};
     auto [it, inserted] = bins.try_emplace(key, Bin{0.0, j});
     it->second.weight += particles_[j].weight;
   }
   const Bin* best = nullptr;
+  double best_weight = -1.0;
   for (const auto& [key, bin] : bins) {
-    if (best == nullptr || bin.weight > best->weight) best = &bin;
+    const auto [bx, by, bt] = key;
+    double sum = 0.0;
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dt = -1; dt <= 1; ++dt) {
+          const auto it = bins.find({bx + dx, by + dy, (bt + dt + kHeadingBins) % kHeadingBins});
+          if (it != bins.end()) sum += it->second.weight;
+        }
+      }
+    }
+    if (sum > best_weight) {
+      best_weight = sum;
+      best = &bin;
+    }
   }
   core::Pose2 estimate = particles_[best->first].X_MR;
   for (int iteration = 0; iteration < 3; ++iteration) {

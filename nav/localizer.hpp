@@ -197,6 +197,10 @@ class Localizer {
   /// and y and sigma_theta (rad) on the heading. Throws core::ConfigError on a negative or
   /// non-finite sigma. The next scan is used even without motion.
   void Initialize(const core::Pose2& X_MR, double sigma_xy, double sigma_theta);
+  /// Replaces the particle set (e.g. a belief carried over from elsewhere); weights are
+  /// normalised to sum 1. Throws core::ConfigError for an empty set, a non-finite pose or a
+  /// negative or all-zero weight. The next scan is used even without motion.
+  void SetParticles(std::vector<Particle> particles);
   /// Moves every particle by one odometry increment (robot frame) with the sample motion
   /// model; call on every odometry tick. Also feeds the motion gate of Update.
   void Predict(const core::OdometryDelta& delta);
