@@ -74,12 +74,14 @@ void PutTextVertical(cv::Mat& img, const std::string& text, cv::Point center,
 }
 
 std::string FormatTick(double value, double step) {
+  // The fewest decimals that write the step exactly: 0.25 needs two, 0.2 one, 2.5 one, 5 none.
   int decimals = 0;
-  if (step > 0.0 && step < 1.0) {
-    decimals = static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
-    // 0.25 needs two decimals, 0.2 one.
-    const double scaled = step * std::pow(10.0, decimals);
-    if (std::abs(scaled - std::round(scaled)) > 1e-6) ++decimals;
+  if (step > 0.0 && std::isfinite(step)) {
+    while (decimals < 6) {
+      const double scaled = step * std::pow(10.0, decimals);
+      if (std::abs(scaled - std::round(scaled)) <= 1e-6 * std::max(1.0, scaled)) break;
+      ++decimals;
+    }
   }
   if (std::abs(value) < std::abs(step) * 1e-6) value = 0.0;
   char buf[64];
