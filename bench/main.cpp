@@ -10,9 +10,13 @@
 #include <iostream>
 #include <string>
 
+#include "bench/bench_command.hpp"
 #include "bench/campus_command.hpp"
+#include "bench/compare_command.hpp"
+#include "bench/merge_command.hpp"
 #include "bench/render_results.hpp"
 #include "bench/run_command.hpp"
+#include "bench/sweep_command.hpp"
 #include "bench/world_command.hpp"
 #include "core/errors.hpp"
 
@@ -55,7 +59,7 @@ int main(int argc, char** argv) {
   world_cmd->add_option("--png", world.png, "Output image")->required();
   world_cmd->add_option("--route", world.route_file, "Route file to draw (x y per line or AutoNavi path)");
   world_cmd->add_option("--set", world.overrides, "Override a key: a.b.c=value (repeatable)");
-  world_cmd->add_option("--pixels-per-meter", world.pixels_per_meter, "Image scale")
+  world_cmd->add_option("--pixels-per-meter", world.pixels_per_meter, "Image scale (default: 1600 px wide)")
       ->check(CLI::PositiveNumber);
   world_cmd->add_option("--seed", world.seed, "Seed for the pedestrians' spawn points");
 
@@ -67,6 +71,25 @@ int main(int argc, char** argv) {
   CLI::App* campus_cmd = app.add_subcommand(
       "generate-campus", "Turn a route into a campus world: buildings, hedges, trees, poles, benches, pedestrians");
   bench::AddGenerateCampusOptions(campus_cmd, &campus);
+
+  bench::CompareOptions compare;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare", "Compare map modes over several seeds: paired differences with 95% confidence intervals");
+  bench::AddCompareOptions(compare_cmd, &compare);
+
+  bench::BenchOptions bench_options;
+  CLI::App* bench_cmd = app.add_subcommand(
+      "bench", "Run a regression suite and compare its metrics with the committed baseline (exit 1 on a regression)");
+  bench::AddBenchOptions(bench_cmd, &bench_options);
+
+  bench::SweepOptions sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "sweep", "Run a parameter sweep: every case of a sweep file, in parallel, resumable, in shards");
+  bench::AddSweepOptions(sweep_cmd, &sweep);
+
+  bench::MergeOptions merge;
+  CLI::App* merge_cmd = app.add_subcommand("merge", "Join the results folders of a sweep's shards into one");
+  bench::AddMergeOptions(merge_cmd, &merge);
 
   try {
     app.parse(argc, argv);
@@ -86,6 +109,10 @@ int main(int argc, char** argv) {
     if (*playback_cmd) return bench::RunRunCommand(playback, bench::RunPhases::kPlaybackOnly, command_line);
     if (*world_cmd) std::cout << bench::RunWorldCommand(world) << "\n";
     if (*campus_cmd) std::cout << bench::RunGenerateCampusCommand(campus) << "\n";
+    if (*compare_cmd) return bench::RunCompareCommand(compare, command_line);
+    if (*bench_cmd) return bench::RunBenchCommand(bench_options);
+    if (*sweep_cmd) return bench::RunSweepCommand(sweep, command_line);
+    if (*merge_cmd) return bench::RunMergeCommand(merge, command_line);
     if (*render_cmd) {
       const auto files = bench::RenderResults(render_dir);
       std::cout << files.size() << " figures in " << render_dir.string() << "\n";

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "bench/experiment.hpp"
+#include "bench/staged_folder.hpp"
 #include "bench/manifest.hpp"
 #include "bench/metrics.hpp"
 #include "bench/parallel.hpp"
@@ -37,32 +38,6 @@ std::vector<MapMode> ResolveModes(const std::string& mode, const std::vector<Map
   }
   return {*parsed};
 }
-
-// Publishes a results folder in one step: everything is written into `<final>.tmp`, which then
-// replaces `final`, so an interrupted run never leaves a half-written results folder behind.
-class StagedFolder {
- public:
-  explicit StagedFolder(std::filesystem::path final_dir)
-      : final_(std::move(final_dir)), staging_(final_.string() + ".tmp") {
-    std::filesystem::remove_all(staging_);
-    std::filesystem::create_directories(staging_);
-  }
-  ~StagedFolder() {
-    std::error_code ignored;
-    if (!committed_) std::filesystem::remove_all(staging_, ignored);
-  }
-  const std::filesystem::path& path() const { return staging_; }
-  void Commit() {
-    std::filesystem::remove_all(final_);
-    std::filesystem::rename(staging_, final_);
-    committed_ = true;
-  }
-
- private:
-  std::filesystem::path final_;
-  std::filesystem::path staging_;
-  bool committed_ = false;
-};
 
 }  // namespace
 

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs what is missing, checks the include rules, builds and runs every test, then builds
-# once more with AddressSanitizer + UndefinedBehaviorSanitizer and runs the fast tests again.
+# Installs what is missing, checks the include rules, builds and runs every test, runs the CI
+# regression suite against its committed baseline (navigation metrics gated, timing reported),
+# then builds once more with AddressSanitizer + UndefinedBehaviorSanitizer and runs the fast
+# tests again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
@@ -10,6 +12,9 @@ jobs=$(nproc)
 echo "== Release build and tests"
 scripts/build.sh build -DRETRACE_WERROR=ON
 ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== Regression suite bench/suites/ci.yaml against results/baselines/ci.json"
+./build/retrace bench bench/suites/ci.yaml --jobs "$jobs"
 
 echo "== AddressSanitizer + UBSan build and tests"
 scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRETRACE_SANITIZE=ON \

@@ -88,9 +88,12 @@ FigureInfo RenderComparisonFigure(const ComparisonFigureData& data,
     }
     if (!(hi > lo)) hi = lo + 1.0;
     const double step = internal::NiceStep(hi - lo, 5);
-    // Headroom for the value labels above the bars.
-    const double y_hi = hi > 0.0 ? step * std::ceil(1.12 * hi / step) : 0.0;
-    const double y_lo = lo < 0.0 ? step * std::floor(1.12 * lo / step) : 0.0;
+    // Headroom for the value labels beyond the bars and whiskers: a share of the whole range,
+    // not of the top value, so that a tall interval (or one reaching below 0) keeps its label
+    // inside the plot.
+    const double margin = 0.12 * (hi - lo);
+    const double y_hi = hi > 0.0 ? step * std::ceil((hi + margin) / step) : 0.0;
+    const double y_lo = lo < 0.0 ? step * std::floor((lo - margin) / step) : 0.0;
     internal::Chart chart;
     const int x0 = col * tile_w;
     const int y0 = top + row * tile_h;

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The CI suite catches a real navigation regression: with dynamic scan point rejection turned
+# off (the paper's defence against pedestrians), `retrace bench bench/suites/ci.yaml` against
+# the committed baseline must exit 1, print FAIL rows and a FAIL verdict line, write its
+# report, and leave the baseline untouched. Lost runs end early, so this takes well under the
+# suite's normal time, but still tens of seconds: labelled slow.
+# Usage: bench_regression_test.sh <retrace binary> <source dir>
+set -uo pipefail
+retrace="$1"
+src="$2"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$src" || exit 1
+baseline="results/baselines/ci.json"
+before=$(cksum <"$baseline")
+
+"$retrace" bench bench/suites/ci.yaml --jobs 2 --out "$tmp/report" --set nav.localizer.rejection.enabled=false \
+  >"$tmp/stdout" 2>"$tmp/stderr"
+code=$?
+
+ok=1
+check() {  # check <description> <condition...>
+  local what="$1"
+  shift
+  if ! "$@"; then
+    echo "FAIL: $what"
+    ok=0
+  fi
+}
+check "exit code 1 (got $code)" [ "$code" -eq 1 ]
+check "a FAIL row in the table" grep -qE '^[a-z_]+\.partial\.[a-z_.]+ .* FAIL ' "$tmp/stdout"
+check "the verdict line" grep -qE '^suite ci: FAIL: [0-9]+ of [0-9]+ metrics regressed' "$tmp/stdout"
+check "report.json says FAIL" grep -q '"verdict": "FAIL"' "$tmp/report/report.json"
+check "report.md written" grep -q '^# Suite ci: FAIL' "$tmp/report/report.md"
+check "the baseline untouched" [ "$(cksum <"$baseline")" = "$before" ]
+check "nothing on stderr" [ ! -s "$tmp/stderr" ]
+if [ "$ok" -ne 1 ]; then
+  cat "$tmp/stdout" "$tmp/stderr"
+  exit 1
+fi
+grep -E ' FAIL |^suite ' "$tmp/stdout"

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# `retrace sweep` and `retrace merge` on bad input: exit code 2, exactly one line on stderr
+# naming the problem, and no results folder written (or an existing one left unchanged).
+# Usage: sweep_bad_input_test.sh <retrace binary> <source dir>
+set -uo pipefail
+retrace="$1"
+src="$2"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+
+expect_bad() {  # expect_bad <name> <expected substring> <args...>; nothing may appear in $tmp/out
+  local name="$1" want="$2"
+  shift 2
+  "$retrace" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" && [ ! -e "$tmp/out" ]; then
+    pass=$((pass + 1))
+  else
+    fail=$((fail + 1))
+    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
+    cat "$tmp/stderr"
+  fi
+}
+
+scenario="$src/scenarios/small.yaml"
+sweep() { printf 'scenario: %s\n%b' "$scenario" "$2" >"$tmp/$1"; }
+sweep unknown_key.yaml 'repeats: 2\ngrid:\n  nav.localizer.partcles: [100, 200]\n'
+sweep empty_grid.yaml 'grid:\n  nav.localizer.particles: []\n'
+sweep unknown_metric.yaml 'grid:\n  nav.localizer.particles: [100]\nmetrics: [success_rate, tracking_rms]\n'
+sweep zip_lengths.yaml 'zip:\n  nav.localizer.particles: [100, 200]\n  nav.localizer.beam_step: [5]\n'
+sweep bad_value.yaml 'grid:\n  nav.localizer.particles: [100, -5]\n'
+sweep bad_mode.yaml 'grid:\n  mode: [partial, slam]\n'
+sweep good.yaml 'grid:\n  nav.localizer.particles: [100]\n'
+
+out=(--out "$tmp/out")
+expect_bad unknown-key "unknown_key.yaml:4: nav.localizer.partcles: unknown key; did you mean 'particles'?" sweep "$tmp/unknown_key.yaml" "${out[@]}"
+expect_bad empty-grid "empty_grid.yaml:3: grid.nav.localizer.particles: empty list" sweep "$tmp/empty_grid.yaml" "${out[@]}"
+expect_bad unknown-metric "unknown metric 'tracking_rms'; did you mean 'tracking_error_m.pooled.rms'?" sweep "$tmp/unknown_metric.yaml" "${out[@]}"
+expect_bad zip-lengths "zipped lists must have equal lengths" sweep "$tmp/zip_lengths.yaml" "${out[@]}"
+expect_bad bad-value "bad_value.yaml:3: nav.localizer.particles: must be in" sweep "$tmp/bad_value.yaml" "${out[@]}"
+expect_bad bad-mode "unknown map mode 'slam'" sweep "$tmp/bad_mode.yaml" "${out[@]}"
+expect_bad missing-file "nowhere.yaml: cannot open file" sweep "$tmp/nowhere.yaml" "${out[@]}"
+expect_bad bad-shard "--shard: expected i/N with 1 <= i <= N" sweep "$tmp/good.yaml" --shard 4/3 "${out[@]}"
+expect_bad bad-shard-text "--shard: expected i/N" sweep "$tmp/good.yaml" --shard two "${out[@]}"
+expect_bad bad-set "--set expects key.path=value" sweep "$tmp/good.yaml" --set nonsense "${out[@]}"
+expect_bad set-unknown "nav.localizer.partcles: unknown key" sweep "$tmp/good.yaml" --set nav.localizer.partcles=5 "${out[@]}"
+expect_bad merge-nothing "no such folder" merge "$tmp/none" --out "$tmp/out"
+expect_bad merge-no-record "not a sweep results folder" merge "$tmp" --out "$tmp/out"
+
+# A folder that holds something else is refused and left as it was.
+mkdir -p "$tmp/other"
+printf 'case,x\n0,1\n' >"$tmp/other/results.csv"
+expect_bad foreign-results "holds results of another sweep (a results.csv without sweep.json)" sweep "$tmp/good.yaml" --out "$tmp/other"
+[ "$(cat "$tmp/other/results.csv")" = "$(printf 'case,x\n0,1')" ] || { fail=$((fail + 1)); echo "FAIL: the foreign results.csv was changed"; }
+[ ! -e "$tmp/other/sweep.json" ] || { fail=$((fail + 1)); echo "FAIL: sweep.json written into a foreign folder"; }
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
