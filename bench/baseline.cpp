@@ -21,13 +21,17 @@ constexpr const char* kFormat = "retrace-baseline/1";
   throw core::IoError(file.string() + ": not a retrace baseline: " + what);
 }
 
-std::string StringField(const nlohmann::json& root, const char* key, const std::filesystem::path& file) {
-  if (!root.contains(key) || !root[key].is_string()) NotABaseline(file, std::string("'") + key + "' must be a string");
+std::string StringField(const nlohmann::json& root, const char* key,
+                        const std::filesystem::path& file) {
+  if (!root.contains(key) || !root[key].is_string())
+    NotABaseline(file, std::string("'") + key + "' must be a string");
   return root[key].get<std::string>();
 }
 
-std::map<std::string, double> NumberMap(const nlohmann::json& root, const char* key, const std::filesystem::path& file) {
-  if (!root.contains(key) || !root[key].is_object()) NotABaseline(file, std::string("'") + key + "' must be an object");
+std::map<std::string, double> NumberMap(const nlohmann::json& root, const char* key,
+                                        const std::filesystem::path& file) {
+  if (!root.contains(key) || !root[key].is_object())
+    NotABaseline(file, std::string("'") + key + "' must be an object");
   std::map<std::string, double> out;
   for (const auto& [name, value] : root[key].items()) {
     if (value.is_null()) {
@@ -45,7 +49,8 @@ std::map<std::string, double> NumberMap(const nlohmann::json& root, const char* 
 std::string FirstDifference(const nlohmann::json& recorded, const nlohmann::json& now) {
   for (const auto& [key, value] : now.items()) {
     if (!recorded.contains(key) || recorded[key] != value) {
-      return key + " " + (recorded.contains(key) ? recorded[key].dump() : std::string("(none)")) + " -> " + value.dump();
+      return key + " " + (recorded.contains(key) ? recorded[key].dump() : std::string("(none)")) +
+             " -> " + value.dump();
     }
   }
   return "fields differ";
@@ -75,8 +80,8 @@ nlohmann::json EntryDefinition(const SuiteEntry& entry) {
   for (MapMode mode : entry.modes) modes.push_back(std::string(core::EnumName(mode)));
   nlohmann::json set = nlohmann::json::object();
   for (const io::ConfigOverride& o : entry.overrides) set[o.key_path] = o.value;
-  return {{"name", entry.name}, {"scenario", entry.scenario_text}, {"modes", modes},
-          {"seeds", entry.seeds}, {"repeats", entry.repeats},       {"set", set}};
+  return {{"name", entry.name},   {"scenario", entry.scenario_text}, {"modes", modes},
+          {"seeds", entry.seeds}, {"repeats", entry.repeats},        {"set", set}};
 }
 
 Baseline MakeBaseline(const SuiteSpec& spec, const SuiteResults& results) {
@@ -108,7 +113,8 @@ Baseline ReadBaseline(const std::filesystem::path& file) {
   b.git_revision = StringField(root, "git_revision", file);
   b.build_type = StringField(root, "build_type", file);
   b.date = StringField(root, "date", file);
-  if (!root.contains("entries") || !root["entries"].is_array()) NotABaseline(file, "'entries' must be a list");
+  if (!root.contains("entries") || !root["entries"].is_array())
+    NotABaseline(file, "'entries' must be a list");
   for (const nlohmann::json& entry : root["entries"]) {
     if (!entry.is_object() || !entry.contains("name") || !entry["name"].is_string()) {
       NotABaseline(file, "every entry needs a name");
@@ -122,9 +128,11 @@ Baseline ReadBaseline(const std::filesystem::path& file) {
 
 void WriteBaseline(const std::filesystem::path& file, const Baseline& b) {
   nlohmann::json metrics = nlohmann::json::object();
-  for (const auto& [name, value] : b.metrics) metrics[name] = std::isfinite(value) ? nlohmann::json(value) : nullptr;
+  for (const auto& [name, value] : b.metrics)
+    metrics[name] = std::isfinite(value) ? nlohmann::json(value) : nullptr;
   nlohmann::json timing = nlohmann::json::object();
-  for (const auto& [name, value] : b.timing) timing[name] = std::isfinite(value) ? nlohmann::json(value) : nullptr;
+  for (const auto& [name, value] : b.timing)
+    timing[name] = std::isfinite(value) ? nlohmann::json(value) : nullptr;
   // nlohmann::ordered_json keeps the header fields first, where a reader looks.
   nlohmann::ordered_json root;
   root["format"] = kFormat;
@@ -141,11 +149,15 @@ void WriteBaseline(const std::filesystem::path& file, const Baseline& b) {
   io::WriteFileAtomic(file, text + "\n");
 }
 
-void CheckBaselineMatches(const Baseline& baseline, const SuiteSpec& spec, const std::filesystem::path& file) {
-  const std::string update = "; record a new one with `retrace bench " + spec.source.string() + " --update-baseline`";
+void CheckBaselineMatches(const Baseline& baseline, const SuiteSpec& spec,
+                          const std::filesystem::path& file) {
+  const std::string update =
+      "; record a new one with `retrace bench " + spec.source.string() + " --update-baseline`";
   if (baseline.suite != spec.name) {
-    throw core::ConfigError("", file.string() + " is the baseline of suite '" + baseline.suite + "', not of '" + spec.name +
-                                    "' (" + spec.source.string() + ")", true);
+    throw core::ConfigError("",
+                            file.string() + " is the baseline of suite '" + baseline.suite +
+                                "', not of '" + spec.name + "' (" + spec.source.string() + ")",
+                            true);
   }
   for (const SuiteEntry& entry : spec.entries) {
     const nlohmann::json now = EntryDefinition(entry);
@@ -154,11 +166,15 @@ void CheckBaselineMatches(const Baseline& baseline, const SuiteSpec& spec, const
       if (e["name"] == entry.name) recorded = &e;
     }
     if (recorded == nullptr) {
-      throw core::ConfigError("", file.string() + ": entry '" + entry.name + "' is not in the baseline" + update, true);
+      throw core::ConfigError(
+          "", file.string() + ": entry '" + entry.name + "' is not in the baseline" + update, true);
     }
     if (*recorded != now) {
-      throw core::ConfigError("", file.string() + ": entry '" + entry.name + "' has changed since the baseline (" +
-                                      FirstDifference(*recorded, now) + ")" + update, true);
+      throw core::ConfigError("",
+                              file.string() + ": entry '" + entry.name +
+                                  "' has changed since the baseline (" +
+                                  FirstDifference(*recorded, now) + ")" + update,
+                              true);
     }
   }
   if (baseline.entries.size() != spec.entries.size()) {
@@ -167,7 +183,9 @@ void CheckBaselineMatches(const Baseline& baseline, const SuiteSpec& spec, const
       const bool present = std::any_of(spec.entries.begin(), spec.entries.end(),
                                        [&](const SuiteEntry& entry) { return entry.name == name; });
       if (!present) {
-        throw core::ConfigError("", file.string() + ": entry '" + name + "' of the baseline is no longer in the suite" + update,
+        throw core::ConfigError("",
+                                file.string() + ": entry '" + name +
+                                    "' of the baseline is no longer in the suite" + update,
                                 true);
       }
     }

@@ -11,7 +11,7 @@
 //     "build_type": "Release",
 //     "date": "2025-06-01T12:00:00Z",       // UTC
 //     "entries": [{"name", "scenario", "modes", "seeds", "repeats", "set"}, …],
-//     "metrics": {"small.partial.success_rate": 1, …},       // every navigation metric; null: NaN
+//     "metrics": {"small.partial.success_rate": 1, …},  // navigation metrics; null: NaN
 //     "timing": {"small.partial.cpu.real_time_factor": 84.2, …}   // cpu.*, for information
 //   }
 //
@@ -57,7 +57,8 @@ void WriteBaseline(const std::filesystem::path& file, const Baseline& baseline);
 
 /// Throws core::ConfigError naming `file` when the baseline was recorded for another suite or
 /// for other entry definitions than `spec`'s.
-void CheckBaselineMatches(const Baseline& baseline, const SuiteSpec& spec, const std::filesystem::path& file);
+void CheckBaselineMatches(const Baseline& baseline, const SuiteSpec& spec,
+                          const std::filesystem::path& file);
 
 /// The time now, UTC, ISO 8601 ("2025-06-01T12:00:00Z").
 std::string UtcNow();

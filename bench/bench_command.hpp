@@ -19,8 +19,8 @@ struct BenchOptions {
   std::filesystem::path suite;
   std::filesystem::path baseline;  ///< empty: results/baselines/<suite name>.json
   bool update_baseline = false;
-  int jobs = 0;                    ///< worker threads; 0: one per core
-  std::filesystem::path out;       ///< report folder; empty: results/bench/<suite name>
+  int jobs = 0;                        ///< worker threads; 0: one per core
+  std::filesystem::path out;           ///< report folder; empty: results/bench/<suite name>
   std::vector<std::string> overrides;  ///< --set, applied to every entry after its own `set`
 };
 

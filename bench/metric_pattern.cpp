@@ -23,18 +23,22 @@ bool MatchMetricPattern(std::string_view pattern, std::string_view name) {
     }
     return false;
   }
-  return !name.empty() && name.front() == pattern.front() && MatchMetricPattern(pattern.substr(1), name.substr(1));
+  return !name.empty() && name.front() == pattern.front() &&
+         MatchMetricPattern(pattern.substr(1), name.substr(1));
 }
 
 std::string PatternProblem(std::string_view pattern) {
   if (pattern.empty()) return "empty pattern";
   for (char c : pattern) {
-    if (std::isalnum(static_cast<unsigned char>(c)) == 0 && c != '_' && c != '-' && c != '.' && c != '*') {
-      return std::string("unexpected character '") + c + "' (patterns use letters, digits, _ - . * **)";
+    if (std::isalnum(static_cast<unsigned char>(c)) == 0 && c != '_' && c != '-' && c != '.' &&
+        c != '*') {
+      return std::string("unexpected character '") + c +
+             "' (patterns use letters, digits, _ - . * **)";
     }
   }
   if (pattern.find("***") != std::string_view::npos) return "'***' is not a wildcard; use * or **";
-  if (pattern.front() == '.' || pattern.back() == '.' || pattern.find("..") != std::string_view::npos) {
+  if (pattern.front() == '.' || pattern.back() == '.' ||
+      pattern.find("..") != std::string_view::npos) {
     return "empty dotted part";
   }
   return "";

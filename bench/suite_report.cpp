@@ -23,7 +23,8 @@ std::string Number(std::optional<double> v) {
 }
 
 std::optional<double> Delta(const ReportRow& row) {
-  if (!row.baseline || !row.now || !std::isfinite(*row.baseline) || !std::isfinite(*row.now)) return std::nullopt;
+  if (!row.baseline || !row.now || !std::isfinite(*row.baseline) || !std::isfinite(*row.now))
+    return std::nullopt;
   return *row.now - *row.baseline;
 }
 
@@ -65,7 +66,8 @@ double SeedStdDev(const std::vector<double>& values) {
   return std::sqrt(sum / static_cast<double>(finite.size() - 1));
 }
 
-SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& results, const Baseline* baseline) {
+SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& results,
+                                const Baseline* baseline) {
   SuiteReport report;
   report.suite = spec.name;
   report.compared = baseline != nullptr;
@@ -122,7 +124,8 @@ SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& resul
   }
   std::vector<std::size_t> order(report.rows.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return order_keys[a] < order_keys[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return order_keys[a] < order_keys[b]; });
   std::vector<ReportRow> sorted;
   for (std::size_t i : order) sorted.push_back(std::move(report.rows[i]));
   report.rows = std::move(sorted);
@@ -134,13 +137,14 @@ std::string ReportTable(const SuiteReport& report) {
   for (const ReportRow& row : report.rows) width = std::max(width, row.name.size());
   std::string text;
   char line[1024];
-  std::snprintf(line, sizeof line, "%-*s %10s %10s %10s  %-8s  %s\n", static_cast<int>(width), "metric", "baseline", "now",
-                "delta", "verdict", "tolerance");
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %10s  %-8s  %s\n", static_cast<int>(width),
+                "metric", "baseline", "now", "delta", "verdict", "tolerance");
   text += line;
   for (const ReportRow& row : report.rows) {
-    std::snprintf(line, sizeof line, "%-*s %10s %10s %10s  %-8s  %s\n", static_cast<int>(width), row.name.c_str(),
-                  Number(row.baseline).c_str(), Number(row.now).c_str(), SignedNumber(Delta(row)).c_str(),
-                  VerdictText(report, row).c_str(), Why(report, row).c_str());
+    std::snprintf(line, sizeof line, "%-*s %10s %10s %10s  %-8s  %s\n", static_cast<int>(width),
+                  row.name.c_str(), Number(row.baseline).c_str(), Number(row.now).c_str(),
+                  SignedNumber(Delta(row)).c_str(), VerdictText(report, row).c_str(),
+                  Why(report, row).c_str());
     text += line;
   }
   return text;
@@ -151,40 +155,47 @@ std::string ReportMarkdown(const SuiteReport& report, const ReportContext& conte
   if (!report.compared) {
     md += "baseline recorded\n\n";
   } else {
-    md += report.failures > 0 ? "FAIL (" + std::to_string(report.failures) + " regressions)\n\n" : "pass\n\n";
+    md += report.failures > 0 ? "FAIL (" + std::to_string(report.failures) + " regressions)\n\n"
+                              : "pass\n\n";
   }
   md += "- suite: `" + context.suite_file.string() + "` (" + context.suite_digest + ")\n";
   if (context.baseline != nullptr) {
-    md += "- baseline: `" + context.baseline_file.string() + "`, git " + context.baseline->git_revision + ", " +
-          context.baseline->build_type + ", " + context.baseline->date + "\n";
+    md += "- baseline: `" + context.baseline_file.string() + "`, git " +
+          context.baseline->git_revision + ", " + context.baseline->build_type + ", " +
+          context.baseline->date + "\n";
   }
-  md += "- now: git " + context.git_revision + ", " + context.date + ", " + std::to_string(context.jobs) + " jobs, " +
-        Number(context.wall_time_s) + " s\n";
+  md += "- now: git " + context.git_revision + ", " + context.date + ", " +
+        std::to_string(context.jobs) + " jobs, " + Number(context.wall_time_s) + " s\n";
   for (const std::string& o : context.overrides) md += "- `--set " + o + "`\n";
-  md += "\n| metric | baseline | now | delta | seed sd | verdict | tolerance |\n|---|---:|---:|---:|---:|---|---|\n";
+  md +=
+      "\n| metric | baseline | now | delta | seed sd | verdict | tolerance "
+      "|\n|---|---:|---:|---:|---:|---|---|\n";
   for (const ReportRow& row : report.rows) {
     const std::string verdict = VerdictText(report, row);
-    md += "| " + row.name + " | " + Number(row.baseline) + " | " + Number(row.now) + " | " + SignedNumber(Delta(row)) +
-          " | " + Number(std::isnan(row.seed_sd) ? std::nullopt : std::optional<double>(row.seed_sd)) + " | " +
-          (IsFailure(row.check.verdict) && report.compared ? "**" + verdict + "**" : verdict) + " | " + Why(report, row) +
-          " |\n";
+    md += "| " + row.name + " | " + Number(row.baseline) + " | " + Number(row.now) + " | " +
+          SignedNumber(Delta(row)) + " | " +
+          Number(std::isnan(row.seed_sd) ? std::nullopt : std::optional<double>(row.seed_sd)) +
+          " | " +
+          (IsFailure(row.check.verdict) && report.compared ? "**" + verdict + "**" : verdict) +
+          " | " + Why(report, row) + " |\n";
   }
   return md;
 }
 
-nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& context, const SuiteSpec& spec,
-                          const SuiteResults& results) {
+nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& context,
+                          const SuiteSpec& spec, const SuiteResults& results) {
   nlohmann::json rows = nlohmann::json::array();
   for (const ReportRow& row : report.rows) {
-    rows.push_back({{"metric", row.name},
-                    {"baseline", JsonNumber(row.baseline)},
-                    {"now", JsonNumber(row.now)},
-                    {"delta", JsonNumber(Delta(row))},
-                    {"seed_sd", JsonNumber(row.seed_sd)},
-                    {"pattern", row.pattern},
-                    {"tolerance", DescribeTolerance(row.tolerance)},
-                    {"verdict", report.compared ? std::string(core::EnumName(row.check.verdict)) : "new"},
-                    {"reason", row.check.reason}});
+    rows.push_back(
+        {{"metric", row.name},
+         {"baseline", JsonNumber(row.baseline)},
+         {"now", JsonNumber(row.now)},
+         {"delta", JsonNumber(Delta(row))},
+         {"seed_sd", JsonNumber(row.seed_sd)},
+         {"pattern", row.pattern},
+         {"tolerance", DescribeTolerance(row.tolerance)},
+         {"verdict", report.compared ? std::string(core::EnumName(row.check.verdict)) : "new"},
+         {"reason", row.check.reason}});
   }
   nlohmann::json metrics = nlohmann::json::object();
   for (const auto& [name, metric] : results.metrics) {
@@ -210,7 +221,9 @@ nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& contex
           {"wall_time_s", context.wall_time_s},
           {"jobs", context.jobs},
           {"set", context.overrides},
-          {"verdict", !report.compared ? "recorded" : report.failures > 0 ? "FAIL" : "pass"},
+          {"verdict", !report.compared      ? "recorded"
+                      : report.failures > 0 ? "FAIL"
+                                            : "pass"},
           {"counts",
            {{"checked", report.checked},
             {"failures", report.failures},

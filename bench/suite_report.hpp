@@ -37,7 +37,8 @@ struct SuiteReport {
 };
 
 /// Compares `results` with `baseline` (nullptr: only lists the values).
-SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& results, const Baseline* baseline);
+SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& results,
+                                const Baseline* baseline);
 
 /// The table printed on stdout: metric, baseline, now, delta, verdict, tolerance and why.
 std::string ReportTable(const SuiteReport& report);
@@ -58,8 +59,8 @@ struct ReportContext {
 std::string ReportMarkdown(const SuiteReport& report, const ReportContext& context);
 
 /// The rows, plus every metric's mean and per-seed values (to measure seed-to-seed spreads).
-nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& context, const SuiteSpec& spec,
-                          const SuiteResults& results);
+nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& context,
+                          const SuiteSpec& spec, const SuiteResults& results);
 
 /// Sample standard deviation (n - 1) of the finite values; NaN with fewer than two.
 double SeedStdDev(const std::vector<double>& values);

@@ -33,7 +33,8 @@ std::string Where(const SuiteSpec& spec, const SuiteEntry& entry) {
 std::vector<std::size_t> LongestFirst(const std::vector<double>& cost) {
   std::vector<std::size_t> order(cost.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
   return order;
 }
 
@@ -51,7 +52,8 @@ double MeanOfDefined(const std::vector<double>& values) {
   return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
 }
 
-SuiteScenarios LoadSuiteScenarios(const SuiteSpec& spec, const std::vector<io::ConfigOverride>& extra, int jobs) {
+SuiteScenarios LoadSuiteScenarios(const SuiteSpec& spec,
+                                  const std::vector<io::ConfigOverride>& extra, int jobs) {
   struct Job {
     std::size_t entry;
     std::size_t seed;
@@ -60,8 +62,10 @@ SuiteScenarios LoadSuiteScenarios(const SuiteSpec& spec, const std::vector<io::C
   // silently replaced below, so it is refused.
   auto refuse = [&](const io::ConfigOverride& o, const std::string& where) {
     if (o.key_path == "seed" || o.key_path == "playback.repeats") {
-      throw core::ConfigError(o.key_path, where + "cannot set " + o.key_path + ": a suite entry's `seeds` and `repeats` decide it",
-                              true);
+      throw core::ConfigError(
+          o.key_path,
+          where + "cannot set " + o.key_path + ": a suite entry's `seeds` and `repeats` decide it",
+          true);
     }
   };
   for (const io::ConfigOverride& o : extra) refuse(o, "--set " + o.key_path + "=" + o.value + ": ");
@@ -99,7 +103,8 @@ SuiteScenarios LoadSuiteScenarios(const SuiteSpec& spec, const std::vector<io::C
   return out;
 }
 
-SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, int jobs, ProgressLine* progress) {
+SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, int jobs,
+                      ProgressLine* progress) {
   // A unit is one (entry, seed): one teaching drive, then repeats runs per mode.
   struct Unit {
     std::size_t entry;
@@ -108,7 +113,8 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
   };
   std::vector<Unit> units;
   for (std::size_t e = 0; e < spec.entries.size(); ++e) {
-    for (std::size_t s = 0; s < spec.entries[e].seeds.size(); ++s) units.push_back({e, s, &scenarios.scenarios[e][s]});
+    for (std::size_t s = 0; s < spec.entries[e].seeds.size(); ++s)
+      units.push_back({e, s, &scenarios.scenarios[e][s]});
   }
 
   // Teaching drives, the longest route (in time) first.
@@ -122,7 +128,8 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
   if (progress) progress->Phase("teach", static_cast<int>(units.size()));
   ParallelFor(jobs, units.size(), [&](std::size_t i) {
     const std::size_t u = teach_order[i];
-    teaches[u] = RunTeachDrive(*units[u].scenario, units[u].scenario->config.modes, Reporter(progress));
+    teaches[u] =
+        RunTeachDrive(*units[u].scenario, units[u].scenario->config.modes, Reporter(progress));
     if (progress) progress->UnitDone();
   });
 
@@ -170,10 +177,13 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
     const std::size_t slot = slot_base[task.unit] + task.mode;
     const double timeout = PlaybackTimeout(scenario, teaches[task.unit].duration_s);
     const auto run = static_cast<std::size_t>(task.run);
-    runs[slot][run] = RunPlayback(scenario, teach.bundle, teach.trace, task.run, timeout, Reporter(progress));
-    run_metrics[slot][run] = ComputeRunMetrics(teach.trace, runs[slot][run], scenario.config.metrics);
+    runs[slot][run] =
+        RunPlayback(scenario, teach.bundle, teach.trace, task.run, timeout, Reporter(progress));
+    run_metrics[slot][run] =
+        ComputeRunMetrics(teach.trace, runs[slot][run], scenario.config.metrics);
     if (remaining[slot].fetch_sub(1) == 1) {
-      aggregates[slot] = FlatMetrics(Aggregate(teach.trace, runs[slot], run_metrics[slot], scenario.config.metrics));
+      aggregates[slot] = FlatMetrics(
+          Aggregate(teach.trace, runs[slot], run_metrics[slot], scenario.config.metrics));
       runs[slot] = {};
       run_metrics[slot] = {};
       teach = {};
@@ -188,7 +198,8 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
   for (std::size_t u = 0; u < units.size(); ++u) {
     const SuiteEntry& entry = spec.entries[units[u].entry];
     for (std::size_t m = 0; m < entry.modes.size(); ++m) {
-      const std::string prefix = entry.name + "." + std::string(core::EnumName(entry.modes[m])) + ".";
+      const std::string prefix =
+          entry.name + "." + std::string(core::EnumName(entry.modes[m])) + ".";
       for (const auto& [name, value] : aggregates[slot_base[u] + m]) {
         SuiteMetric& metric = results.metrics[prefix + name];
         metric.per_seed.resize(entry.seeds.size(), std::numeric_limits<double>::quiet_NaN());

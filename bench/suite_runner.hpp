@@ -27,7 +27,8 @@ struct SuiteScenarios {
 /// core::Error naming the suite entry on any problem (an unknown `set` key, a route that is
 /// not drivable, an override of `seed` or `playback.repeats`, which the suite decides);
 /// nothing has run then. Loads on `jobs` threads (0: one per core).
-SuiteScenarios LoadSuiteScenarios(const SuiteSpec& spec, const std::vector<io::ConfigOverride>& extra, int jobs = 0);
+SuiteScenarios LoadSuiteScenarios(const SuiteSpec& spec,
+                                  const std::vector<io::ConfigOverride>& extra, int jobs = 0);
 
 /// One suite metric: its value (mean over the seeds where it is defined; NaN when none) and
 /// the value of each seed, in the entry's seed order.

@@ -58,7 +58,8 @@ std::string ScenarioName(const std::filesystem::path& scenario) {
   return scenario.stem().string();
 }
 
-SuiteEntry ReadEntry(const YAML::Node& node, const ReadContext& ctx, const std::filesystem::path& dir) {
+SuiteEntry ReadEntry(const YAML::Node& node, const ReadContext& ctx,
+                     const std::filesystem::path& dir) {
   if (!node.IsMap()) Fail(node, ctx, "expected a mapping with scenario, modes and seeds");
   io::internal::CheckKeys(node, ctx, {"scenario", "name", "modes", "seeds", "repeats", "set"});
   SuiteEntry entry;
@@ -75,12 +76,14 @@ SuiteEntry ReadEntry(const YAML::Node& node, const ReadContext& ctx, const std::
   if (const YAML::Node name = node["name"]) {
     entry.name = io::internal::ReadString(name, ctx.Child("name"));
     if (!IsPlainName(entry.name)) {
-      Fail(name, ctx.Child("name"), "'" + entry.name + "' must be letters, digits, _ or - (it is part of metric names)");
+      Fail(name, ctx.Child("name"),
+           "'" + entry.name + "' must be letters, digits, _ or - (it is part of metric names)");
     }
   } else {
     entry.name = ScenarioName(entry.scenario);
     if (!IsPlainName(entry.name)) {
-      Fail(node, ctx, "the scenario's name '" + entry.name + "' cannot name metrics; give the entry a name");
+      Fail(node, ctx,
+           "the scenario's name '" + entry.name + "' cannot name metrics; give the entry a name");
     }
   }
 
@@ -99,12 +102,14 @@ SuiteEntry ReadEntry(const YAML::Node& node, const ReadContext& ctx, const std::
   if (entry.seeds.empty()) Fail(seeds, ctx.Child("seeds"), "needs at least one seed");
   for (std::size_t i = 0; i < entry.seeds.size(); ++i) {
     if (std::count(entry.seeds.begin(), entry.seeds.end(), entry.seeds[i]) > 1) {
-      Fail(seeds[i], ctx.Child("seeds").Element(i), "seed " + std::to_string(entry.seeds[i]) + " is listed twice");
+      Fail(seeds[i], ctx.Child("seeds").Element(i),
+           "seed " + std::to_string(entry.seeds[i]) + " is listed twice");
     }
   }
 
   if (const YAML::Node repeats = node["repeats"]) {
-    entry.repeats = static_cast<int>(io::internal::ReadInteger(repeats, ctx.Child("repeats"), 1, 1000));
+    entry.repeats =
+        static_cast<int>(io::internal::ReadInteger(repeats, ctx.Child("repeats"), 1, 1000));
   }
 
   if (const YAML::Node set = node["set"]) {
@@ -131,15 +136,18 @@ Tolerance ReadTolerance(const YAML::Node& node, const ReadContext& ctx) {
   };
   non_negative("abs", t.abs);
   non_negative("rel", t.rel);
-  if (const YAML::Node value = node["min"]) t.min = io::internal::ReadDouble(value, ctx.Child("min"));
-  if (const YAML::Node value = node["max"]) t.max = io::internal::ReadDouble(value, ctx.Child("max"));
+  if (const YAML::Node value = node["min"])
+    t.min = io::internal::ReadDouble(value, ctx.Child("min"));
+  if (const YAML::Node value = node["max"])
+    t.max = io::internal::ReadDouble(value, ctx.Child("max"));
   if (t.min && t.max && *t.min > *t.max) Fail(node["max"], ctx.Child("max"), "must be >= min");
   if (const YAML::Node value = node["better"]) {
     Better better{};
     io::internal::Read(value, better, ctx.Child("better"));
     t.better = better;
   }
-  if (const YAML::Node value = node["report"]) t.report = io::internal::ReadBool(value, ctx.Child("report"));
+  if (const YAML::Node value = node["report"])
+    t.report = io::internal::ReadBool(value, ctx.Child("report"));
   if (t.report && (t.has_delta() || t.has_bound() || t.better)) {
     Fail(node, ctx, "report: true stands alone (a reported metric is never gated)");
   }
@@ -195,21 +203,26 @@ void CheckRules(const SuiteSpec& spec, const YAML::Node& metrics, const ReadCont
   for (const std::string& name : names) {
     const int decider = DecidingPattern(patterns, name);
     if (decider >= 0) ++decides[static_cast<std::size_t>(decider)];
-    for (std::size_t i = 0; i < patterns.size(); ++i) matches[i] += MatchMetricPattern(patterns[i], name) ? 1 : 0;
+    for (std::size_t i = 0; i < patterns.size(); ++i)
+      matches[i] += MatchMetricPattern(patterns[i], name) ? 1 : 0;
   }
   std::size_t i = 0;
   for (const auto& kv : metrics) {
     const ReadContext rule_ctx = ctx.Child(patterns[i]);
     if (matches[i] == 0) {
       const std::string example = spec.entries.front().name + "." +
-                                  std::string(core::EnumName(spec.entries.front().modes.front())) + ".success_rate";
-      std::string message = "matches no metric (metrics are <entry>.<mode>.<name>, e.g. " + example + ")";
+                                  std::string(core::EnumName(spec.entries.front().modes.front())) +
+                                  ".success_rate";
+      std::string message =
+          "matches no metric (metrics are <entry>.<mode>.<name>, e.g. " + example + ")";
       const std::string nearest = NearestMetric(patterns[i]);
       if (!nearest.empty()) message += "; nearest metric name: '" + nearest + "'";
       Fail(kv.first, rule_ctx, message);
     }
     if (decides[i] == 0) {
-      Fail(kv.first, rule_ctx, "a later pattern overrides it for every metric it matches (the last match decides: put general patterns first)");
+      Fail(kv.first, rule_ctx,
+           "a later pattern overrides it for every metric it matches (the last match decides: put "
+           "general patterns first)");
     }
     ++i;
   }
@@ -249,29 +262,34 @@ SuiteSpec LoadSuiteSpec(const std::filesystem::path& file) {
   const YAML::Node name = Required(root, ctx, "name");
   spec.name = io::internal::ReadString(name, ctx.Child("name"));
   if (!IsPlainName(spec.name)) {
-    Fail(name, ctx.Child("name"), "'" + spec.name + "' must be letters, digits, _ or - (it names the baseline file)");
+    Fail(name, ctx.Child("name"),
+         "'" + spec.name + "' must be letters, digits, _ or - (it names the baseline file)");
   }
 
   const YAML::Node entries = Required(root, ctx, "entries");
-  if (!entries.IsSequence() || entries.size() == 0) Fail(entries, ctx.Child("entries"), "expected a list of entries");
+  if (!entries.IsSequence() || entries.size() == 0)
+    Fail(entries, ctx.Child("entries"), "expected a list of entries");
   std::set<std::string> entry_names;
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const ReadContext entry_ctx = ctx.Child("entries").Element(i);
     spec.entries.push_back(ReadEntry(entries[i], entry_ctx, file.parent_path()));
     if (!entry_names.insert(spec.entries.back().name).second) {
-      Fail(entries[i], entry_ctx, "entry name '" + spec.entries.back().name + "' is used twice; give one a name");
+      Fail(entries[i], entry_ctx,
+           "entry name '" + spec.entries.back().name + "' is used twice; give one a name");
     }
   }
 
   const YAML::Node metrics = Required(root, ctx, "metrics");
   const ReadContext metrics_ctx = ctx.Child("metrics");
-  if (!metrics.IsMap() || metrics.size() == 0) Fail(metrics, metrics_ctx, "expected a mapping of pattern: tolerance");
+  if (!metrics.IsMap() || metrics.size() == 0)
+    Fail(metrics, metrics_ctx, "expected a mapping of pattern: tolerance");
   for (const auto& kv : metrics) {
     MetricRule rule;
     rule.pattern = kv.first.Scalar();
     rule.line = kv.first.Mark().line + 1;
     const ReadContext rule_ctx = metrics_ctx.Child(rule.pattern);
-    if (const std::string problem = PatternProblem(rule.pattern); !problem.empty()) Fail(kv.first, rule_ctx, problem);
+    if (const std::string problem = PatternProblem(rule.pattern); !problem.empty())
+      Fail(kv.first, rule_ctx, problem);
     rule.tolerance = ReadTolerance(kv.second, rule_ctx);
     spec.rules.push_back(std::move(rule));
   }

@@ -8,11 +8,11 @@
 //       name: small                           # default: the scenario's name; unique
 //       modes: [partial, single, consistent]
 //       seeds: [1, 2, 3]                      # scenario seeds: one teaching drive each ...
-//       repeats: 2                            # ... and this many playback runs per mode (default 2)
+//       repeats: 2                            # ... and playback runs per mode (default 2)
 //       set: {nav.localizer.particles: 300}   # optional overrides, as `--set key.path=value`
 //   metrics:                                  # pattern: tolerance (bench/tolerance.hpp)
 //     "*.partial.success_rate": {min: 1.0}                 # a bound
-//     "*.*.tracking_error_m.pooled.rms": {abs: 0.02}       # worse than the baseline by > 0.02 fails
+//     "*.*.tracking_error_m.pooled.rms": {abs: 0.02}       # fails if worse by > 0.02
 //     "*.*.localization_error_m.pooled.rms": {rel: 0.25}   # ... by > 25 % of the baseline
 //     "*.*.collisions.min_clearance_m": {abs: 0.05, min: 0.02, better: higher}
 //     "*.*.cpu.real_time_factor": {report: true}           # shown, never gated

@@ -156,13 +156,13 @@ int RunSweepCommand(const SweepOptions& options, const std::string& command_line
   const SweepSpec& spec = plan.spec;
   const std::filesystem::path out =
       options.out.empty() ? DefaultSweepFolder(spec.name, shard) : options.out;
-  InspectFolder(out, plan,
-                shard);  // a folder of another sweep is an error before anything is written
+  // A folder of another sweep is an error before anything is written.
+  InspectFolder(out, plan, shard);
 
   std::filesystem::create_directories(out);
   const SweepFolderLock lock(out);
-  const FolderState state =
-      InspectFolder(out, plan, shard);  // again, now that no other process writes
+  // Again, now that no other process can write the folder.
+  const FolderState state = InspectFolder(out, plan, shard);
   const SweepTableSchema results_schema = ResultsSchema(spec.parameters, spec.metrics);
   const SweepTableSchema timings_schema = TimingsSchema(spec.timing_metrics);
   const std::size_t shard_cases = shard.CaseCount(spec.case_count());

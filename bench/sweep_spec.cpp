@@ -226,6 +226,13 @@ std::vector<std::string> ReadMetrics(const YAML::Node& node, const ReadContext& 
     }
     if (std::find(out.begin(), out.end(), name) != out.end())
       Fail(node[i], at.Element(i), "'" + name + "' is listed twice");
+    // Repeatability compares several playback runs of one teaching drive; a case has one run,
+    // so the metric would be nan in every row.
+    if (name.rfind("repeatability_", 0) == 0) {
+      Fail(node[i], at.Element(i),
+           "'" + name + "' needs several playback runs of one teaching drive, and each case of " +
+               "a sweep has one; use `retrace run --repeats N` for it");
+    }
     out.push_back(name);
   }
   return out;

@@ -24,16 +24,16 @@
 //     seed: 7
 //     parameters:
 //       nav.localizer.rejection.chi: {uniform: [0.7, 0.99]}        # [lo, hi)
-//       nav.localizer.augmented.alpha_fast: {log_uniform: [0.01, 0.3]}   # log-uniform, 0 < lo < hi
+//       nav.localizer.augmented.alpha_fast: {log_uniform: [0.01, 0.3]}   # 0 < lo < hi
 //       nav.localizer.particles: {int_uniform: [100, 2000]}        # integers, both ends included
 //       mode: {choice: [partial, consistent]}                      # one of the values
-//   labels: [drift]                      # varied keys that only name a combination: recorded in
-//                                        #   results.csv and plotted, not applied to the scenario
-//                                        #   (e.g. `drift: [0.5, 1, 2]` zipped with the keys it
-//                                        scales)
+//   labels: [drift]                      # varied keys that only name a combination: recorded
+//                                        #   in results.csv and plotted, not applied to the
+//                                        #   scenario (`drift: [0.5, 1, 2]` zipped with the keys
+//                                        #   it scales)
 //   plot: [drift, mode]                  # the parameters sweep.png plots against (default: all)
-//   metrics: [success_rate, tracking_error_m.pooled.rms]   # FlatMetrics names
-//   (bench/experiment.hpp)
+//   metrics: [success_rate, tracking_error_m.pooled.rms]   # FlatMetrics names (default:
+//                                        #   DefaultSweepMetrics)
 //
 // Combinations = (grid product) x (zip rows) x (random samples) of the sections present, in
 // that nesting order (grid outermost); with none of them there is one combination. A case is

@@ -13,10 +13,16 @@ namespace {
 // The metrics where more is better: success, progress, detection quality, speed of the
 // simulation, distance kept from things. Everything else is an error, a count of bad events or
 // a cost, where less is better.
-constexpr std::array<std::string_view, 10> kHigherIsBetter = {
-    "success_rate",  "successes", "success",         "mean_progress_m",      "precision",
-    "recall",        "real_time_factor", "min_clearance_m", "min_pedestrian_gap_m",
-    "repeatability_stations_used"};
+constexpr std::array<std::string_view, 10> kHigherIsBetter = {"success_rate",
+                                                              "successes",
+                                                              "success",
+                                                              "mean_progress_m",
+                                                              "precision",
+                                                              "recall",
+                                                              "real_time_factor",
+                                                              "min_clearance_m",
+                                                              "min_pedestrian_gap_m",
+                                                              "repeatability_stations_used"};
 
 // Four significant digits: enough to see a change in a table, short enough to read.
 std::string Short(double v) {
@@ -30,8 +36,9 @@ std::string Short(double v) {
 Better DefaultBetter(std::string_view metric) {
   const std::size_t dot = metric.rfind('.');
   const std::string_view leaf = dot == std::string_view::npos ? metric : metric.substr(dot + 1);
-  return std::find(kHigherIsBetter.begin(), kHigherIsBetter.end(), leaf) != kHigherIsBetter.end() ? Better::kHigher
-                                                                                                   : Better::kLower;
+  return std::find(kHigherIsBetter.begin(), kHigherIsBetter.end(), leaf) != kHigherIsBetter.end()
+             ? Better::kHigher
+             : Better::kLower;
 }
 
 MetricCheck CheckMetric(std::string_view metric, std::optional<double> baseline, double now,
@@ -44,13 +51,16 @@ MetricCheck CheckMetric(std::string_view metric, std::optional<double> baseline,
   if (std::isnan(now)) return {Verdict::kFail, "became undefined"};
   if (std::isnan(base)) return {Verdict::kFail, "appeared (undefined in the baseline)"};
 
-  if (tolerance.min && now < *tolerance.min) return {Verdict::kFail, "below min " + Short(*tolerance.min)};
-  if (tolerance.max && now > *tolerance.max) return {Verdict::kFail, "above max " + Short(*tolerance.max)};
+  if (tolerance.min && now < *tolerance.min)
+    return {Verdict::kFail, "below min " + Short(*tolerance.min)};
+  if (tolerance.max && now > *tolerance.max)
+    return {Verdict::kFail, "above max " + Short(*tolerance.max)};
   if (!tolerance.has_delta()) return {Verdict::kBound, ""};
 
   const Better better = tolerance.better.value_or(DefaultBetter(metric));
   const double worse = better == Better::kLower ? now - base : base - now;
-  const double allowed = std::max(tolerance.abs.value_or(0.0), tolerance.rel.value_or(0.0) * std::abs(base));
+  const double allowed =
+      std::max(tolerance.abs.value_or(0.0), tolerance.rel.value_or(0.0) * std::abs(base));
   if (worse > allowed) return {Verdict::kFail, "worse by " + Short(worse) + " > " + Short(allowed)};
   if (worse < -allowed) return {Verdict::kImproved, "better by " + Short(-worse)};
   return {Verdict::kPass, ""};

@@ -24,6 +24,9 @@
 // suppression lives here rather than in each test and in the command-line program. Defined
 // only in sanitizer builds; a program that needs its own suppressions must add this line.
 extern "C" const char* __lsan_default_suppressions() { return "leak:libOSMesa.so\n"; }
+// LeakSanitizer lists the suppressions it used on stderr at exit; a command-line error must
+// stay one line, so the list is not printed.
+extern "C" const char* __lsan_default_options() { return "print_suppressions=0"; }
 #endif
 
 namespace retrace::viz {

@@ -24,17 +24,20 @@ const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 SuiteSpec Spec(const retrace::testing::TempDir& tmp, const std::string& seeds = "[1, 2]") {
-  const std::string small = std::filesystem::relative(kSource / "scenarios/small.yaml", tmp.path()).string();
-  return LoadSuiteSpec(tmp.Write("suite.yaml", "name: t\n"
-                                               "entries:\n"
-                                               "  - {scenario: " + small + ", modes: [partial, single], seeds: " + seeds +
-                                                   ", set: {nav.localizer.particles: 300}}\n"
-                                               "metrics:\n"
-                                               "  \"*.*.success_rate\": {abs: 0}\n"
-                                               "  \"*.partial.success_rate\": {min: 1}\n"
-                                               "  \"*.*.tracking_error_m.pooled.rms\": {abs: 0.02}\n"
-                                               "  \"*.*.switch_error.max_m\": {rel: 0.5}\n"
-                                               "  \"*.*.cpu.real_time_factor\": {report: true}\n"));
+  const std::string small =
+      std::filesystem::relative(kSource / "scenarios/small.yaml", tmp.path()).string();
+  return LoadSuiteSpec(tmp.Write("suite.yaml",
+                                 "name: t\n"
+                                 "entries:\n"
+                                 "  - {scenario: " +
+                                     small + ", modes: [partial, single], seeds: " + seeds +
+                                     ", set: {nav.localizer.particles: 300}}\n"
+                                     "metrics:\n"
+                                     "  \"*.*.success_rate\": {abs: 0}\n"
+                                     "  \"*.partial.success_rate\": {min: 1}\n"
+                                     "  \"*.*.tracking_error_m.pooled.rms\": {abs: 0.02}\n"
+                                     "  \"*.*.switch_error.max_m\": {rel: 0.5}\n"
+                                     "  \"*.*.cpu.real_time_factor\": {report: true}\n"));
 }
 
 // Results where every metric of every mode is 0.1 on each seed, then the given values.
@@ -56,9 +59,10 @@ const ReportRow& Row(const SuiteReport& report, const std::string& name) {
 
 TEST_F(SuiteBaselineTest, RecordsEverythingAndReadsBackExactly) {
   const SuiteSpec spec = Spec(tmp_);
-  const SuiteResults results = Results(spec, {{"small.partial.switch_error.max_m", kNaN},
-                                              {"small.partial.cpu.real_time_factor", 84.25},
-                                              {"small.single.tracking_error_m.pooled.rms", 0.1 + 1e-17}});
+  const SuiteResults results =
+      Results(spec, {{"small.partial.switch_error.max_m", kNaN},
+                     {"small.partial.cpu.real_time_factor", 84.25},
+                     {"small.single.tracking_error_m.pooled.rms", 0.1 + 1e-17}});
   const Baseline made = MakeBaseline(spec, results);
   EXPECT_EQ(made.suite, "t");
   EXPECT_EQ(made.suite_digest, spec.digest);
@@ -102,11 +106,14 @@ TEST_F(SuiteBaselineTest, BrokenBaselinesAreIoErrorsNamingTheFile) {
   };
   EXPECT_THAT(error("{\"format\": "), HasSubstr("b.json: invalid JSON"));
   EXPECT_THAT(error("[]"), HasSubstr("b.json: not a retrace baseline: expected a JSON object"));
-  EXPECT_THAT(error("{\"format\": \"something else\"}"), HasSubstr("'format' must be \"retrace-baseline/1\""));
+  EXPECT_THAT(error("{\"format\": \"something else\"}"),
+              HasSubstr("'format' must be \"retrace-baseline/1\""));
   const std::string header =
-      "{\"format\": \"retrace-baseline/1\", \"suite\": \"t\", \"suite_file\": \"s\", \"suite_digest\": \"d\", "
+      "{\"format\": \"retrace-baseline/1\", \"suite\": \"t\", \"suite_file\": \"s\", "
+      "\"suite_digest\": \"d\", "
       "\"git_revision\": \"r\", \"build_type\": \"Release\", \"date\": \"x\", \"entries\": [], ";
-  EXPECT_THAT(error(header + "\"metrics\": {\"a\": \"high\"}, \"timing\": {}}"), HasSubstr("metrics.a must be a number or null"));
+  EXPECT_THAT(error(header + "\"metrics\": {\"a\": \"high\"}, \"timing\": {}}"),
+              HasSubstr("metrics.a must be a number or null"));
   EXPECT_THAT(error(header + "\"timing\": {}}"), HasSubstr("'metrics' must be an object"));
   EXPECT_EQ(error(header + "\"metrics\": {\"a\": null}, \"timing\": {}}"), "");
   try {
@@ -136,7 +143,9 @@ TEST_F(SuiteBaselineTest, ABaselineOfAnotherSuiteOrOtherEntriesIsRefused) {
   EXPECT_THAT(error(other), HasSubstr("b.json is the baseline of suite 'full', not of 't'"));
 
   const Baseline other_seeds = MakeBaseline(Spec(tmp_, "[1, 3]"), Results(spec, {}));
-  EXPECT_THAT(error(other_seeds), HasSubstr("b.json: entry 'small' has changed since the baseline (seeds [1,3] -> [1,2])"));
+  EXPECT_THAT(
+      error(other_seeds),
+      HasSubstr("b.json: entry 'small' has changed since the baseline (seeds [1,3] -> [1,2])"));
   EXPECT_THAT(error(other_seeds), HasSubstr("--update-baseline"));
 
   Baseline renamed = baseline;
@@ -151,15 +160,17 @@ TEST_F(SuiteBaselineTest, ABaselineOfAnotherSuiteOrOtherEntriesIsRefused) {
 
 TEST_F(SuiteBaselineTest, ReportGatesOnlyDecidedMetricsAndCountsRegressions) {
   const SuiteSpec spec = Spec(tmp_);
-  Baseline baseline = MakeBaseline(spec, Results(spec, {{"small.partial.success_rate", 1.0},
-                                                        {"small.single.success_rate", 0.5},
-                                                        {"small.single.switch_error.max_m", kNaN}}));
-  const SuiteResults now = Results(spec, {{"small.partial.success_rate", 0.5},                // below min 1
-                                          {"small.single.success_rate", 1.0},                 // improved
-                                          {"small.partial.tracking_error_m.pooled.rms", 0.11},  // within 0.02
-                                          {"small.single.tracking_error_m.pooled.rms", 0.2},    // worse by 0.1
-                                          {"small.single.switch_error.max_m", 0.3},             // appeared
-                                          {"small.partial.cpu.real_time_factor", 1.0}});
+  Baseline baseline =
+      MakeBaseline(spec, Results(spec, {{"small.partial.success_rate", 1.0},
+                                        {"small.single.success_rate", 0.5},
+                                        {"small.single.switch_error.max_m", kNaN}}));
+  const SuiteResults now =
+      Results(spec, {{"small.partial.success_rate", 0.5},                  // below min 1
+                     {"small.single.success_rate", 1.0},                   // improved
+                     {"small.partial.tracking_error_m.pooled.rms", 0.11},  // within 0.02
+                     {"small.single.tracking_error_m.pooled.rms", 0.2},    // worse by 0.1
+                     {"small.single.switch_error.max_m", 0.3},             // appeared
+                     {"small.partial.cpu.real_time_factor", 1.0}});
   const SuiteReport report = CompareWithBaseline(spec, now, &baseline);
   EXPECT_TRUE(report.compared);
   // 5 rules' metrics in 2 modes: success rate, tracking, switch error, rtf.
@@ -173,7 +184,8 @@ TEST_F(SuiteBaselineTest, ReportGatesOnlyDecidedMetricsAndCountsRegressions) {
   EXPECT_EQ(Row(report, "small.single.success_rate").check.verdict, Verdict::kImproved);
   EXPECT_EQ(Row(report, "small.partial.tracking_error_m.pooled.rms").check.verdict, Verdict::kPass);
   EXPECT_EQ(Row(report, "small.single.tracking_error_m.pooled.rms").check.verdict, Verdict::kFail);
-  EXPECT_EQ(Row(report, "small.single.switch_error.max_m").check.reason, "appeared (undefined in the baseline)");
+  EXPECT_EQ(Row(report, "small.single.switch_error.max_m").check.reason,
+            "appeared (undefined in the baseline)");
   EXPECT_EQ(Row(report, "small.partial.cpu.real_time_factor").check.verdict, Verdict::kReport);
   // Rows by mode, then by rule: partial's first, success rate before tracking.
   EXPECT_EQ(report.rows[0].name, "small.partial.success_rate");
@@ -200,7 +212,8 @@ TEST_F(SuiteBaselineTest, AMetricTheBaselineHasButNoLongerComputedFails) {
   SuiteResults now = Results(spec, all_succeed);
   now.metrics.erase("small.single.tracking_error_m.pooled.rms");
   const SuiteReport report = CompareWithBaseline(spec, now, &baseline);
-  EXPECT_EQ(Row(report, "small.single.tracking_error_m.pooled.rms").check.reason, "no longer computed");
+  EXPECT_EQ(Row(report, "small.single.tracking_error_m.pooled.rms").check.reason,
+            "no longer computed");
   EXPECT_EQ(report.failures, 1);
   // Without a baseline nothing fails: the values are only listed (recording the first one).
   const SuiteReport first = CompareWithBaseline(spec, Results(spec, {}), nullptr);

@@ -2,13 +2,14 @@
 // teaching drive and playback runs, whatever the number of threads; the suite value is their
 // mean. Runs one lap of the small test room (two seeds, one run each) to stay short.
 
+#include "bench/suite_runner.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "bench/experiment.hpp"
-#include "bench/suite_runner.hpp"
 #include "bench/suite_spec.hpp"
 #include "core/errors.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -21,19 +22,27 @@ using SuiteRunnerTest = retrace::testing::TempDirTest;
 
 const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
 
-constexpr const char* kOneLap = "{route.points: [[1, 1], [9, 1], [9, 5], [1, 5]], route.switch_points: [10]}";
+constexpr const char* kOneLap =
+    "{route.points: [[1, 1], [9, 1], [9, 5], [1, 5]], route.switch_points: [10]}";
 
 SuiteSpec OneLapSuite(const retrace::testing::TempDir& tmp) {
-  const std::string small = std::filesystem::relative(kSource / "scenarios/small.yaml", tmp.path()).string();
-  return LoadSuiteSpec(tmp.Write("suite.yaml", "name: lap\n"
-                                               "entries:\n"
-                                               "  - {scenario: " + small + ", modes: [partial], seeds: [1, 2], repeats: 1,\n"
-                                               "     set: " + kOneLap + "}\n"
-                                               "metrics:\n"
-                                               "  \"*.*.success_rate\": {abs: 0}\n"));
+  const std::string small =
+      std::filesystem::relative(kSource / "scenarios/small.yaml", tmp.path()).string();
+  return LoadSuiteSpec(tmp.Write("suite.yaml",
+                                 "name: lap\n"
+                                 "entries:\n"
+                                 "  - {scenario: " +
+                                     small +
+                                     ", modes: [partial], seeds: [1, 2], repeats: 1,\n"
+                                     "     set: " +
+                                     kOneLap +
+                                     "}\n"
+                                     "metrics:\n"
+                                     "  \"*.*.success_rate\": {abs: 0}\n"));
 }
 
-void ExpectSameNavigationMetrics(const std::map<std::string, double>& a, const std::map<std::string, double>& b) {
+void ExpectSameNavigationMetrics(const std::map<std::string, double>& a,
+                                 const std::map<std::string, double>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (const auto& [name, value] : a) {
     if (IsTimingMetric(name)) continue;
@@ -70,7 +79,8 @@ TEST_F(SuiteRunnerTest, SameNumbersAsRetraceRunForEachSeedWhateverTheThreads) {
     options.repeats = 1;
     const Experiment experiment = RunExperiment(scenario, {MapMode::kPartial}, options);
     std::map<std::string, double> suite_seed;
-    for (const auto& [name, metric] : parallel.metrics) suite_seed[name.substr(std::string("small.partial.").size())] = metric.per_seed[s];
+    for (const auto& [name, metric] : parallel.metrics)
+      suite_seed[name.substr(std::string("small.partial.").size())] = metric.per_seed[s];
     ExpectSameNavigationMetrics(FlatMetrics(experiment.modes[0].aggregate), suite_seed);
   }
 
@@ -80,25 +90,32 @@ TEST_F(SuiteRunnerTest, SameNumbersAsRetraceRunForEachSeedWhateverTheThreads) {
 }
 
 TEST_F(SuiteRunnerTest, BadOverridesAreErrorsBeforeAnythingRuns) {
-  const std::string small = std::filesystem::relative(kSource / "scenarios/small.yaml", tmp_.path()).string();
-  const SuiteSpec spec = LoadSuiteSpec(tmp_.Write("suite.yaml", "name: t\n"
-                                                                "entries:\n"
-                                                                "  - {scenario: " + small + ", modes: [partial], seeds: [1],\n"
-                                                                "     set: {nav.localizer.particle: 10}}\n"
-                                                                "metrics:\n"
-                                                                "  \"*.*.success_rate\": {abs: 0}\n"));
+  const std::string small =
+      std::filesystem::relative(kSource / "scenarios/small.yaml", tmp_.path()).string();
+  const SuiteSpec spec = LoadSuiteSpec(tmp_.Write("suite.yaml",
+                                                  "name: t\n"
+                                                  "entries:\n"
+                                                  "  - {scenario: " +
+                                                      small +
+                                                      ", modes: [partial], seeds: [1],\n"
+                                                      "     set: {nav.localizer.particle: 10}}\n"
+                                                      "metrics:\n"
+                                                      "  \"*.*.success_rate\": {abs: 0}\n"));
   try {
     LoadSuiteScenarios(spec, {});
     FAIL() << "no error";
   } catch (const core::ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr("suite.yaml:3: entry 'small': "));
-    EXPECT_THAT(e.what(), HasSubstr("nav.localizer.particle: unknown key; did you mean 'particles'?"));
+    EXPECT_THAT(e.what(),
+                HasSubstr("nav.localizer.particle: unknown key; did you mean 'particles'?"));
   }
   try {
     LoadSuiteScenarios(OneLapSuite(tmp_), {io::ParseOverride("playback.repeats=5")});
     FAIL() << "no error";
   } catch (const core::ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("cannot set playback.repeats: a suite entry's `seeds` and `repeats` decide it"));
+    EXPECT_THAT(
+        e.what(),
+        HasSubstr("cannot set playback.repeats: a suite entry's `seeds` and `repeats` decide it"));
   }
   try {
     LoadSuiteScenarios(OneLapSuite(tmp_), {io::ParseOverride("nav.follower.max_sped=1")});

@@ -42,7 +42,8 @@ TEST(SuiteShipped, EverySuiteLoadsWithItsScenariosAndMatchesItsBaseline) {
     for (SuiteEntry& entry : first_seeds.entries) entry.seeds.resize(1);
     EXPECT_NO_THROW(LoadSuiteScenarios(first_seeds, {}));
 
-    const std::filesystem::path baseline_file = kSource / "results/baselines" / (spec.name + ".json");
+    const std::filesystem::path baseline_file =
+        kSource / "results/baselines" / (spec.name + ".json");
     const Baseline baseline = ReadBaseline(baseline_file);
     EXPECT_NO_THROW(CheckBaselineMatches(baseline, spec, baseline_file));
 

@@ -93,8 +93,8 @@ TEST_P(SweepPartialRow, IsDroppedOnResumeAndTheNextAppendFollowsTheLastGoodRow) 
   ASSERT_EQ(table.rows.size(), 2u);
   EXPECT_EQ(table.complete_size, good.size());
   EXPECT_EQ(table.dropped + "\n", GetParam().back() == '\n' ? GetParam() : GetParam() + "\n");
-  EXPECT_THROW(ReadSweepTable(file, kSchema, PartialRow::kReject),
-               core::IoError);  // a merge wants it whole
+  // A merge wants the table whole.
+  EXPECT_THROW(ReadSweepTable(file, kSchema, PartialRow::kReject), core::IoError);
   {
     SweepTableAppender appender(file, kSchema, table.complete_size);
     appender.Append(Row(1, 0.125));

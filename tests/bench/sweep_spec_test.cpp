@@ -193,8 +193,8 @@ TEST_F(SweepSpecTest, MetricsDefaultAndTimingMetricsAreKeptApart) {
   EXPECT_EQ(plain.metrics, DefaultSweepMetrics());
   EXPECT_TRUE(plain.timing_metrics.empty());
   const SweepSpec spec = LoadSweepSpec(tmp_.Write(
-      "m.yaml", kHead + "metrics: [cpu.real_time_factor, repeatability_m, success_rate]\n"));
-  EXPECT_THAT(spec.metrics, ElementsAre("repeatability_m", "success_rate"));
+      "m.yaml", kHead + "metrics: [cpu.real_time_factor, switch_error.max_m, success_rate]\n"));
+  EXPECT_THAT(spec.metrics, ElementsAre("switch_error.max_m", "success_rate"));
   EXPECT_THAT(spec.timing_metrics, ElementsAre("cpu.real_time_factor"));
 }
 
@@ -245,6 +245,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadSpec{"UnknownMetric", kHead + "metrics: [success_rate, tracking_rms]\n",
                 "metrics[1]: unknown metric 'tracking_rms'; did you mean "
                 "'tracking_error_m.pooled.rms'?"},
+        BadSpec{"Repeatability", kHead + "metrics: [repeatability_m]\n",
+                "'repeatability_m' needs several playback runs of one teaching drive"},
         BadSpec{"MetricTwice", kHead + "metrics: [success_rate, success_rate]\n",
                 "'success_rate' is listed twice"},
         BadSpec{"OnlyTimingMetrics", kHead + "metrics: [cpu.real_time_factor]\n",

@@ -61,7 +61,7 @@ TEST(Tolerance, RelativeScalesWithTheBaseline) {
 TEST(Tolerance, AbsoluteAndRelativeTogetherAllowTheLooser) {
   Tolerance t = Abs(0.05);
   t.rel = 0.1;
-  EXPECT_EQ(V("mean_time_s", 0.1, 0.14, t), Verdict::kPass);   // abs 0.05 > 10 % of 0.1
+  EXPECT_EQ(V("mean_time_s", 0.1, 0.14, t), Verdict::kPass);     // abs 0.05 > 10 % of 0.1
   EXPECT_EQ(V("mean_time_s", 100.0, 109.0, t), Verdict::kPass);  // 10 % of 100 > abs 0.05
   EXPECT_EQ(V("mean_time_s", 100.0, 111.0, t), Verdict::kFail);
 }
@@ -88,8 +88,10 @@ TEST(Tolerance, MaxBoundFailsAbove) {
 TEST(Tolerance, DeltaAndBoundCombine) {
   Tolerance t = Abs(0.1);
   t.max = 0.5;
-  EXPECT_EQ(V("localization_error_m.pooled.max", 0.45, 0.52, t), Verdict::kFail);  // within abs, above max
-  EXPECT_EQ(V("localization_error_m.pooled.max", 0.2, 0.35, t), Verdict::kFail);   // within max, beyond abs
+  EXPECT_EQ(V("localization_error_m.pooled.max", 0.45, 0.52, t),
+            Verdict::kFail);  // within abs, above max
+  EXPECT_EQ(V("localization_error_m.pooled.max", 0.2, 0.35, t),
+            Verdict::kFail);  // within max, beyond abs
   EXPECT_EQ(V("localization_error_m.pooled.max", 0.4, 0.25, t), Verdict::kImproved);
   EXPECT_EQ(V("localization_error_m.pooled.max", 0.4, 0.45, t), Verdict::kPass);
 }
@@ -116,7 +118,8 @@ TEST(Tolerance, DirectionHigherIsBetterForSuccessProgressPrecisionRecallAndSpeed
 TEST(Tolerance, BetterOverridesTheDirection) {
   Tolerance t = Abs(0.1);
   t.better = Better::kHigher;
-  EXPECT_EQ(V("switch_error.count", 3.0, 2.0, t), Verdict::kFail);  // fewer switches: the runs ended early
+  EXPECT_EQ(V("switch_error.count", 3.0, 2.0, t),
+            Verdict::kFail);  // fewer switches: the runs ended early
   EXPECT_EQ(V("switch_error.count", 3.0, 4.0, t), Verdict::kImproved);
   t.better = Better::kLower;
   EXPECT_EQ(V("success_rate", 1.0, 0.5, t), Verdict::kImproved);
