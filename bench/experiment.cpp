@@ -5,18 +5,10 @@
 
 #include "bench/episode.hpp"
 #include "bench/parallel.hpp"
+#include "bench/progress.hpp"
 
 namespace retrace::bench {
 namespace {
-
-// Turns the episode's absolute progress reports into increments for the shared line.
-ProgressFn Reporter(ProgressLine* line) {
-  if (line == nullptr) return {};
-  return [line, last = 0.0](double t) mutable {
-    line->AddSimTime(t - last);
-    last = t;
-  };
-}
 
 void Flatten(const nlohmann::json& node, const std::string& prefix, std::map<std::string, double>& out) {
   if (node.is_object()) {
@@ -56,7 +48,7 @@ Experiment RunPlaybacks(const Scenario& scenario, std::vector<ModeTeach> teaches
     std::unique_ptr<PlaybackObserver> observer =
         options.observe ? options.observe(mode.teach, static_cast<int>(run)) : nullptr;
     mode.runs[run] = RunPlayback(scenario, mode.teach.bundle, mode.teach.trace, static_cast<int>(run), timeout,
-                                 Reporter(options.progress), observer.get());
+                                 SimTimeReporter(options.progress), observer.get());
     mode.run_metrics[run] = ComputeRunMetrics(mode.teach.trace, mode.runs[run], scenario.config.metrics);
     if (options.progress) options.progress->UnitDone();
   });
@@ -69,7 +61,7 @@ Experiment RunPlaybacks(const Scenario& scenario, std::vector<ModeTeach> teaches
 Experiment RunExperiment(const Scenario& scenario, const std::vector<MapMode>& modes,
                          const ExperimentOptions& options) {
   if (options.progress) options.progress->Phase("teach", 1);
-  TeachResult teach = RunTeachDrive(scenario, modes, Reporter(options.progress));
+  TeachResult teach = RunTeachDrive(scenario, modes, SimTimeReporter(options.progress));
   return RunPlaybacks(scenario, std::move(teach.modes), teach.duration_s, options);
 }
 

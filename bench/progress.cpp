@@ -101,4 +101,12 @@ std::string ProgressBar(int done, int total, int width) {
   return bar;
 }
 
+std::function<void(double sim_time_s)> SimTimeReporter(ProgressLine* line) {
+  if (line == nullptr) return {};
+  return [line, last = 0.0](double t) mutable {
+    line->AddSimTime(t - last);
+    last = t;
+  };
+}
+
 }  // namespace retrace::bench

@@ -5,6 +5,7 @@
 // pipes) it prints nothing, so that only the final summary appears. Thread-safe.
 
 #include <chrono>
+#include <functional>
 #include <mutex>
 #include <string>
 
@@ -43,6 +44,11 @@ class ProgressLine {
   std::chrono::steady_clock::time_point last_draw_;
   bool drawn_ = false;
 };
+
+/// A callback for a loop that reports the absolute simulated time it has reached: adds the
+/// increments to `line`. Empty when `line` is null. One callback per loop (it keeps the last
+/// time it was told).
+std::function<void(double sim_time_s)> SimTimeReporter(ProgressLine* line);
 
 /// A duration for people: "42 s", "3 min 20 s", "2 h 05 min".
 std::string FormatDuration(double seconds);

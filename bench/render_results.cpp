@@ -2,10 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "bench/local_truth.hpp"
@@ -39,38 +37,10 @@ sim::World LoadResultsWorld(const std::filesystem::path& mode_dir) {
   return sim::LoadWorld(scenario.parent_path() / world);
 }
 
-// One playback run read back: its samples from gt.tum, odom.tum and est_map.csv.
-RunTrace ReadRun(const std::filesystem::path& dir, int run) {
-  RunTrace trace;
-  trace.run = run;
-  const auto gt = io::ReadTum(dir / "gt.tum");
-  const auto odom = io::ReadTum(dir / "odom.tum");
-  std::ifstream in(dir / "est_map.csv");
-  if (!in) throw core::IoError((dir / "est_map.csv").string() + ": cannot open file");
-  std::string line;
-  std::getline(in, line);  // header
-  for (std::size_t i = 0; std::getline(in, line); ++i) {
-    if (i >= gt.size() || i >= odom.size()) throw core::IoError(dir.string() + ": est_map.csv is longer than gt.tum");
-    std::istringstream row(line);
-    std::string cell;
-    std::vector<double> v;
-    while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
-    if (v.size() != 5) throw core::IoError((dir / "est_map.csv").string() + ": expected 5 columns");
-    PlaybackSample s;
-    s.time = v[0];
-    s.map_index = static_cast<int>(v[1]);
-    s.X_MR = core::Pose2(v[2], v[3], v[4]);
-    s.X_WR = gt[i].pose;
-    s.X_OR = odom[i].pose;
-    trace.samples.push_back(s);
-  }
-  return trace;
-}
-
 std::vector<RunTrace> ReadRuns(const std::filesystem::path& mode_dir) {
   std::vector<RunTrace> runs;
   for (int i = 0; std::filesystem::is_directory(mode_dir / "runs" / std::to_string(i)); ++i) {
-    runs.push_back(ReadRun(mode_dir / "runs" / std::to_string(i), i));
+    runs.push_back(ReadRunFolder(mode_dir / "runs" / std::to_string(i), i));
   }
   return runs;
 }

@@ -1,12 +1,15 @@
 #include "bench/results_io.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/local_truth.hpp"
 #include "core/errors.hpp"
+#include "io/csv_reader.hpp"
 #include "io/csv_writer.hpp"
 #include "io/tum.hpp"
 #include "nav/teach_bundle.hpp"
@@ -129,6 +132,51 @@ void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, c
                    series.tracking_error_m[i], series.localization_error_m[i], series.localization_error_rad[i]});
   }
   errors.Commit();
+}
+
+RunTrace ReadRunFolder(const std::filesystem::path& dir, int run) {
+  const std::vector<io::StampedPose> gt = io::ReadTum(dir / "gt.tum");
+  const std::vector<io::StampedPose> odom = io::ReadTum(dir / "odom.tum");
+  const std::filesystem::path file = dir / "est_map.csv";
+  const std::vector<io::CsvRecord> records = io::ReadCsvFile(file);
+  const std::vector<std::string> header = {"time", "map", "x", "y", "theta"};
+  if (records.empty() || records.front().cells != header) {
+    throw core::IoError(file.string() + ":1: expected the header time,map,x,y,theta");
+  }
+  if (records.size() - 1 != gt.size() || gt.size() != odom.size()) {
+    throw core::IoError(dir.string() + ": est_map.csv, gt.tum and odom.tum hold " +
+                        std::to_string(records.size() - 1) + ", " + std::to_string(gt.size()) +
+                        " and " + std::to_string(odom.size()) + " samples; they must agree");
+  }
+  RunTrace trace;
+  trace.run = run;
+  for (std::size_t i = 1; i < records.size(); ++i) {
+    const io::CsvRecord& record = records[i];
+    const std::string where = file.string() + ":" + std::to_string(record.line) + ": ";
+    if (record.cells.size() != header.size()) {
+      throw core::IoError(where + "expected 5 cells, found " +
+                          std::to_string(record.cells.size()));
+    }
+    std::array<double, 5> v{};
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const std::optional<double> number = io::ParseCsvNumber(record.cells[k]);
+      if (!number || !std::isfinite(*number)) {
+        throw core::IoError(where + header[k] + " '" + record.cells[k] + "' is not a finite number");
+      }
+      v[k] = *number;
+    }
+    if (v[1] < 0 || v[1] != std::floor(v[1])) {
+      throw core::IoError(where + "map '" + record.cells[1] + "' is not a map index");
+    }
+    PlaybackSample s;
+    s.time = v[0];
+    s.map_index = static_cast<int>(v[1]);
+    s.X_MR = core::Pose2(v[2], v[3], v[4]);
+    s.X_WR = gt[i - 1].pose;
+    s.X_OR = odom[i - 1].pose;
+    trace.samples.push_back(s);
+  }
+  return trace;
 }
 
 }  // namespace retrace::bench

@@ -39,4 +39,9 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode);
 void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,
                     const MetricsConfig& metrics);
 
+/// Reads back the samples of a folder written by WriteRunFolder (gt.tum, odom.tum and
+/// est_map.csv, which must hold the same instants); `run` numbers the trace. Switches,
+/// collisions and events are not read. Throws core::IoError naming the file and line.
+RunTrace ReadRunFolder(const std::filesystem::path& dir, int run);
+
 }  // namespace retrace::bench

@@ -10,20 +10,12 @@
 #include "bench/experiment.hpp"
 #include "bench/metrics.hpp"
 #include "bench/parallel.hpp"
+#include "bench/progress.hpp"
 #include "bench/teach_drive.hpp"
 #include "core/errors.hpp"
 
 namespace retrace::bench {
 namespace {
-
-// Turns the absolute simulated time a loop reports into increments for the shared line.
-ProgressFn Reporter(ProgressLine* line) {
-  if (line == nullptr) return {};
-  return [line, last = 0.0](double t) mutable {
-    line->AddSimTime(t - last);
-    last = t;
-  };
-}
 
 std::string Where(const SuiteSpec& spec, const SuiteEntry& entry) {
   return spec.source.string() + ":" + std::to_string(entry.line) + ": entry '" + entry.name + "': ";
@@ -129,7 +121,7 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
   ParallelFor(jobs, units.size(), [&](std::size_t i) {
     const std::size_t u = teach_order[i];
     teaches[u] =
-        RunTeachDrive(*units[u].scenario, units[u].scenario->config.modes, Reporter(progress));
+        RunTeachDrive(*units[u].scenario, units[u].scenario->config.modes, SimTimeReporter(progress));
     if (progress) progress->UnitDone();
   });
 
@@ -178,7 +170,7 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
     const double timeout = PlaybackTimeout(scenario, teaches[task.unit].duration_s);
     const auto run = static_cast<std::size_t>(task.run);
     runs[slot][run] =
-        RunPlayback(scenario, teach.bundle, teach.trace, task.run, timeout, Reporter(progress));
+        RunPlayback(scenario, teach.bundle, teach.trace, task.run, timeout, SimTimeReporter(progress));
     run_metrics[slot][run] =
         ComputeRunMetrics(teach.trace, runs[slot][run], scenario.config.metrics);
     if (remaining[slot].fetch_sub(1) == 1) {

@@ -7,13 +7,12 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv_reader.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -24,24 +23,9 @@ bool IsInteger(std::string_view text) {
   return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
 }
 
-bool IsNumber(std::string_view text) {
-  if (text == "nan" || text == "inf" || text == "-inf") return true;
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
-}
-
 std::string HeaderLine(const SweepTableSchema& schema) {
   const std::vector<io::CsvCell> cells(schema.header.begin(), schema.header.end());
   return CsvLine(cells);
-}
-
-std::string ReadAll(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw core::IoError(file.string() + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
 }
 
 std::string Errno() { return std::strerror(errno); }
@@ -84,53 +68,13 @@ std::string CsvLine(std::span<const io::CsvCell> cells) {
   return line;
 }
 
-std::optional<std::vector<std::string>> SplitCsvLine(std::string_view line) {
-  std::vector<std::string> fields(1);
-  std::size_t i = 0;
-  bool field_start = true;
-  while (i < line.size()) {
-    const char c = line[i];
-    if (field_start && c == '"') {
-      // A quoted field runs to the closing quote; "" inside is one quote.
-      ++i;
-      for (;;) {
-        if (i >= line.size()) return std::nullopt;  // unterminated
-        if (line[i] == '"') {
-          if (i + 1 < line.size() && line[i + 1] == '"') {
-            fields.back() += '"';
-            i += 2;
-            continue;
-          }
-          ++i;
-          break;
-        }
-        fields.back() += line[i++];
-      }
-      if (i < line.size() && line[i] != ',') return std::nullopt;  // text after the closing quote
-      field_start = false;
-      continue;
-    }
-    if (c == ',') {
-      fields.emplace_back();
-      field_start = true;
-    } else if (c == '"' || c == '\r' || c == '\n') {
-      return std::nullopt;  // a quote inside an unquoted field, or a stray line break
-    } else {
-      fields.back() += c;
-      field_start = false;
-    }
-    ++i;
-  }
-  return fields;
-}
-
 std::optional<SweepRow> ParseSweepRow(std::string_view line, const SweepTableSchema& schema) {
-  auto fields = SplitCsvLine(line);
+  auto fields = io::SplitCsvRecord(line);
   if (!fields || fields->size() != schema.header.size()) return std::nullopt;
   for (std::size_t i = 0; i < fields->size(); ++i) {
     const std::string& f = (*fields)[i];
     if (schema.kinds[i] == SweepColumn::kInteger && !IsInteger(f)) return std::nullopt;
-    if (schema.kinds[i] == SweepColumn::kNumber && !IsNumber(f)) return std::nullopt;
+    if (schema.kinds[i] == SweepColumn::kNumber && !io::ParseCsvNumber(f)) return std::nullopt;
   }
   SweepRow row;
   std::from_chars(fields->front().data(), fields->front().data() + fields->front().size(),
@@ -145,7 +89,7 @@ SweepTable ReadSweepTable(const std::filesystem::path& file, const SweepTableSch
   SweepTable table;
   if (!std::filesystem::exists(file)) return table;
   table.exists = true;
-  const std::string text = ReadAll(file);
+  const std::string text = io::ReadFileText(file);
   table.file_size = text.size();
   const std::string header = HeaderLine(schema);
   const std::size_t header_end = text.find('\n');

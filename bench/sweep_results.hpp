@@ -40,8 +40,6 @@ SweepTableSchema TimingsSchema(const std::vector<std::string>& timing_metrics);
 
 /// One CSV line (no line break) of the cells.
 std::string CsvLine(std::span<const io::CsvCell> cells);
-/// The fields of one CSV line with RFC 4180 quoting undone; nullopt when the quoting is broken.
-std::optional<std::vector<std::string>> SplitCsvLine(std::string_view line);
 
 /// One data row: its case id, its fields and the line as written (without the line break).
 struct SweepRow {

@@ -11,6 +11,7 @@
 
 #include "bench/episode.hpp"
 #include "bench/metrics.hpp"
+#include "bench/render_results.hpp"
 #include "bench/results_io.hpp"
 #include "bench/run_command.hpp"
 #include "bench/scenario.hpp"
@@ -120,10 +121,18 @@ TEST(Episode, RunCommandWritesFilesThatParseBack) {
   EXPECT_EQ(reread.bundle.maps.size(), 2u);
   EXPECT_EQ(reread.trace.maps.size(), 2u);
   EXPECT_FALSE(std::filesystem::exists(options.out / "partial.tmp"));
+  const RunTrace reread_run = ReadRunFolder(dir / "runs/0", 0);
+  ASSERT_EQ(reread_run.samples.size(), gt.size());
+  EXPECT_EQ(reread_run.samples.back().X_WR, gt.back().pose);
+  EXPECT_EQ(reread_run.samples.back().map_index, 1);
   for (const char* figure : {"maps.png", "playback_partial.png", "odometry.png", "errors.png", "snapshot.png",
                              "likelihood.png"}) {
     EXPECT_GT(std::filesystem::file_size(dir / "figures" / figure), 10000u) << figure;
   }
+  // `retrace render`: the figures again, from the files alone.
+  std::filesystem::remove(dir / "figures/playback_partial.png");
+  EXPECT_FALSE(RenderResults(options.out).empty());
+  EXPECT_GT(std::filesystem::file_size(dir / "figures/playback_partial.png"), 10000u);
 
   // Playback again from the written teach folder.
   RunOptions again = options;
