@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -120,19 +121,25 @@ TEST_F(SweepPlanTest, ACombinationThatCannotLoadIsNamed) {
   }
 }
 
-// Every shipped sweep file loads, and every one of its combinations loads its scenario.
+// Every shipped sweep file (the users' sweeps/ and the benchmark's bench/sweeps/) loads, and
+// every one of its combinations loads its scenario.
 TEST(SweepPlan, ShippedSweepsAreValid) {
   int count = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(kSource / "sweeps")) {
-    if (entry.path().extension() != ".yaml") continue;
-    SCOPED_TRACE(entry.path().string());
-    const SweepPlan plan = PlanSweep(LoadSweepSpec(entry.path()), 2);
+  std::vector<std::filesystem::path> files;
+  for (const char* dir : {"sweeps", "bench/sweeps"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(kSource / dir)) {
+      if (entry.path().extension() == ".yaml") files.push_back(entry.path());
+    }
+  }
+  for (const std::filesystem::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const SweepPlan plan = PlanSweep(LoadSweepSpec(file), 2);
     EXPECT_GE(plan.spec.combinations.size(), 2u);
     EXPECT_LE(plan.spec.case_count(), 32u);  // minutes on 2 cores, not hours
-    EXPECT_EQ(plan.spec.name, entry.path().stem().string());
+    EXPECT_EQ(plan.spec.name, file.stem().string());
     ++count;
   }
-  EXPECT_GE(count, 3);
+  EXPECT_GE(count, 4);
 }
 
 }  // namespace
