@@ -112,6 +112,10 @@ const std::vector<ComparedMetric>& ComparedMetrics() {
        "fraction of route", false, std::nullopt},
       {"collisions.pedestrian_incidents_per_run", "collisions.pedestrian_incidents", "runs",
        "pedestrian collisions", "incidents per run", false, std::nullopt},
+      {"collisions.pedestrian_incidents_robot_driving_per_run",
+       "collisions.pedestrian_incidents_robot_driving", "runs",
+       "pedestrian collisions, robot driving into them", "incidents per run", false,
+       std::nullopt},
       {"cpu.localizer_update_mean_ms", "cpu.localizer_update_mean_ms", "", "localizer update time",
        "ms", true, std::nullopt},
   };

@@ -19,6 +19,8 @@ void MetricsConfig::Validate() const {
   core::RequirePositive("station_spacing", station_spacing);
   core::RequirePositive("lost_error", lost_error);
   core::RequireNonNegative("collision_merge_time", collision_merge_time);
+  core::RequireNonNegative("collision_driving_speed", collision_driving_speed);
+  core::RequirePositive("collision_speed_window", collision_speed_window);
   core::RequirePositive("match_window", match_window);
   core::RequirePositive("match_fallback_distance", match_fallback_distance);
 }
@@ -376,6 +378,25 @@ double MaxSkipNaN(double a, double b) {
   return std::max(a, b);
 }
 
+// The speed (m/s) at which the robot moved towards `point_W` just before `time`: its
+// ground-truth displacement over the last `window` s of samples up to `time`, projected on the
+// direction from its centre to the point. 0 without two such samples.
+double SpeedTowards(const std::vector<PlaybackSample>& samples, double time, Vec2 point_W,
+                    double window) {
+  const auto after = std::upper_bound(samples.begin(), samples.end(), time,
+                                      [](double t, const PlaybackSample& s) { return t < s.time; });
+  if (after == samples.begin()) return 0.0;
+  const PlaybackSample& now = *(after - 1);
+  auto from = std::lower_bound(samples.begin(), after - 1, now.time - window,
+                               [](const PlaybackSample& s, double t) { return s.time < t; });
+  if (from == after - 1 || now.time <= from->time) return 0.0;
+  const Vec2 velocity =
+      (now.X_WR.translation() - from->X_WR.translation()) / (now.time - from->time);
+  const Vec2 towards = point_W - now.X_WR.translation();
+  const double distance = towards.norm();
+  return distance > 1e-9 ? velocity.dot(towards) / distance : 0.0;
+}
+
 CollisionStats Collisions(const RunTrace& run, const MetricsConfig& config) {
   CollisionStats out;
   std::vector<sim::CollisionEvent> events = run.collisions;
@@ -390,6 +411,11 @@ CollisionStats Collisions(const RunTrace& run, const MetricsConfig& config) {
         it == last_contact.end() || !(e.time - it->second < config.collision_merge_time);
     (pedestrian ? out.pedestrian_events : out.static_events) += 1;
     if (new_incident) (pedestrian ? out.pedestrian_incidents : out.static_incidents) += 1;
+    if (new_incident && pedestrian &&
+        SpeedTowards(run.samples, e.time, e.point_W, config.collision_speed_window) >
+            config.collision_driving_speed) {
+      ++out.pedestrian_incidents_robot_driving;
+    }
     last_contact[key] = e.time;
   }
   for (const PlaybackSample& s : run.samples) {
@@ -491,6 +517,7 @@ nlohmann::json Num(double v) {
 nlohmann::json ToJson(const CollisionStats& c) {
   return {{"static_incidents", c.static_incidents},
           {"pedestrian_incidents", c.pedestrian_incidents},
+          {"pedestrian_incidents_robot_driving", c.pedestrian_incidents_robot_driving},
           {"static_events", c.static_events},
           {"pedestrian_events", c.pedestrian_events},
           {"min_clearance_m", Num(c.min_clearance_m)},
@@ -678,6 +705,7 @@ AggregateMetrics Aggregate(const TeachTrace& teach, const std::vector<RunTrace>&
     CollisionStats& c = a.collisions;
     c.static_incidents += m.collisions.static_incidents;
     c.pedestrian_incidents += m.collisions.pedestrian_incidents;
+    c.pedestrian_incidents_robot_driving += m.collisions.pedestrian_incidents_robot_driving;
     c.static_events += m.collisions.static_events;
     c.pedestrian_events += m.collisions.pedestrian_events;
     c.min_clearance_m = MinSkipNaN(c.min_clearance_m, m.collisions.min_clearance_m);

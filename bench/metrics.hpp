@@ -54,7 +54,12 @@
 //
 // collisions: contact events (RunTrace.collisions) of the same kind, and for pedestrians of
 //   the same pedestrian id, form one incident while each follows the previous one by less
-//   than collision_merge_time (chained). Reported: incidents and raw events per kind,
+//   than collision_merge_time (chained). A pedestrian incident counts as robot_driving when, at
+//   its first contact, the robot was moving towards the contact point faster than
+//   collision_driving_speed: its ground-truth velocity over the last collision_speed_window
+//   s before the contact (samples at or before it), projected on the direction from the
+//   robot's centre to the contact point. The others are pedestrians walking into a robot that
+//   stood, gave way or drove past. Reported: incidents and raw events per kind,
 //   min_clearance_m = min over samples of the clearance to static geometry,
 //   min_pedestrian_gap_m = min over samples of the gap to a pedestrian (null: none seen).
 //
@@ -81,7 +86,8 @@
 // JSON (ToJson; NaN and infinities are null). A Summary is {mean, rms, p95, max, count}, its
 // unit in the key that holds it. Per run: run, seed, outcome, success, samples, time_s,
 // path_length_m, progress_m, tracking_error_m, localization_error_m, localization_error_rad,
-// lost_fraction, collisions {static_incidents, pedestrian_incidents, static_events,
+// lost_fraction, collisions {static_incidents, pedestrian_incidents,
+// pedestrian_incidents_robot_driving, static_events,
 // pedestrian_events, min_clearance_m, min_pedestrian_gap_m}, switch_error {count, max_m,
 // max_rad, switches [{time_s, from, to, error_m, error_rad}]}, dynamic_points {beams_tested,
 // beams_rejected, true_positive, false_positive, false_negative, rejected_fraction, precision,
@@ -112,6 +118,8 @@ struct MetricsConfig {
   double station_spacing = 0.5;          ///< m, repeatability stations along the taught path
   double lost_error = 0.5;               ///< m, lost_fraction counts errors above this
   double collision_merge_time = 1.0;     ///< s, same-kind contacts closer than this: one incident
+  double collision_driving_speed = 0.05;  ///< m/s towards the contact: the robot drove into it
+  double collision_speed_window = 0.2;    ///< s of ground truth the contact speed is taken over
   double match_window = 10.0;            ///< m of arc length behind and ahead of the previous match
   double match_fallback_distance = 3.0;  ///< m, windowed match farther than this: global search
 
@@ -120,11 +128,14 @@ struct MetricsConfig {
     v("station_spacing", station_spacing);
     v("lost_error", lost_error);
     v("collision_merge_time", collision_merge_time);
+    v("collision_driving_speed", collision_driving_speed);
+    v("collision_speed_window", collision_speed_window);
     v("match_window", match_window);
     v("match_fallback_distance", match_fallback_distance);
   }
   /// Throws core::ConfigError naming the key: station_spacing, lost_error, match_window and
-  /// match_fallback_distance must be > 0, collision_merge_time >= 0.
+  /// match_fallback_distance and collision_speed_window must be > 0, collision_merge_time and
+  /// collision_driving_speed >= 0.
   void Validate() const;
 };
 
@@ -145,6 +156,7 @@ Summary Summarize(const std::vector<double>& values);
 struct CollisionStats {
   int static_incidents = 0;
   int pedestrian_incidents = 0;
+  int pedestrian_incidents_robot_driving = 0;  ///< of pedestrian_incidents: the robot drove in
   int static_events = 0;                ///< raw contact events
   int pedestrian_events = 0;            ///< raw contact events
   double min_clearance_m = kMetricNaN;  ///< NaN without samples

@@ -37,17 +37,21 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
       continue;
     }
     const AggregateMetrics& a = m.aggregate;
-    std::snprintf(line, sizeof line, "%-11s %8s %9s %9s %9s %9s %9s %9s %9d %7s\n",
+    const std::string collisions =
+        std::to_string(a.collisions.pedestrian_incidents) + " (" +
+        std::to_string(a.collisions.pedestrian_incidents_robot_driving) + ")";
+    std::snprintf(line, sizeof line, "%-11s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n",
                   std::string(core::EnumName(m.mode)).c_str(),
                   (std::to_string(m.successes) + "/" + std::to_string(m.runs)).c_str(),
                   Cell(a.tracking_error_m_pooled.rms).c_str(), Cell(a.tracking_error_m_pooled.max).c_str(),
                   Cell(a.localization_error_m_pooled.rms).c_str(), Cell(a.localization_error_m_pooled.max).c_str(),
                   Cell(a.repeatability.repeatability_m).c_str(), Cell(a.switch_error.max_m).c_str(),
-                  a.collisions.pedestrian_incidents, Cell(a.cpu.real_time_factor, "%.0f").c_str());
+                  collisions.c_str(), Cell(a.cpu.real_time_factor, "%.0f").c_str());
     text += line;
   }
   text += "(m; track = distance to the taught trajectory, loc = localization error in the map, repeat = "
-          "repeatability, rtf = real-time factor per core)\n";
+          "repeatability, coll_ped = pedestrian collisions (of them, the robot driving into the "
+          "pedestrian), rtf = real-time factor per core)\n";
   text += "results in " + out.string() + " (" + Cell(wall_time_s, "%.1f") + " s)\n";
   return text;
 }

@@ -406,6 +406,43 @@ TEST(Metrics, ContactsOfTheSameKindCloseInTimeAreOneIncident) {
   EXPECT_DOUBLE_EQ(a.collisions.min_clearance_m, 0.12);
 }
 
+// Who ran into whom: a pedestrian incident is the robot's when it drove towards the contact
+// point; walking into a standing robot, or into its side or back, is the pedestrian's.
+TEST(Metrics, APedestrianIncidentIsTheRobotsOnlyWhenItDroveTowardsTheContact) {
+  const TeachTrace teach = TeachWithMap(Straight(10.0, 0.0, 0.05));
+  RunTrace run = RunAlong(Straight(10.0, 0.0, 0.05));  // +x at 1 m/s for 10 s
+  for (int i = 1; i <= 40; ++i) {                         // then 2 s standing still
+    PlaybackSample s = run.samples.back();
+    s.time += kDt;
+    run.samples.push_back(s);
+  }
+  int id = 0;
+  auto contact = [&](double time, double x, double y) {
+    sim::CollisionEvent e;
+    e.time = time;
+    e.kind = sim::CollisionKind::kPedestrian;
+    e.pedestrian_id = id++;
+    e.point_W = {x, y};
+    run.collisions.push_back(e);
+  };
+  contact(3.0, 3.3, 0.05);   // ahead while driving: the robot's
+  contact(5.0, 4.7, 0.0);    // from behind
+  contact(7.0, 7.0, 0.3);    // from the side
+  contact(11.0, 10.3, 0.0);  // ahead, but the robot stands
+  contact(0.0, 0.3, 0.0);    // at the first sample: no speed known
+  const MetricsConfig config;
+  const RunMetrics m = ComputeRunMetrics(teach, run, config);
+  EXPECT_EQ(m.collisions.pedestrian_incidents, 5);
+  EXPECT_EQ(m.collisions.pedestrian_incidents_robot_driving, 1);
+  const AggregateMetrics a = Aggregate(teach, {run, run}, {m, m}, config);
+  EXPECT_EQ(a.collisions.pedestrian_incidents_robot_driving, 2);
+
+  // Slower than collision_driving_speed towards the contact: not the robot's.
+  MetricsConfig strict = config;
+  strict.collision_driving_speed = 1.5;
+  EXPECT_EQ(ComputeRunMetrics(teach, run, strict).collisions.pedestrian_incidents_robot_driving, 0);
+}
+
 TEST(Metrics, DynamicPointRatiosAreNaNWhenUndefined) {
   const TeachTrace teach = TeachWithMap(Straight(10.0, 0.0, 0.05));
   RunTrace run = RunAlong(Straight(10.0, 0.0, 0.05));
@@ -521,7 +558,8 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                  "progress_m", "tracking_error_m", "localization_error_m", "localization_error_rad",
                  "lost_fraction", "collisions", "switch_error", "dynamic_points", "cpu"});
   ExpectKeys(r["tracking_error_m"], {"mean", "rms", "p95", "max", "count"});
-  ExpectKeys(r["collisions"], {"static_incidents", "pedestrian_incidents", "static_events",
+  ExpectKeys(r["collisions"], {"static_incidents", "pedestrian_incidents",
+                               "pedestrian_incidents_robot_driving", "static_events",
                                "pedestrian_events", "min_clearance_m", "min_pedestrian_gap_m"});
   ExpectKeys(r["switch_error"], {"count", "max_m", "max_rad", "switches"});
   ExpectKeys(r["switch_error"]["switches"][0], {"time_s", "from", "to", "error_m", "error_rad"});
@@ -566,8 +604,9 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   ExpectKeys(a["lost_fraction"], {"pooled", "run_mean"});
   ExpectKeys(a["switch_error"], {"count", "mean_m", "max_m", "mean_rad", "max_rad"});
   ExpectKeys(a["collisions"],
-             {"static_incidents", "pedestrian_incidents", "static_events", "pedestrian_events",
-              "min_clearance_m", "min_pedestrian_gap_m", "runs_with_collision"});
+             {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",
+              "static_events", "pedestrian_events", "min_clearance_m", "min_pedestrian_gap_m",
+              "runs_with_collision"});
   EXPECT_EQ(a["outcomes"]["success"], 2);
   // The stations themselves go to a CSV: s, run 3, run 4, std, spread.
   const retrace::testing::TempDir tmp;
