@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -28,15 +29,32 @@
 namespace retrace::bench {
 namespace {
 
-std::vector<MapMode> ResolveModes(const std::string& mode, const std::vector<MapMode>& scenario_modes) {
-  if (mode.empty()) return scenario_modes;
-  if (mode == "all") return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
-  const auto parsed = core::ParseEnum<MapMode>(mode);
-  if (!parsed) {
-    throw core::ConfigError("--mode", "unknown mode '" + mode + "'; expected one of: " +
-                                          core::EnumNameList<MapMode>() + ", all");
+// --mode: a mode, a comma-separated list of modes, or `all`; empty: the scenario's modes.
+std::vector<MapMode> ResolveModes(const std::string& text, const std::vector<MapMode>& scenario_modes,
+                                  RunPhases phases) {
+  if (text.empty()) return scenario_modes;
+  if (text == "all") return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
+  std::vector<MapMode> modes;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const auto parsed = core::ParseEnum<MapMode>(name);
+    if (!parsed) {
+      throw core::ConfigError("--mode", "unknown mode '" + name + "'; expected one or more of " +
+                                            core::EnumNameList<MapMode>() + " (comma-separated), or all");
+    }
+    if (std::find(modes.begin(), modes.end(), *parsed) != modes.end()) {
+      throw core::ConfigError("--mode", "mode '" + name + "' is given twice");
+    }
+    modes.push_back(*parsed);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
   }
-  return {*parsed};
+  if (phases == RunPhases::kPlaybackOnly && modes.size() > 1) {
+    throw core::ConfigError("--mode", "a teach folder holds the maps of one mode; give that one");
+  }
+  return modes;
 }
 
 }  // namespace
@@ -50,7 +68,7 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
         ->default_val("partial");
   } else {
     command->add_option("--mode", options->mode,
-                        "Map mode: partial|single|consistent|all (default: the scenario's modes)");
+                        "Map modes: partial|single|consistent, comma-separated, or all (default: the scenario's modes)");
   }
   if (phases != RunPhases::kTeachOnly) {
     command->add_option("--repeats", options->repeats, "Playback runs per mode")->check(CLI::PositiveNumber);
@@ -80,7 +98,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   if (options.repeats) overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
   Scenario scenario = LoadScenario(options.scenario, overrides);
   ScenarioConfig& config = scenario.config;
-  config.modes = ResolveModes(options.mode, config.modes);
+  config.modes = ResolveModes(options.mode, config.modes, phases);
   const std::filesystem::path out = options.out.empty() ? std::filesystem::path("results") / config.name : options.out;
   for (const std::string& warning : scenario.warnings) std::cerr << "retrace: warning: " << warning << "\n";
 

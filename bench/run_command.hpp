@@ -16,7 +16,7 @@ namespace retrace::bench {
 
 struct RunOptions {
   std::filesystem::path scenario;
-  std::string mode;  ///< partial, single, consistent or all; empty: the scenario's `modes`
+  std::string mode;  ///< partial, single, consistent, a comma-separated list or all; empty: the scenario's `modes`
   std::optional<int> repeats;
   std::optional<std::uint64_t> seed;
   std::filesystem::path out;  ///< results folder; empty: results/<scenario name>

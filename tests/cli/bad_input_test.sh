@@ -86,7 +86,10 @@ expect_bad run-switch-decreasing "must be strictly increasing" run "$tmp/decreas
 expect_bad run-bad-mode "unknown value 'slam'" run "$tmp/bad_mode.yaml" "${out[@]}"
 expect_bad run-missing-world "nowhere.yaml: cannot open file" run "$tmp/missing_world.yaml" "${out[@]}"
 expect_bad run-bad-mode-flag "unknown mode 'slam'" run "$src/scenarios/small.yaml" --mode slam "${out[@]}"
+expect_bad run-bad-mode-in-list "unknown mode 'slam'" run "$src/scenarios/small.yaml" --mode partial,slam "${out[@]}"
+expect_bad run-mode-twice "mode 'partial' is given twice" run "$src/scenarios/small.yaml" --mode partial,consistent,partial "${out[@]}"
 expect_bad run-bad-set "--set nav.localizer.particles=-5" run "$src/scenarios/small.yaml" --set nav.localizer.particles=-5 "${out[@]}"
+expect_bad playback-two-modes "one mode" playback "$src/scenarios/small.yaml" --teach "$tmp/nothing" --mode partial,single "${out[@]}"
 expect_bad playback-missing-bundle "no such teach folder" playback "$src/scenarios/small.yaml" --teach "$tmp/nothing" "${out[@]}"
 expect_bad playback-broken-bundle "teach_broken" playback "$src/scenarios/small.yaml" --teach "$tmp/teach_broken" "${out[@]}"
 
