@@ -5,14 +5,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "bench/experiment.hpp"
 #include "bench/metric_pattern.hpp"
 #include "core/rng.hpp"
 #include "io/config_yaml.hpp"
+#include "io/read_file.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -34,10 +33,7 @@ YAML::Node Required(const YAML::Node& node, const ReadContext& ctx, const std::s
 }
 
 std::string Digest(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  const std::string text = bytes.str();
+  const std::string text = io::ReadFileBytes(file);
   char hex[32];
   std::snprintf(hex, sizeof hex, "%016llx",
                 static_cast<unsigned long long>(core::HashBytes(text.data(), text.size())));

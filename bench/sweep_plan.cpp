@@ -3,28 +3,19 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <set>
-#include <sstream>
 
 #include "bench/parallel.hpp"
 #include "bench/scenario.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "io/read_file.hpp"
 
 namespace retrace::bench {
 namespace {
 
 constexpr int kMaxShards = 100000;
-
-std::string ReadBytes(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw core::IoError(file.string() + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
 
 // "events[0].pedestrians" (a reader's key path) as an override writes it: "events.0.pedestrians".
 std::string DottedPath(std::string path) {
@@ -185,7 +176,7 @@ SweepPlan PlanSweep(SweepSpec spec, int jobs) {
   // The input files by their contents (not their paths, which depend on the working folder),
   // sorted, so that the identity does not depend on which combination named a file first.
   auto content_hash = [](const std::filesystem::path& file) {
-    const std::string bytes = ReadBytes(file);
+    const std::string bytes = io::ReadFileBytes(file);
     return core::HashBytes(bytes.data(), bytes.size());
   };
   std::set<std::filesystem::path> seen;

@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_reader.hpp"
+#include "io/read_file.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -89,7 +90,7 @@ SweepTable ReadSweepTable(const std::filesystem::path& file, const SweepTableSch
   SweepTable table;
   if (!std::filesystem::exists(file)) return table;
   table.exists = true;
-  const std::string text = io::ReadFileText(file);
+  const std::string text = io::ReadFileBytes(file);
   table.file_size = text.size();
   const std::string header = HeaderLine(schema);
   const std::size_t header_end = text.find('\n');

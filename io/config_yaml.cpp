@@ -2,8 +2,9 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
+
+#include "io/read_file.hpp"
 
 namespace retrace::io {
 namespace internal {
@@ -159,12 +160,9 @@ ConfigOverride ParseOverride(std::string_view text) {
 }
 
 YAML::Node LoadYamlFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw core::IoError(file.string() + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  const std::string text = ReadFileBytes(file);
   try {
-    YAML::Node root = YAML::Load(buffer.str());
+    YAML::Node root = YAML::Load(text);
     if (!root || root.IsNull()) {
       throw core::ConfigError("", file.string() + ": file is empty", /*located=*/true);
     }

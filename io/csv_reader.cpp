@@ -1,11 +1,9 @@
 #include "io/csv_reader.hpp"
 
 #include <charconv>
-#include <fstream>
-#include <sstream>
-#include <system_error>
 
 #include "core/errors.hpp"
+#include "io/read_file.hpp"
 
 namespace retrace::io {
 namespace {
@@ -93,7 +91,7 @@ std::vector<CsvRecord> ParseCsv(std::string_view text, const std::string& source
 }
 
 std::vector<CsvRecord> ReadCsvFile(const std::filesystem::path& path) {
-  return ParseCsv(ReadFileText(path), path.string());
+  return ParseCsv(ReadFileBytes(path), path.string());
 }
 
 std::optional<std::vector<std::string>> SplitCsvRecord(std::string_view line) {
@@ -117,18 +115,6 @@ std::optional<double> ParseCsvNumber(std::string_view text) {
   const auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
   if (ec != std::errc() || ptr != number.data() + number.size()) return std::nullopt;
   return value;
-}
-
-std::string ReadFileText(const std::filesystem::path& path) {
-  std::error_code ec;
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path, ec)) {
-    throw core::IoError(path.string() + ": cannot open file");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw core::IoError(path.string() + ": cannot read file");
-  return text.str();
 }
 
 }  // namespace retrace::io

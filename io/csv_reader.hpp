@@ -34,7 +34,4 @@ std::optional<std::vector<std::string>> SplitCsvRecord(std::string_view line);
 /// anything else.
 std::optional<double> ParseCsvNumber(std::string_view text);
 
-/// The bytes of the file at `path`. Throws core::IoError if it cannot be opened or read.
-std::string ReadFileText(const std::filesystem::path& path);
-
 }  // namespace retrace::io

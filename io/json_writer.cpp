@@ -1,12 +1,10 @@
 #include "io/json_writer.hpp"
 
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <system_error>
 
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/read_file.hpp"
 
 namespace retrace::io {
 
@@ -19,15 +17,9 @@ void WriteJsonAtomic(const std::filesystem::path& path, const nlohmann::json& va
 }
 
 nlohmann::json ReadJsonFile(const std::filesystem::path& path) {
-  std::error_code ec;
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path, ec))
-    throw core::IoError(path.string() + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw core::IoError(path.string() + ": cannot read file");
+  const std::string text = ReadFileBytes(path);
   try {
-    return nlohmann::json::parse(buffer.str());
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     // what() is "[json.exception.parse_error.101] parse error at line L, column C: ...".
     std::string message = e.what();

@@ -4,11 +4,9 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -18,6 +16,7 @@
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
+#include "io/read_file.hpp"
 
 namespace retrace::io {
 namespace {
@@ -30,18 +29,6 @@ struct DecodedImage {
   int channels = 1;
   std::vector<std::uint8_t> data;
 };
-
-std::string ReadBinaryFile(const std::filesystem::path& path) {
-  std::error_code ec;
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path, ec)) {
-    throw core::IoError(path.string() + ": cannot open file");
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw core::IoError(path.string() + ": cannot read file");
-  return std::move(buffer).str();
-}
 
 // ---------------------------------------------------------------------------------------------
 // PGM (Netpbm P5 binary and P2 ASCII), parsed strictly: the pixel data must hold exactly
@@ -217,7 +204,7 @@ DecodedImage DecodeWithOpenCv(const std::string& bytes, const std::filesystem::p
 }
 
 DecodedImage ReadImage(const std::filesystem::path& path) {
-  const std::string bytes = ReadBinaryFile(path);
+  const std::string bytes = ReadFileBytes(path);
   if (bytes.empty()) throw core::IoError(path.string() + ": the image file is empty");
   if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '2')) {
     return PgmParser(bytes, path).Parse();
