@@ -114,8 +114,7 @@ const std::vector<ComparedMetric>& ComparedMetrics() {
        "pedestrian collisions", "incidents per run", false, std::nullopt},
       {"collisions.pedestrian_incidents_robot_driving_per_run",
        "collisions.pedestrian_incidents_robot_driving", "runs",
-       "pedestrian collisions, robot driving into them", "incidents per run", false,
-       std::nullopt},
+       "pedestrian collisions, robot driving into them", "incidents per run", false, std::nullopt},
       {"cpu.localizer_update_mean_ms", "cpu.localizer_update_mean_ms", "", "localizer update time",
        "ms", true, std::nullopt},
   };

@@ -10,9 +10,11 @@
 namespace retrace::bench {
 namespace {
 
-void Flatten(const nlohmann::json& node, const std::string& prefix, std::map<std::string, double>& out) {
+void Flatten(const nlohmann::json& node, const std::string& prefix,
+             std::map<std::string, double>& out) {
   if (node.is_object()) {
-    for (const auto& [key, value] : node.items()) Flatten(value, prefix.empty() ? key : prefix + "." + key, out);
+    for (const auto& [key, value] : node.items())
+      Flatten(value, prefix.empty() ? key : prefix + "." + key, out);
   } else if (node.is_number()) {
     out[prefix] = node.get<double>();
   } else if (node.is_null()) {
@@ -25,8 +27,8 @@ void Flatten(const nlohmann::json& node, const std::string& prefix, std::map<std
 
 }  // namespace
 
-Experiment RunPlaybacks(const Scenario& scenario, std::vector<ModeTeach> teaches, double teach_duration_s,
-                        const ExperimentOptions& options) {
+Experiment RunPlaybacks(const Scenario& scenario, std::vector<ModeTeach> teaches,
+                        double teach_duration_s, const ExperimentOptions& options) {
   Experiment experiment;
   experiment.teach_duration_s = teach_duration_s;
   const std::size_t repeats = static_cast<std::size_t>(std::max(options.repeats, 0));
@@ -47,13 +49,16 @@ Experiment RunPlaybacks(const Scenario& scenario, std::vector<ModeTeach> teaches
     const std::size_t run = i % repeats;
     std::unique_ptr<PlaybackObserver> observer =
         options.observe ? options.observe(mode.teach, static_cast<int>(run)) : nullptr;
-    mode.runs[run] = RunPlayback(scenario, mode.teach.bundle, mode.teach.trace, static_cast<int>(run), timeout,
-                                 SimTimeReporter(options.progress), observer.get());
-    mode.run_metrics[run] = ComputeRunMetrics(mode.teach.trace, mode.runs[run], scenario.config.metrics);
+    mode.runs[run] =
+        RunPlayback(scenario, mode.teach.bundle, mode.teach.trace, static_cast<int>(run), timeout,
+                    SimTimeReporter(options.progress), observer.get());
+    mode.run_metrics[run] =
+        ComputeRunMetrics(mode.teach.trace, mode.runs[run], scenario.config.metrics);
     if (options.progress) options.progress->UnitDone();
   });
   for (ModeResult& mode : experiment.modes) {
-    mode.aggregate = Aggregate(mode.teach.trace, mode.runs, mode.run_metrics, scenario.config.metrics);
+    mode.aggregate =
+        Aggregate(mode.teach.trace, mode.runs, mode.run_metrics, scenario.config.metrics);
   }
   return experiment;
 }

@@ -9,9 +9,9 @@
 #include <utility>
 
 #include "bench/local_truth.hpp"
-#include "io/csv_writer.hpp"
 #include "core/angle.hpp"
 #include "core/check.hpp"
+#include "io/csv_writer.hpp"
 
 namespace retrace::bench {
 
@@ -288,7 +288,6 @@ class PathTracker {
   double s_prev_ = 0.0;
 };
 
-
 // What one run's metrics need from the teach trace, built once per run.
 struct TeachIndex {
   TeachIndex(const TeachTrace& teach, const MetricsConfig& config) : path(teach.X_WR) {
@@ -297,7 +296,8 @@ struct TeachIndex {
       if (map.X_WR.empty() || map.X_WR.size() != map.X_MR.size()) {
         matchers.emplace_back();  // no reference: its samples are left out
       } else {
-        matchers.emplace_back(std::in_place, map, config.match_window, config.match_fallback_distance);
+        matchers.emplace_back(std::in_place, map, config.match_window,
+                              config.match_fallback_distance);
       }
     }
   }

@@ -72,8 +72,8 @@ void ProgressLine::Draw(bool force) {
     drawn_ = true;
     return;
   }
-  std::fprintf(stderr, "\r\033[K%s: %d/%d done, %.0f s simulated, %.0fx real time", phase_.c_str(), done_, total_,
-               sim_time_, wall > 0.0 ? sim_time_ / wall : 0.0);
+  std::fprintf(stderr, "\r\033[K%s: %d/%d done, %.0f s simulated, %.0fx real time", phase_.c_str(),
+               done_, total_, sim_time_, wall > 0.0 ? sim_time_ / wall : 0.0);
   std::fflush(stderr);
   drawn_ = true;
 }

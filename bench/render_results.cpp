@@ -9,8 +9,8 @@
 #include "bench/local_truth.hpp"
 #include "bench/metrics.hpp"
 #include "bench/results_io.hpp"
-#include "core/errors.hpp"
 #include "bench/world_shapes.hpp"
+#include "core/errors.hpp"
 #include "io/json_writer.hpp"
 #include "io/tum.hpp"
 #include "sim/world_file.hpp"
@@ -47,10 +47,12 @@ std::vector<RunTrace> ReadRuns(const std::filesystem::path& mode_dir) {
 
 // "run i", with the outcome of a run that did not succeed ("run 2 (timeout)"), from
 // metrics.json when the folder has one.
-std::vector<std::string> RunLabels(const std::filesystem::path& mode_dir, const std::vector<RunTrace>& runs) {
+std::vector<std::string> RunLabels(const std::filesystem::path& mode_dir,
+                                   const std::vector<RunTrace>& runs) {
   std::vector<std::string> labels;
   nlohmann::json metrics;
-  if (std::filesystem::is_regular_file(mode_dir / "metrics.json")) metrics = io::ReadJsonFile(mode_dir / "metrics.json");
+  if (std::filesystem::is_regular_file(mode_dir / "metrics.json"))
+    metrics = io::ReadJsonFile(mode_dir / "metrics.json");
   for (const RunTrace& run : runs) {
     std::string label = "run " + std::to_string(run.run);
     if (metrics.contains("runs")) {
@@ -84,14 +86,18 @@ std::vector<viz::PartialMapView> MapViews(const ModeTeach& teach) {
 
 std::vector<core::Pose2> SwitchPosesW(const ModeTeach& teach) {
   std::vector<core::Pose2> out;
-  for (std::size_t k = 0; k + 1 < teach.trace.maps.size(); ++k) out.push_back(teach.trace.maps[k].X_WR.back());
+  for (std::size_t k = 0; k + 1 < teach.trace.maps.size(); ++k)
+    out.push_back(teach.trace.maps[k].X_WR.back());
   return out;
 }
 
-core::Pose2 PoseFrom(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+core::Pose2 PoseFrom(const nlohmann::json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
 
 // snapshot.png and likelihood.png from runs/0/snapshot.json.
-void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, const std::filesystem::path& figures,
+void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach,
+                    const std::filesystem::path& figures,
                     std::vector<std::filesystem::path>* written) {
   const nlohmann::json j = io::ReadJsonFile(file);
   const int k = j.at("map").get<int>();
@@ -101,7 +107,8 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, c
   const core::Pose2 X_RL = PoseFrom(j.at("X_RL"));
   std::vector<viz::Circle> pedestrians;
   for (const auto& p : j.at("pedestrians_W")) {
-    pedestrians.push_back({X_MW * core::Vec2(p.at(0).get<double>(), p.at(1).get<double>()), p.at(2).get<double>()});
+    pedestrians.push_back(
+        {X_MW * core::Vec2(p.at(0).get<double>(), p.at(1).get<double>()), p.at(2).get<double>()});
   }
 
   viz::SnapshotData snap;
@@ -110,13 +117,15 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, c
   snap.grid = teach.bundle.maps.at(static_cast<std::size_t>(k)).grid;
   snap.path = teach.bundle.maps.at(static_cast<std::size_t>(k)).path.poses();
   for (const auto& p : j.at("particles")) {
-    snap.particles.emplace_back(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+    snap.particles.emplace_back(p.at(0).get<double>(), p.at(1).get<double>(),
+                                p.at(2).get<double>());
     snap.weights.push_back(p.at(3).get<double>());
   }
   snap.estimate = PoseFrom(j.at("X_MR_estimate"));
   snap.truth = truth;
   const nlohmann::json& scan = j.at("scan");
-  const double angle_min = scan.at("angle_min").get<double>(), increment = scan.at("angle_increment").get<double>();
+  const double angle_min = scan.at("angle_min").get<double>(),
+               increment = scan.at("angle_increment").get<double>();
   const core::Pose2 X_ML = truth * X_RL;
   for (std::size_t i = 0; i < scan.at("ranges").size(); ++i) {
     const nlohmann::json& r = scan.at("ranges")[i];
@@ -190,7 +199,8 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
         for (const PlaybackSample& s : runs[i].samples) poses.push_back(s.X_WR);
         playback.runs.push_back({labels[i], poses});
         const RunSeries series = ComputeRunSeries(teach.trace, runs[i], metrics);
-        errors.runs.push_back({labels[i], series.progress_m, series.tracking_error_m, series.localization_error_m});
+        errors.runs.push_back(
+            {labels[i], series.progress_m, series.tracking_error_m, series.localization_error_m});
       }
       double s = 0.0;
       for (std::size_t k = 0; k + 1 < teach.trace.maps.size(); ++k) {
@@ -208,7 +218,9 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
         }
         errors.switch_arc_lengths.push_back(s);
       }
-      written.push_back(viz::RenderPlaybackFigure(playback, figures / ("playback_" + std::string(mode_name) + ".png")).path);
+      written.push_back(viz::RenderPlaybackFigure(
+                            playback, figures / ("playback_" + std::string(mode_name) + ".png"))
+                            .path);
       written.push_back(viz::RenderErrorsFigure(errors, figures / "errors.png").path);
 
       viz::OdometryFigureData odometry;
@@ -229,35 +241,44 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
 
     if (std::filesystem::exists(dir / "metrics.json")) {
       const nlohmann::json a = io::ReadJsonFile(dir / "metrics.json").at("aggregate");
-      auto value = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
+      auto value = [](const nlohmann::json& v) {
+        return v.is_number() ? v.get<double>() : std::nan("");
+      };
       viz::ModeMetrics m;
       m.mode = mode_name;
       m.metrics.push_back({"success rate", value(a.at("success_rate"))});
-      m.metrics.push_back({"tracking RMS (m)", value(a.at("tracking_error_m").at("pooled").at("rms"))});
-      m.metrics.push_back({"localization RMS (m)", value(a.at("localization_error_m").at("pooled").at("rms"))});
+      m.metrics.push_back(
+          {"tracking RMS (m)", value(a.at("tracking_error_m").at("pooled").at("rms"))});
+      m.metrics.push_back(
+          {"localization RMS (m)", value(a.at("localization_error_m").at("pooled").at("rms"))});
       m.metrics.push_back({"repeatability (m)", value(a.at("repeatability_m"))});
       comparison.modes.push_back(std::move(m));
     }
     teaches.emplace_back(mode_name, std::move(teach));
   }
-  if (teaches.empty()) throw core::IoError(out.string() + ": holds no results of `retrace run` (no <mode>/teach folder)");
+  if (teaches.empty())
+    throw core::IoError(out.string() +
+                        ": holds no results of `retrace run` (no <mode>/teach folder)");
 
   std::filesystem::create_directories(out / "figures");
   if (comparison.modes.size() > 1) {
     comparison.scenario = out.filename().string();
-    written.push_back(viz::RenderComparisonFigure(comparison, out / "figures" / "comparison.png").path);
+    written.push_back(
+        viz::RenderComparisonFigure(comparison, out / "figures" / "comparison.png").path);
   }
   viz::MapsCompareFigureData compare;
   for (const char* name : {"consistent", "single"}) {
     for (const auto& [mode_name, teach] : teaches) {
       if (mode_name != name) continue;
       std::vector<viz::PartialMapView> views = MapViews(teach);
-      views.front().label = std::string(name == std::string("single") ? "odometry map (single)" : "consistent map");
+      views.front().label =
+          std::string(name == std::string("single") ? "odometry map (single)" : "consistent map");
       compare.maps.push_back(views.front());
     }
   }
   if (compare.maps.size() == 2) {
-    written.push_back(viz::RenderMapsCompareFigure(compare, out / "figures" / "maps_compare.png").path);
+    written.push_back(
+        viz::RenderMapsCompareFigure(compare, out / "figures" / "maps_compare.png").path);
   }
   return written;
 }

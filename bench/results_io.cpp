@@ -17,13 +17,15 @@
 namespace retrace::bench {
 namespace {
 
-std::vector<io::StampedPose> Stamped(const std::vector<double>& time, const std::vector<core::Pose2>& poses) {
+std::vector<io::StampedPose> Stamped(const std::vector<double>& time,
+                                     const std::vector<core::Pose2>& poses) {
   std::vector<io::StampedPose> out(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) out[i] = {time[i], poses[i]};
   return out;
 }
 
-void Unstamp(const std::vector<io::StampedPose>& in, std::vector<double>* time, std::vector<core::Pose2>* poses) {
+void Unstamp(const std::vector<io::StampedPose>& in, std::vector<double>* time,
+             std::vector<core::Pose2>* poses) {
   time->clear();
   poses->clear();
   for (const io::StampedPose& p : in) {
@@ -52,7 +54,8 @@ void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach) 
 
 ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
   if (!std::filesystem::is_directory(dir)) {
-    throw core::IoError(dir.string() + ": no such teach folder (expected the teach/ folder of a previous run)");
+    throw core::IoError(dir.string() +
+                        ": no such teach folder (expected the teach/ folder of a previous run)");
   }
   ModeTeach teach;
   teach.mode = mode;
@@ -62,7 +65,8 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
   std::vector<double> odom_time;
   Unstamp(io::ReadTum(dir / "odom.tum"), &odom_time, &trace.X_OR);
   if (odom_time.size() != trace.time.size() || trace.time.empty()) {
-    throw core::IoError(dir.string() + ": gt.tum and odom.tum must hold the same, non-empty, instants");
+    throw core::IoError(dir.string() +
+                        ": gt.tum and odom.tum must hold the same, non-empty, instants");
   }
   for (std::size_t k = 0; k < teach.bundle.maps.size(); ++k) {
     TeachMapTrace map;
@@ -70,8 +74,8 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
     Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "map")), &map.time, &map.X_MR);
     Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "world")), &world_time, &map.X_WR);
     if (map.time.empty() || world_time != map.time) {
-      throw core::IoError(dir.string() + ": reference/" + MapFile(k, "map") + " and " + MapFile(k, "world") +
-                          " must hold the same, non-empty, instants");
+      throw core::IoError(dir.string() + ": reference/" + MapFile(k, "map") + " and " +
+                          MapFile(k, "world") + " must hold the same, non-empty, instants");
     }
     trace.maps.push_back(std::move(map));
   }
@@ -113,11 +117,13 @@ void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, c
   }
   for (const sim::CollisionEvent& c : run.collisions) {
     rows.push_back({c.time, "collision",
-                    c.kind == sim::CollisionKind::kStatic ? std::string("static")
-                                                          : "pedestrian " + std::to_string(c.pedestrian_id)});
+                    c.kind == sim::CollisionKind::kStatic
+                        ? std::string("static")
+                        : "pedestrian " + std::to_string(c.pedestrian_id)});
   }
   for (const EventRecord& e : run.events) rows.push_back({e.time, "scripted", e.name});
-  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.time < b.time; });
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const Row& a, const Row& b) { return a.time < b.time; });
   for (const Row& r : rows) events.AddRow({r.time, r.event, r.detail});
   events.AddRow({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});
   events.Commit();
@@ -125,11 +131,13 @@ void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, c
 
   // The errors along the route, per control tick, for plots (errors.png) and the user's own.
   const RunSeries series = ComputeRunSeries(teach, run, metrics);
-  io::CsvWriter errors(dir / "errors.csv", {"time", "map", "arc_length_m", "lateral_offset_m", "tracking_error_m",
-                                            "localization_error_m", "localization_error_rad"});
+  io::CsvWriter errors(dir / "errors.csv",
+                       {"time", "map", "arc_length_m", "lateral_offset_m", "tracking_error_m",
+                        "localization_error_m", "localization_error_rad"});
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
-    errors.AddRow({run.samples[i].time, run.samples[i].map_index, series.progress_m[i], series.lateral_offset_m[i],
-                   series.tracking_error_m[i], series.localization_error_m[i], series.localization_error_rad[i]});
+    errors.AddRow({run.samples[i].time, run.samples[i].map_index, series.progress_m[i],
+                   series.lateral_offset_m[i], series.tracking_error_m[i],
+                   series.localization_error_m[i], series.localization_error_rad[i]});
   }
   errors.Commit();
 }
@@ -154,14 +162,14 @@ RunTrace ReadRunFolder(const std::filesystem::path& dir, int run) {
     const io::CsvRecord& record = records[i];
     const std::string where = file.string() + ":" + std::to_string(record.line) + ": ";
     if (record.cells.size() != header.size()) {
-      throw core::IoError(where + "expected 5 cells, found " +
-                          std::to_string(record.cells.size()));
+      throw core::IoError(where + "expected 5 cells, found " + std::to_string(record.cells.size()));
     }
     std::array<double, 5> v{};
     for (std::size_t k = 0; k < v.size(); ++k) {
       const std::optional<double> number = io::ParseCsvNumber(record.cells[k]);
       if (!number || !std::isfinite(*number)) {
-        throw core::IoError(where + header[k] + " '" + record.cells[k] + "' is not a finite number");
+        throw core::IoError(where + header[k] + " '" + record.cells[k] +
+                            "' is not a finite number");
       }
       v[k] = *number;
     }

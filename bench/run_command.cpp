@@ -1,7 +1,6 @@
 #include "bench/run_command.hpp"
 
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -12,7 +11,6 @@
 #include <sstream>
 
 #include "bench/experiment.hpp"
-#include "bench/staged_folder.hpp"
 #include "bench/manifest.hpp"
 #include "bench/metrics.hpp"
 #include "bench/parallel.hpp"
@@ -20,6 +18,7 @@
 #include "bench/render_results.hpp"
 #include "bench/results_io.hpp"
 #include "bench/scenario.hpp"
+#include "bench/staged_folder.hpp"
 #include "bench/summary.hpp"
 #include "bench/video_recorder.hpp"
 #include "core/errors.hpp"
@@ -30,19 +29,21 @@ namespace retrace::bench {
 namespace {
 
 // --mode: a mode, a comma-separated list of modes, or `all`; empty: the scenario's modes.
-std::vector<MapMode> ResolveModes(const std::string& text, const std::vector<MapMode>& scenario_modes,
-                                  RunPhases phases) {
+std::vector<MapMode> ResolveModes(const std::string& text,
+                                  const std::vector<MapMode>& scenario_modes, RunPhases phases) {
   if (text.empty()) return scenario_modes;
   if (text == "all") return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
   std::vector<MapMode> modes;
   std::size_t start = 0;
   for (;;) {
     const std::size_t comma = text.find(',', start);
-    const std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::string name =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const auto parsed = core::ParseEnum<MapMode>(name);
     if (!parsed) {
       throw core::ConfigError("--mode", "unknown mode '" + name + "'; expected one or more of " +
-                                            core::EnumNameList<MapMode>() + " (comma-separated), or all");
+                                            core::EnumNameList<MapMode>() +
+                                            " (comma-separated), or all");
     }
     if (std::find(modes.begin(), modes.end(), *parsed) != modes.end()) {
       throw core::ConfigError("--mode", "mode '" + name + "' is given twice");
@@ -62,30 +63,38 @@ std::vector<MapMode> ResolveModes(const std::string& text, const std::vector<Map
 void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   command->add_option("scenario", options->scenario, "Scenario file (YAML)")->required();
   if (phases == RunPhases::kPlaybackOnly) {
-    command->add_option("--teach", options->teach_dir, "The teach/ folder of an earlier run or teach")
+    command
+        ->add_option("--teach", options->teach_dir, "The teach/ folder of an earlier run or teach")
         ->required();
-    command->add_option("--mode", options->mode, "Map mode the teach folder was built in (partial|single|consistent)")
+    command
+        ->add_option("--mode", options->mode,
+                     "Map mode the teach folder was built in (partial|single|consistent)")
         ->default_val("partial");
   } else {
     command->add_option("--mode", options->mode,
-                        "Map modes: partial|single|consistent, comma-separated, or all (default: the scenario's modes)");
+                        "Map modes: partial|single|consistent, comma-separated, or all (default: "
+                        "the scenario's modes)");
   }
   if (phases != RunPhases::kTeachOnly) {
-    command->add_option("--repeats", options->repeats, "Playback runs per mode")->check(CLI::PositiveNumber);
+    command->add_option("--repeats", options->repeats, "Playback runs per mode")
+        ->check(CLI::PositiveNumber);
     command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
         ->check(CLI::NonNegativeNumber);
   }
   command->add_option("--seed", options->seed, "Scenario seed (overrides the file's)");
   command->add_option("--out", options->out, "Results folder (default: results/<scenario name>)");
-  command->add_option("--set", options->overrides, "Override a scenario key: a.b.c=value (repeatable)");
+  command->add_option("--set", options->overrides,
+                      "Override a scenario key: a.b.c=value (repeatable)");
   if (phases != RunPhases::kTeachOnly) {
-    command->add_flag("!--no-figures", options->figures, "Do not render the figures (retrace render does it later)");
+    command->add_flag("!--no-figures", options->figures,
+                      "Do not render the figures (retrace render does it later)");
     command->add_flag("--video", options->video,
                       "Record a video of one playback run per mode: <mode>/runs/<run>/video.mp4");
     command->add_option("--video-run", options->video_run, "The run to record (default 0)")
         ->check(CLI::NonNegativeNumber);
-    command->add_option("--video-speed", options->video_speedup,
-                        "Seconds of the run per second of video (default 10)")
+    command
+        ->add_option("--video-speed", options->video_speedup,
+                     "Seconds of the run per second of video (default 10)")
         ->check(CLI::PositiveNumber);
   }
 }
@@ -95,22 +104,27 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   std::vector<io::ConfigOverride> overrides;
   for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
   if (options.seed) overrides.push_back(io::ParseOverride("seed=" + std::to_string(*options.seed)));
-  if (options.repeats) overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
+  if (options.repeats)
+    overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
   Scenario scenario = LoadScenario(options.scenario, overrides);
   ScenarioConfig& config = scenario.config;
   config.modes = ResolveModes(options.mode, config.modes, phases);
-  const std::filesystem::path out = options.out.empty() ? std::filesystem::path("results") / config.name : options.out;
-  for (const std::string& warning : scenario.warnings) std::cerr << "retrace: warning: " << warning << "\n";
+  const std::filesystem::path out =
+      options.out.empty() ? std::filesystem::path("results") / config.name : options.out;
+  for (const std::string& warning : scenario.warnings)
+    std::cerr << "retrace: warning: " << warning << "\n";
 
   const int repeats = phases == RunPhases::kTeachOnly ? 0 : config.playback.repeats;
   if (options.video && options.video_run >= repeats) {
-    throw core::ConfigError("--video-run", "run " + std::to_string(options.video_run) + " is not played back (" +
-                                               std::to_string(repeats) + " runs per mode)");
+    throw core::ConfigError("--video-run", "run " + std::to_string(options.video_run) +
+                                               " is not played back (" + std::to_string(repeats) +
+                                               " runs per mode)");
   }
 
   // Read a reused teach folder before anything is run or written.
   std::vector<ModeTeach> reused;
-  if (phases == RunPhases::kPlaybackOnly) reused.push_back(ReadTeachFolder(options.teach_dir, config.modes.front()));
+  if (phases == RunPhases::kPlaybackOnly)
+    reused.push_back(ReadTeachFolder(options.teach_dir, config.modes.front()));
 
   // One staged folder per mode: a video is written into it while its run drives.
   std::map<MapMode, std::unique_ptr<StagedFolder>> folders;
@@ -126,14 +140,14 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   if (options.video) {
     VideoOptions video;
     video.speedup = options.video_speedup;
-    run_options.observe = [&](const ModeTeach& teach, int run) -> std::unique_ptr<PlaybackObserver> {
+    run_options.observe = [&](const ModeTeach& teach,
+                              int run) -> std::unique_ptr<PlaybackObserver> {
       if (run != options.video_run) return nullptr;
       const std::string mode_name(core::EnumName(teach.mode));
       try {
-        return std::make_unique<VideoRecorder>(folders.at(teach.mode)->path() / "runs" / std::to_string(run) /
-                                                   "video.mp4",
-                                               mode_name + " maps, run " + std::to_string(run),
-                                               config.sim.robot.radius, video);
+        return std::make_unique<VideoRecorder>(
+            folders.at(teach.mode)->path() / "runs" / std::to_string(run) / "video.mp4",
+            mode_name + " maps, run " + std::to_string(run), config.sim.robot.radius, video);
       } catch (const core::Error& e) {
         std::cerr << "retrace: warning: no video of " << mode_name << ": " << e.what() << "\n";
         return nullptr;
@@ -149,12 +163,12 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   }
   progress.Clear();
 
-
   // Metrics, then the files: one staged folder per mode.
   int exit_code = 0;
   std::vector<ModeSummary> summaries;
   nlohmann::json comparison = nlohmann::json::object();
-  const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   for (const ModeResult& result : experiment.modes) {
     const ModeTeach& teach = result.teach;
     const std::string mode_name(core::EnumName(teach.mode));
@@ -163,7 +177,8 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     StagedFolder& folder = *folders.at(teach.mode);
     if (phases != RunPhases::kPlaybackOnly) WriteTeachFolder(folder.path() / "teach", teach);
     for (const RunTrace& run : runs) {
-      WriteRunFolder(folder.path() / "runs" / std::to_string(run.run), teach.trace, run, config.metrics);
+      WriteRunFolder(folder.path() / "runs" / std::to_string(run.run), teach.trace, run,
+                     config.metrics);
     }
     ModeSummary summary{teach.mode, 0, 0, {}};
     if (repeats > 0) {
@@ -177,8 +192,9 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
       WriteRepeatabilityCsv(folder.path() / "repeatability.csv", aggregate.repeatability);
       comparison[mode_name] = metrics["aggregate"];
       summary = SummarizeMode(teach.mode, aggregate);
-      const bool required = std::find(config.limits.success_required.begin(), config.limits.success_required.end(),
-                                      teach.mode) != config.limits.success_required.end();
+      const bool required =
+          std::find(config.limits.success_required.begin(), config.limits.success_required.end(),
+                    teach.mode) != config.limits.success_required.end();
       if (required && summary.successes < summary.runs) exit_code = 1;
     }
     ManifestInfo info;
@@ -190,15 +206,17 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     folder.Commit();
     summaries.push_back(summary);
   }
-  if (experiment.modes.size() > 1 && repeats > 0) io::WriteJsonAtomic(out / "comparison.json", comparison);
+  if (experiment.modes.size() > 1 && repeats > 0)
+    io::WriteJsonAtomic(out / "comparison.json", comparison);
 
   // Figures last: a rendering failure (no OSMesa context, say) leaves the numbers intact.
   if (options.figures) {
     try {
       RenderResults(out);
     } catch (const core::Error& e) {
-      std::cerr << "retrace: warning: no figures: " << e.what() << " (the results are complete; retry with `retrace render "
-                << out.string() << "`)\n";
+      std::cerr << "retrace: warning: no figures: " << e.what()
+                << " (the results are complete; retry with `retrace render " << out.string()
+                << "`)\n";
     }
   }
 

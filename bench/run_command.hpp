@@ -16,7 +16,7 @@ namespace retrace::bench {
 
 struct RunOptions {
   std::filesystem::path scenario;
-  std::string mode;  ///< partial, single, consistent, a comma-separated list or all; empty: the scenario's `modes`
+  std::string mode;  ///< a mode, a comma-separated list or all; empty: the scenario's `modes`
   std::optional<int> repeats;
   std::optional<std::uint64_t> seed;
   std::filesystem::path out;  ///< results folder; empty: results/<scenario name>
@@ -26,7 +26,7 @@ struct RunOptions {
   bool figures = true;              ///< render the figures at the end (bench/render_results)
   bool video = false;               ///< record a video of playback run `video_run` of each mode
   int video_run = 0;
-  double video_speedup = 10.0;      ///< seconds of the run per second of video
+  double video_speedup = 10.0;  ///< seconds of the run per second of video
 };
 
 enum class RunPhases { kAll, kTeachOnly, kPlaybackOnly };

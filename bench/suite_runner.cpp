@@ -120,8 +120,8 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
   if (progress) progress->Phase("teach", static_cast<int>(units.size()));
   ParallelFor(jobs, units.size(), [&](std::size_t i) {
     const std::size_t u = teach_order[i];
-    teaches[u] =
-        RunTeachDrive(*units[u].scenario, units[u].scenario->config.modes, SimTimeReporter(progress));
+    teaches[u] = RunTeachDrive(*units[u].scenario, units[u].scenario->config.modes,
+                               SimTimeReporter(progress));
     if (progress) progress->UnitDone();
   });
 
@@ -169,8 +169,8 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
     const std::size_t slot = slot_base[task.unit] + task.mode;
     const double timeout = PlaybackTimeout(scenario, teaches[task.unit].duration_s);
     const auto run = static_cast<std::size_t>(task.run);
-    runs[slot][run] =
-        RunPlayback(scenario, teach.bundle, teach.trace, task.run, timeout, SimTimeReporter(progress));
+    runs[slot][run] = RunPlayback(scenario, teach.bundle, teach.trace, task.run, timeout,
+                                  SimTimeReporter(progress));
     run_metrics[slot][run] =
         ComputeRunMetrics(teach.trace, runs[slot][run], scenario.config.metrics);
     if (remaining[slot].fetch_sub(1) == 1) {

@@ -109,8 +109,8 @@ std::int64_t ReadInteger(const YAML::Node& node, const ReadContext& ctx, std::in
     Fail(node, ctx, "expected an integer, got " + Describe(node));
   }
   if (v < lo || v > hi) {
-    Fail(node, ctx, "integer " + s + " out of range [" + std::to_string(lo) + ", " +
-                        std::to_string(hi) + "]");
+    Fail(node, ctx,
+         "integer " + s + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return v;
 }
@@ -131,9 +131,9 @@ std::string ReadString(const YAML::Node& node, const ReadContext& ctx) {
 std::vector<double> ReadNumbers(const YAML::Node& node, const ReadContext& ctx,
                                 std::size_t expected_size) {
   if (!node.IsSequence() || node.size() != expected_size) {
-    Fail(node, ctx, "expected a list of " + std::to_string(expected_size) + " numbers, got " +
-                        (node.IsSequence() ? "a list of " + std::to_string(node.size())
-                                           : Describe(node)));
+    Fail(node, ctx,
+         "expected a list of " + std::to_string(expected_size) + " numbers, got " +
+             (node.IsSequence() ? "a list of " + std::to_string(node.size()) : Describe(node)));
   }
   std::vector<double> out(expected_size);
   for (std::size_t i = 0; i < expected_size; ++i) out[i] = ReadDouble(node[i], ctx.Element(i));
@@ -168,16 +168,17 @@ YAML::Node LoadYamlFile(const std::filesystem::path& file) {
     }
     return root;
   } catch (const YAML::ParserException& e) {
-    throw core::ConfigError("", file.string() + ":" + std::to_string(e.mark.line + 1) +
-                                    ": invalid YAML: " + e.msg,
-                            /*located=*/true);
+    throw core::ConfigError(
+        "", file.string() + ":" + std::to_string(e.mark.line + 1) + ": invalid YAML: " + e.msg,
+        /*located=*/true);
   }
 }
 
 namespace {
 
 bool IsIndex(const std::string& s) {
-  return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+  return !s.empty() &&
+         std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
 [[noreturn]] void OverrideFail(const ConfigOverride& o, const std::string& message) {

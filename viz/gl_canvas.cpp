@@ -37,7 +37,7 @@ namespace {
 // the same size reuses that framebuffer, so `current` remembers whose pixels it holds.
 struct ThreadGl {
   OSMesaContext context = nullptr;
-  const void* current = nullptr;  // the GlCanvas::Impl bound to `context`, if any
+  const void* current = nullptr;          // the GlCanvas::Impl bound to `context`, if any
   std::array<std::uint8_t, 4> parking{};  // a 1x1 buffer to bind when a canvas goes away
 
   ~ThreadGl() {
@@ -271,9 +271,10 @@ class GlCanvas::Impl {
             sum[2] += p[2];
           }
         }
-        std::uint8_t* o = out.rgb.data() +
-                          (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                           static_cast<std::size_t>(x)) * 3;
+        std::uint8_t* o =
+            out.rgb.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                              static_cast<std::size_t>(x)) *
+                                 3;
         for (int c = 0; c < 3; ++c) o[c] = static_cast<std::uint8_t>((sum[c] + n / 2) / n);
       }
     }
@@ -484,7 +485,8 @@ void GlCanvas::DrawMarkers(const std::vector<Vec2>& points_W, Marker marker, dou
   const double size = size_px * impl_->ss_;
   if (outline_px > 0.0) {
     Triangles o;
-    for (const Vec2& p : points_W) AddMarker(o, marker, impl_->Px(p), size + 2.0 * outline_px * impl_->ss_);
+    for (const Vec2& p : points_W)
+      AddMarker(o, marker, impl_->Px(p), size + 2.0 * outline_px * impl_->ss_);
     Draw(o, outline);
   }
   Triangles t;
@@ -492,9 +494,8 @@ void GlCanvas::DrawMarkers(const std::vector<Vec2>& points_W, Marker marker, dou
   Draw(t, fill);
 }
 
-void GlCanvas::DrawPoseArrows(const std::vector<core::Pose2>& poses_W, double length_px,
-                              Rgba color, const std::vector<Rgba>& colors, double outline_px,
-                              Rgba outline) {
+void GlCanvas::DrawPoseArrows(const std::vector<core::Pose2>& poses_W, double length_px, Rgba color,
+                              const std::vector<Rgba>& colors, double outline_px, Rgba outline) {
   if (poses_W.empty() || !(length_px > 0.0)) return;
   impl_->Bind();
   const double L = length_px * impl_->ss_;
@@ -523,8 +524,8 @@ void GlCanvas::DrawPoseArrows(const std::vector<core::Pose2>& poses_W, double le
 
 void GlCanvas::DrawRaster(const CellRaster& raster_M, const core::Pose2& X_WM) {
   if (raster_M.width <= 0 || raster_M.height <= 0) return;
-  RETRACE_CHECK(raster_M.cells.size() ==
-                static_cast<std::size_t>(raster_M.width) * static_cast<std::size_t>(raster_M.height));
+  RETRACE_CHECK(raster_M.cells.size() == static_cast<std::size_t>(raster_M.width) *
+                                             static_cast<std::size_t>(raster_M.height));
   impl_->Bind();
   // Tiles keep every texture well inside the renderer's limit.
   constexpr int kTile = 4096;
@@ -539,9 +540,9 @@ void GlCanvas::DrawRaster(const CellRaster& raster_M, const core::Pose2& X_WM) {
       const int th = std::min(kTile, raster_M.height - y0);
       tile.resize(static_cast<std::size_t>(tw) * static_cast<std::size_t>(th));
       for (int y = 0; y < th; ++y) {
-        std::copy_n(raster_M.cells.begin() +
-                        (static_cast<std::ptrdiff_t>(y0 + y) * raster_M.width + x0),
-                    tw, tile.begin() + static_cast<std::ptrdiff_t>(y) * tw);
+        std::copy_n(
+            raster_M.cells.begin() + (static_cast<std::ptrdiff_t>(y0 + y) * raster_M.width + x0),
+            tw, tile.begin() + static_cast<std::ptrdiff_t>(y) * tw);
       }
       GLuint tex = 0;
       glGenTextures(1, &tex);
@@ -590,12 +591,18 @@ void GlCanvas::DrawGrid(const core::OccupancyGrid& grid_M, const core::Pose2& X_
   }
   const double res = grid_M.resolution();
   const Vec2& o = grid_M.origin();
-  auto clamp_x = [&](double v) { return static_cast<int>(std::clamp(v, -1.0, 1.0 * grid_M.width())); };
-  auto clamp_y = [&](double v) { return static_cast<int>(std::clamp(v, -1.0, 1.0 * grid_M.height())); };
+  auto clamp_x = [&](double v) {
+    return static_cast<int>(std::clamp(v, -1.0, 1.0 * grid_M.width()));
+  };
+  auto clamp_y = [&](double v) {
+    return static_cast<int>(std::clamp(v, -1.0, 1.0 * grid_M.height()));
+  };
   int cx0 = std::max(0, clamp_x(std::floor((vis_M.min.x() - o.x()) / res)) - 1);
   int cy0 = std::max(0, clamp_y(std::floor((vis_M.min.y() - o.y()) / res)) - 1);
-  const int cx1 = std::min(grid_M.width() - 1, clamp_x(std::floor((vis_M.max.x() - o.x()) / res)) + 1);
-  const int cy1 = std::min(grid_M.height() - 1, clamp_y(std::floor((vis_M.max.y() - o.y()) / res)) + 1);
+  const int cx1 =
+      std::min(grid_M.width() - 1, clamp_x(std::floor((vis_M.max.x() - o.x()) / res)) + 1);
+  const int cy1 =
+      std::min(grid_M.height() - 1, clamp_y(std::floor((vis_M.max.y() - o.y()) / res)) + 1);
   if (cx1 < cx0 || cy1 < cy0) return;
 
   // Pool blocks of f x f cells when a cell is under one (supersampled) pixel; blocks are
@@ -622,7 +629,8 @@ void GlCanvas::DrawGrid(const core::OccupancyGrid& grid_M, const core::Pose2& X_
       const int bx1 = std::min(grid_M.width(), bx0 + f);
       const int by1 = std::min(grid_M.height(), by0 + f);
       for (int y = by0; y < by1; ++y) {
-        const float* row = lo.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(grid_M.width());
+        const float* row =
+            lo.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(grid_M.width());
         for (int x = bx0; x < bx1; ++x) {
           const float l = row[x];
           if (l == 0.0f) continue;

@@ -1,6 +1,8 @@
 // Teach → playback end to end on the small scenario: success, plausible metrics, determinism,
 // the files written, and the failure the paper predicts when a map's segment revisits itself.
 
+#include "bench/episode.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "bench/episode.hpp"
 #include "bench/metrics.hpp"
 #include "bench/render_results.hpp"
 #include "bench/results_io.hpp"
@@ -35,7 +36,8 @@ Scenario Small(std::vector<std::string> sets = {}) {
 std::uint64_t TrajectoryHash(const RunTrace& run) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (const PlaybackSample& s : run.samples) {
-    const double values[] = {s.time, s.X_WR.x, s.X_WR.y, s.X_WR.theta, s.X_MR.x, s.X_MR.y, s.X_MR.theta};
+    const double values[] = {s.time,   s.X_WR.x, s.X_WR.y,    s.X_WR.theta,
+                             s.X_MR.x, s.X_MR.y, s.X_MR.theta};
     h = core::HashBytes(values, sizeof values, h);
   }
   return h;
@@ -73,7 +75,8 @@ TEST(Episode, SmallScenarioPlaybackSucceedsWithPlausibleMetrics) {
   ASSERT_TRUE(run.snapshot.has_value());
   const LocalizationSnapshot& snap = *run.snapshot;
   EXPECT_GT(snap.pedestrian_beams, 0);
-  EXPECT_EQ(snap.particles.size(), static_cast<std::size_t>(scenario.config.nav.localizer.particles));
+  EXPECT_EQ(snap.particles.size(),
+            static_cast<std::size_t>(scenario.config.nav.localizer.particles));
   EXPECT_EQ(snap.beam_use.size(), snap.scan.size());
   EXPECT_EQ(snap.likelihood.size, 81);
   EXPECT_EQ(snap.likelihood.all_beams.size(), 81u * 81u);
@@ -125,8 +128,8 @@ TEST(Episode, RunCommandWritesFilesThatParseBack) {
   ASSERT_EQ(reread_run.samples.size(), gt.size());
   EXPECT_EQ(reread_run.samples.back().X_WR, gt.back().pose);
   EXPECT_EQ(reread_run.samples.back().map_index, 1);
-  for (const char* figure : {"maps.png", "playback_partial.png", "odometry.png", "errors.png", "snapshot.png",
-                             "likelihood.png"}) {
+  for (const char* figure : {"maps.png", "playback_partial.png", "odometry.png", "errors.png",
+                             "snapshot.png", "likelihood.png"}) {
     EXPECT_GT(std::filesystem::file_size(dir / "figures" / figure), 10000u) << figure;
   }
   // `retrace render`: the figures again, from the files alone.
@@ -171,9 +174,11 @@ std::string ReadFile(const std::filesystem::path& path) {
 TEST(Episode, ParallelRunsGiveTheSameFilesAsASerialRun) {
   const retrace::testing::TempDir tmp;
   ASSERT_EQ(RunRunCommand(SmallRun("all", tmp.path() / "serial", 1), RunPhases::kAll, "serial"), 0);
-  ASSERT_EQ(RunRunCommand(SmallRun("all", tmp.path() / "parallel", 3), RunPhases::kAll, "parallel"), 0);
+  ASSERT_EQ(RunRunCommand(SmallRun("all", tmp.path() / "parallel", 3), RunPhases::kAll, "parallel"),
+            0);
   for (const char* mode : {"partial", "single", "consistent"}) {
-    for (const char* file : {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {
+    for (const char* file :
+         {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {
       const std::filesystem::path rel = std::filesystem::path(mode) / file;
       SCOPED_TRACE(rel.string());
       const std::string serial = ReadFile(tmp.path() / "serial" / rel);

@@ -1,17 +1,16 @@
 #include "bench/metrics.hpp"
-#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "core/rng.hpp"
 #include "tests/support/config_key.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -411,7 +410,7 @@ TEST(Metrics, ContactsOfTheSameKindCloseInTimeAreOneIncident) {
 TEST(Metrics, APedestrianIncidentIsTheRobotsOnlyWhenItDroveTowardsTheContact) {
   const TeachTrace teach = TeachWithMap(Straight(10.0, 0.0, 0.05));
   RunTrace run = RunAlong(Straight(10.0, 0.0, 0.05));  // +x at 1 m/s for 10 s
-  for (int i = 1; i <= 40; ++i) {                         // then 2 s standing still
+  for (int i = 1; i <= 40; ++i) {                      // then 2 s standing still
     PlaybackSample s = run.samples.back();
     s.time += kDt;
     run.samples.push_back(s);
@@ -558,9 +557,9 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                  "progress_m", "tracking_error_m", "localization_error_m", "localization_error_rad",
                  "lost_fraction", "collisions", "switch_error", "dynamic_points", "cpu"});
   ExpectKeys(r["tracking_error_m"], {"mean", "rms", "p95", "max", "count"});
-  ExpectKeys(r["collisions"], {"static_incidents", "pedestrian_incidents",
-                               "pedestrian_incidents_robot_driving", "static_events",
-                               "pedestrian_events", "min_clearance_m", "min_pedestrian_gap_m"});
+  ExpectKeys(r["collisions"],
+             {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",
+              "static_events", "pedestrian_events", "min_clearance_m", "min_pedestrian_gap_m"});
   ExpectKeys(r["switch_error"], {"count", "max_m", "max_rad", "switches"});
   ExpectKeys(r["switch_error"]["switches"][0], {"time_s", "from", "to", "error_m", "error_rad"});
   ExpectKeys(r["dynamic_points"],
@@ -579,25 +578,11 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   EXPECT_TRUE(r["cpu"]["real_time_factor"].is_null());
 
   const nlohmann::json a = ToJson(Aggregate(teach, runs, metrics, config));
-  ExpectKeys(a, {"runs",
-                 "successes",
-                 "success_rate",
-                 "outcomes",
-                 "taught_path_length_m",
-                 "mean_time_s",
-                 "mean_path_length_m",
-                 "mean_progress_m",
-                 "tracking_error_m",
-                 "localization_error_m",
-                 "localization_error_rad",
-                 "lost_fraction",
-                 "repeatability_m",
-                 "repeatability_max_spread_m",
-                 "repeatability_stations_used",
-                 "collisions",
-                 "switch_error",
-                 "dynamic_points",
-                 "cpu"});
+  ExpectKeys(a, {"runs", "successes", "success_rate", "outcomes", "taught_path_length_m",
+                 "mean_time_s", "mean_path_length_m", "mean_progress_m", "tracking_error_m",
+                 "localization_error_m", "localization_error_rad", "lost_fraction",
+                 "repeatability_m", "repeatability_max_spread_m", "repeatability_stations_used",
+                 "collisions", "switch_error", "dynamic_points", "cpu"});
   ExpectKeys(a["outcomes"], {"success", "timeout", "collision", "lost"});
   ExpectKeys(a["tracking_error_m"], {"pooled", "run_mean"});
   ExpectKeys(a["tracking_error_m"]["pooled"], {"mean", "rms", "p95", "max", "count"});
@@ -610,7 +595,8 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   EXPECT_EQ(a["outcomes"]["success"], 2);
   // The stations themselves go to a CSV: s, run 3, run 4, std, spread.
   const retrace::testing::TempDir tmp;
-  WriteRepeatabilityCsv(tmp.path() / "repeatability.csv", Aggregate(teach, runs, metrics, config).repeatability);
+  WriteRepeatabilityCsv(tmp.path() / "repeatability.csv",
+                        Aggregate(teach, runs, metrics, config).repeatability);
   std::ifstream in(tmp.path() / "repeatability.csv");
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
