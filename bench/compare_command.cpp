@@ -7,6 +7,7 @@
 
 #include "bench/comparison_report.hpp"
 #include "bench/experiment.hpp"
+#include "bench/mode_list.hpp"
 #include "bench/staged_folder.hpp"
 #include "bench/parallel.hpp"
 #include "bench/progress.hpp"
@@ -23,21 +24,7 @@ namespace retrace::bench {
 namespace {
 
 std::vector<MapMode> ParseModes(const std::vector<std::string>& names) {
-  if (names.empty())
-    throw core::ConfigError("--modes",
-                            "no mode given; expected some of: " + core::EnumNameList<MapMode>());
-  std::vector<MapMode> modes;
-  for (const std::string& name : names) {
-    const auto mode = core::ParseEnum<MapMode>(name);
-    if (!mode) {
-      throw core::ConfigError("--modes", "unknown mode '" + name + "'; expected some of: " +
-                                             core::EnumNameList<MapMode>());
-    }
-    if (std::find(modes.begin(), modes.end(), *mode) != modes.end()) {
-      throw core::ConfigError("--modes", "mode '" + name + "' is given twice");
-    }
-    modes.push_back(*mode);
-  }
+  std::vector<MapMode> modes = ParseModeList(names, "--modes");
   if (modes.size() < 2) throw core::ConfigError("--modes", "a comparison needs at least two modes");
   return modes;
 }

@@ -13,6 +13,7 @@
 #include "bench/experiment.hpp"
 #include "bench/manifest.hpp"
 #include "bench/metrics.hpp"
+#include "bench/mode_list.hpp"
 #include "bench/parallel.hpp"
 #include "bench/progress.hpp"
 #include "bench/render_results.hpp"
@@ -28,30 +29,14 @@
 namespace retrace::bench {
 namespace {
 
-// --mode: a mode, a comma-separated list of modes, or `all`; empty: the scenario's modes.
-std::vector<MapMode> ResolveModes(const std::string& text,
+// --mode: modes (comma-separated on the command line) or `all`; none: the scenario's modes.
+std::vector<MapMode> ResolveModes(const std::vector<std::string>& names,
                                   const std::vector<MapMode>& scenario_modes, RunPhases phases) {
-  if (text.empty()) return scenario_modes;
-  if (text == "all") return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
-  std::vector<MapMode> modes;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    const std::string name =
-        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    const auto parsed = core::ParseEnum<MapMode>(name);
-    if (!parsed) {
-      throw core::ConfigError("--mode", "unknown mode '" + name + "'; expected one or more of " +
-                                            core::EnumNameList<MapMode>() +
-                                            " (comma-separated), or all");
-    }
-    if (std::find(modes.begin(), modes.end(), *parsed) != modes.end()) {
-      throw core::ConfigError("--mode", "mode '" + name + "' is given twice");
-    }
-    modes.push_back(*parsed);
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+  if (names.empty()) return scenario_modes;
+  if (names == std::vector<std::string>{"all"}) {
+    return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
   }
+  std::vector<MapMode> modes = ParseModeList(names, "--mode");
   if (phases == RunPhases::kPlaybackOnly && modes.size() > 1) {
     throw core::ConfigError("--mode", "a teach folder holds the maps of one mode; give that one");
   }
@@ -67,13 +52,16 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
         ->add_option("--teach", options->teach_dir, "The teach/ folder of an earlier run or teach")
         ->required();
     command
-        ->add_option("--mode", options->mode,
+        ->add_option("--mode", options->modes,
                      "Map mode the teach folder was built in (partial|single|consistent)")
+        ->delimiter(',')
         ->default_val("partial");
   } else {
-    command->add_option("--mode", options->mode,
-                        "Map modes: partial|single|consistent, comma-separated, or all (default: "
-                        "the scenario's modes)");
+    command
+        ->add_option("--mode", options->modes,
+                     "Map modes: partial|single|consistent, comma-separated, or all (default: "
+                     "the scenario's modes)")
+        ->delimiter(',');
   }
   if (phases != RunPhases::kTeachOnly) {
     command->add_option("--repeats", options->repeats, "Playback runs per mode")
@@ -108,7 +96,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
   Scenario scenario = LoadScenario(options.scenario, overrides);
   ScenarioConfig& config = scenario.config;
-  config.modes = ResolveModes(options.mode, config.modes, phases);
+  config.modes = ResolveModes(options.modes, config.modes, phases);
   const std::filesystem::path out =
       options.out.empty() ? std::filesystem::path("results") / config.name : options.out;
   for (const std::string& warning : scenario.warnings)

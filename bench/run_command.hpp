@@ -16,7 +16,7 @@ namespace retrace::bench {
 
 struct RunOptions {
   std::filesystem::path scenario;
-  std::string mode;  ///< a mode, a comma-separated list or all; empty: the scenario's `modes`
+  std::vector<std::string> modes;  ///< mode names, or {"all"}; empty: the scenario's `modes`
   std::optional<int> repeats;
   std::optional<std::uint64_t> seed;
   std::filesystem::path out;  ///< results folder; empty: results/<scenario name>

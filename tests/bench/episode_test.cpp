@@ -99,7 +99,7 @@ TEST(Episode, SameSeedSameTrajectoryOtherRunOtherTrajectory) {
 RunOptions SmallRun(const std::string& mode, const std::filesystem::path& out, int jobs) {
   RunOptions options;
   options.scenario = kSource / "scenarios/small.yaml";
-  options.mode = mode;
+  options.modes = {mode};
   options.repeats = 1;
   options.out = out;
   options.jobs = jobs;
