@@ -263,6 +263,9 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
   std::filesystem::create_directories(out / "figures");
   if (comparison.modes.size() > 1) {
     comparison.scenario = out.filename().string();
+    comparison.note =
+        "Each mode: the playback runs of one teaching drive; RMS over all the runs' samples "
+        "(retrace compare gives confidence intervals over seeds).";
     written.push_back(
         viz::RenderComparisonFigure(comparison, out / "figures" / "comparison.png").path);
   }

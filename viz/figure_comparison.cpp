@@ -29,13 +29,13 @@ const MetricValue* Find(const ModeMetrics& m, const std::string& metric) {
 }  // namespace
 
 FigureInfo RenderComparisonFigure(const ComparisonFigureData& data,
-                                  const std::filesystem::path& png,
-                                  const FigureOptions& options) {
+                                  const std::filesystem::path& png, const FigureOptions& options) {
   options.Validate();
   std::vector<std::string> metrics;
   for (const auto& m : data.modes) {
     for (const auto& v : m.metrics) {
-      if (std::find(metrics.begin(), metrics.end(), v.metric) == metrics.end()) metrics.push_back(v.metric);
+      if (std::find(metrics.begin(), metrics.end(), v.metric) == metrics.end())
+        metrics.push_back(v.metric);
     }
   }
   internal::Require(!data.modes.empty() && !metrics.empty(), png,
@@ -44,15 +44,19 @@ FigureInfo RenderComparisonFigure(const ComparisonFigureData& data,
   const int n_modes = static_cast<int>(data.modes.size());
 
   internal::Header header;
-  header.title = options.title.empty()
-                     ? "Map modes compared" + (data.scenario.empty() ? std::string() : ": " + data.scenario)
-                     : options.title;
+  header.title =
+      options.title.empty()
+          ? "Map modes compared" + (data.scenario.empty() ? std::string() : ": " + data.scenario)
+          : options.title;
   bool intervals = false;
   for (const auto& m : data.modes) {
     for (const auto& v : m.metrics) intervals |= std::isfinite(v.lower) && std::isfinite(v.upper);
   }
+  header.subtitle = data.note;
   if (intervals) {
-    header.subtitle = "Bars: value; whiskers: the interval given with it (e.g. a 95% confidence interval).";
+    header.subtitle += std::string(header.subtitle.empty() ? "" : " ") +
+                       "Bars: value; whiskers: the interval given with it (e.g. a 95% confidence "
+                       "interval).";
   }
   for (int i = 0; i < n_modes; ++i) {
     header.legend.push_back({data.modes[static_cast<std::size_t>(i)].mode,
@@ -107,18 +111,22 @@ FigureInfo RenderComparisonFigure(const ComparisonFigureData& data,
     for (int i = 0; i < n_modes; ++i) {
       const ModeMetrics& m = data.modes[static_cast<std::size_t>(i)];
       const cv::Point2d c = chart.Px(i + 0.5, 0.0);
-      internal::PutText(fig, m.mode, cv::Point(static_cast<int>(std::lround(c.x)), chart.plot.br().y + 10),
+      internal::PutText(fig, m.mode,
+                        cv::Point(static_cast<int>(std::lround(c.x)), chart.plot.br().y + 10),
                         internal::Align::kCenter, internal::VAlign::kTop, internal::kLabelText);
       const MetricValue* v = Find(m, metrics[k]);
       if (v == nullptr || !std::isfinite(v->value)) {
-        internal::PutText(fig, "n/a", cv::Point(static_cast<int>(std::lround(c.x)), static_cast<int>(zero.y) - 8),
-                          internal::Align::kCenter, internal::VAlign::kBottom, internal::kTickText);
+        internal::PutText(
+            fig, "n/a", cv::Point(static_cast<int>(std::lround(c.x)), static_cast<int>(zero.y) - 8),
+            internal::Align::kCenter, internal::VAlign::kBottom, internal::kTickText);
         continue;
       }
       const cv::Point2d a = chart.Px(i + 0.18, v->value);
       const cv::Point2d b = chart.Px(i + 0.82, 0.0);
-      const cv::Rect bar(cv::Point(static_cast<int>(std::lround(a.x)), static_cast<int>(std::lround(std::min(a.y, b.y)))),
-                         cv::Point(static_cast<int>(std::lround(b.x)), static_cast<int>(std::lround(std::max(a.y, b.y)))));
+      const cv::Rect bar(cv::Point(static_cast<int>(std::lround(a.x)),
+                                   static_cast<int>(std::lround(std::min(a.y, b.y)))),
+                         cv::Point(static_cast<int>(std::lround(b.x)),
+                                   static_cast<int>(std::lround(std::max(a.y, b.y)))));
       cv::rectangle(fig, bar, internal::ToScalar(ModeColor(m.mode, i)), cv::FILLED);
       cv::rectangle(fig, bar, internal::ToScalar(palette::kAxis), 1);
       double label_y = v->value;

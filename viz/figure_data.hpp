@@ -25,8 +25,8 @@ struct Circle {
 
 /// The world's static geometry in W, as the simulator holds it.
 struct WorldShapes {
-  std::vector<std::vector<Vec2>> polygons;    ///< filled solids (buildings, boxes, thick walls)
-  std::vector<Circle> circles;                ///< trees, poles
+  std::vector<std::vector<Vec2>> polygons;      ///< filled solids (buildings, boxes, thick walls)
+  std::vector<Circle> circles;                  ///< trees, poles
   std::vector<std::pair<Vec2, Vec2>> segments;  ///< thin edges (walls of imported maps)
 
   bool empty() const { return polygons.empty() && circles.empty() && segments.empty(); }
@@ -36,12 +36,12 @@ struct WorldShapes {
 
 /// One partial map with what was recorded in it.
 struct PartialMapView {
-  std::string label;                        ///< panel title; empty: "map k"
-  core::OccupancyGrid grid;                 ///< in M_k
-  core::Pose2 X_WM;                         ///< where M_k sits in W (ground truth at the map's start)
-  std::vector<core::Pose2> path;            ///< taught path (keyframes) X_{M_k R}
-  core::Pose2 start;                        ///< start of segment k in M_k (identity by design)
-  std::optional<core::Pose2> switch_pose;   ///< X_{M_k S}; none for the last map
+  std::string label;              ///< panel title; empty: "map k"
+  core::OccupancyGrid grid;       ///< in M_k
+  core::Pose2 X_WM;               ///< where M_k sits in W (ground truth at the map's start)
+  std::vector<core::Pose2> path;  ///< taught path (keyframes) X_{M_k R}
+  core::Pose2 start;              ///< start of segment k in M_k (identity by design)
+  std::optional<core::Pose2> switch_pose;  ///< X_{M_k S}; none for the last map
 };
 
 /// A trajectory with its legend label.
@@ -103,8 +103,8 @@ struct LikelihoodGrid {
 struct LikelihoodFigureData {
   LikelihoodGrid without_rejection;
   LikelihoodGrid with_rejection;
-  core::Pose2 true_pose;             ///< the robot's true pose (map frame of the grids)
-  std::vector<Circle> pedestrians;   ///< same frame
+  core::Pose2 true_pose;            ///< the robot's true pose (map frame of the grids)
+  std::vector<Circle> pedestrians;  ///< same frame
   double time_s = std::numeric_limits<double>::quiet_NaN();  ///< shown when finite
 };
 
@@ -119,15 +119,15 @@ struct ScanPoint {
 struct SnapshotData {
   double time_s = 0.0;
   int map_index = 0;
-  core::OccupancyGrid grid;              ///< the map, M
-  std::vector<core::Pose2> path;         ///< taught path in M (optional)
-  std::vector<core::Pose2> particles;    ///< X_MR per particle
-  std::vector<double> weights;           ///< one per particle (any scale); empty: equal
-  core::Pose2 estimate;                  ///< X_MR
-  core::Pose2 truth;                     ///< local ground truth X_MR
-  std::vector<ScanPoint> scan;           ///< end points in M
-  std::vector<Circle> pedestrians;       ///< in M
-  double robot_radius = 0.3;             ///< m
+  core::OccupancyGrid grid;            ///< the map, M
+  std::vector<core::Pose2> path;       ///< taught path in M (optional)
+  std::vector<core::Pose2> particles;  ///< X_MR per particle
+  std::vector<double> weights;         ///< one per particle (any scale); empty: equal
+  core::Pose2 estimate;                ///< X_MR
+  core::Pose2 truth;                   ///< local ground truth X_MR
+  std::vector<ScanPoint> scan;         ///< end points in M
+  std::vector<Circle> pedestrians;     ///< in M
+  double robot_radius = 0.3;           ///< m
 };
 
 /// Errors of one run along the route.
@@ -162,6 +162,7 @@ struct ModeMetrics {
 struct ComparisonFigureData {
   std::string scenario;
   std::vector<ModeMetrics> modes;
+  std::string note;  ///< what the numbers are (runs, pooling); shown under the title
 };
 
 /// A quick look at a world file (`retrace world`): geometry, route, pedestrians, robot.

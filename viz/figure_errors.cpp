@@ -6,6 +6,7 @@
 #include "viz/figures.hpp"
 #include "viz/internal/chart.hpp"
 #include "viz/internal/figure_layout.hpp"
+#include "viz/style.hpp"
 
 namespace retrace::viz {
 
@@ -18,21 +19,23 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
 
   internal::Header header;
   header.title = options.title.empty()
-                     ? "Errors along the route" + (data.mode.empty() ? std::string() : " (" + data.mode + " maps)")
+                     ? "Errors along the route" +
+                           (data.mode.empty() ? std::string() : " (" + ModeMaps(data.mode) + ")")
                      : options.title;
   header.subtitle = "Against arc length along the taught path; dashed lines: map switches.";
   if (n <= palette::kRuns.size()) {
     for (std::size_t i = 0; i < n; ++i) {
-      header.legend.push_back({data.runs[i].label.empty() ? "run " + std::to_string(i) : data.runs[i].label,
-                               RunColor(static_cast<int>(i)), internal::LegendSymbol::kLine,
-                               Marker::kDisc, 2.0});
+      header.legend.push_back(
+          {data.runs[i].label.empty() ? "run " + std::to_string(i) : data.runs[i].label,
+           RunColor(static_cast<int>(i)), internal::LegendSymbol::kLine, Marker::kDisc, 2.0});
     }
   } else {
-    header.legend.push_back({"runs (colours cycle)", RunColor(0), internal::LegendSymbol::kLine, Marker::kDisc, 2.0});
+    header.legend.push_back(
+        {"runs (colours cycle)", RunColor(0), internal::LegendSymbol::kLine, Marker::kDisc, 2.0});
   }
   if (!data.switch_arc_lengths.empty()) {
-    header.legend.push_back({"map switch", palette::kSwitch, internal::LegendSymbol::kDashedLine,
-                             Marker::kDisc, 2.0});
+    header.legend.push_back(
+        {"map switch", palette::kSwitch, internal::LegendSymbol::kDashedLine, Marker::kDisc, 2.0});
   }
 
   double s_max = 0.0;
@@ -59,21 +62,25 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
   std::vector<PanelInfo> panels;
   for (int k = 0; k < 2; ++k) {
     std::vector<const std::vector<double>*> series;
-    for (const auto& r : data.runs) series.push_back(k == 0 ? &r.tracking_error : &r.localization_error);
+    for (const auto& r : data.runs)
+      series.push_back(k == 0 ? &r.tracking_error : &r.localization_error);
     bool clipped = false;
     const double y_max = internal::RobustMax(series, &clipped);
-    const double y_top = internal::NiceStep(y_max, 5) * std::ceil(y_max / internal::NiceStep(y_max, 5) + 1e-9);
+    const double y_top =
+        internal::NiceStep(y_max, 5) * std::ceil(y_max / internal::NiceStep(y_max, 5) + 1e-9);
     internal::Chart chart;
     const int y0 = top + k * tile_h;
     chart.plot = cv::Rect(internal::kChartLeft, y0 + internal::kChartTop,
                           W - internal::kChartLeft - internal::kChartRight, plot_h);
     chart.box = Box2::Of(Vec2(0.0, 0.0), Vec2(s_max, std::max(y_top, 1e-3)));
     internal::DrawChartAxes(fig, chart, "arc length along the taught path (m)", y_labels[k]);
-    for (double s : data.switch_arc_lengths) internal::DrawChartVLine(fig, chart, s, palette::kSwitch);
+    for (double s : data.switch_arc_lengths)
+      internal::DrawChartVLine(fig, chart, s, palette::kSwitch);
     const int thickness = n > 5 ? 1 : 2;
     for (std::size_t i = 0; i < n; ++i) {
       const auto& r = data.runs[i];
-      internal::DrawChartLine(fig, chart, r.arc_length, *series[i], RunColor(static_cast<int>(i)), thickness);
+      internal::DrawChartLine(fig, chart, r.arc_length, *series[i], RunColor(static_cast<int>(i)),
+                              thickness);
     }
     std::string title = titles[k];
     if (clipped) title += " (outliers clipped at the top)";

@@ -32,7 +32,8 @@ Shaded Shade(const LikelihoodGrid& g, const LikelihoodFigureOptions& o) {
   s.raster.height = g.height;
   s.raster.resolution = g.resolution;
   s.raster.origin = g.origin;
-  const std::size_t n = static_cast<std::size_t>(std::max(0, g.width)) * static_cast<std::size_t>(std::max(0, g.height));
+  const std::size_t n = static_cast<std::size_t>(std::max(0, g.width)) *
+                        static_cast<std::size_t>(std::max(0, g.height));
   s.raster.cells.assign(n, palette::kMapUnknown);
   if (g.values.size() != n || n == 0) return s;
   // Work in log space whatever the input, so that tiny likelihoods keep their order.
@@ -54,8 +55,10 @@ Shaded Shade(const LikelihoodGrid& g, const LikelihoodFigureOptions& o) {
   }
   if (!std::isfinite(l_max)) return s;
   s.any = true;
-  s.peak = g.origin + Vec2((static_cast<double>(i_max % static_cast<std::size_t>(g.width)) + 0.5) * g.resolution,
-                           (static_cast<double>(i_max / static_cast<std::size_t>(g.width)) + 0.5) * g.resolution);
+  s.peak =
+      g.origin +
+      Vec2((static_cast<double>(i_max % static_cast<std::size_t>(g.width)) + 0.5) * g.resolution,
+           (static_cast<double>(i_max / static_cast<std::size_t>(g.width)) + 0.5) * g.resolution);
   const auto& lut = internal::Viridis();
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(g.values[i])) continue;
@@ -63,7 +66,8 @@ Shaded Shade(const LikelihoodGrid& g, const LikelihoodFigureOptions& o) {
     if (std::isfinite(l[i])) {
       t = o.log_scale ? std::max(0.0, 1.0 + (l[i] - l_max) / o.log_range) : std::exp(l[i] - l_max);
     }
-    s.raster.cells[i] = lut[static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(t * 255.0)), 0, 255))];
+    s.raster.cells[i] =
+        lut[static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(t * 255.0)), 0, 255))];
   }
   return s;
 }
@@ -79,7 +83,8 @@ FigureInfo RenderLikelihoodFigure(const LikelihoodFigureData& data,
   }
   const auto valid = [](const LikelihoodGrid& g) {
     return g.width > 0 && g.height > 0 && g.resolution > 0.0 &&
-           g.values.size() == static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height);
+           g.values.size() ==
+               static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height);
   };
   internal::Require(valid(data.without_rejection) && valid(data.with_rejection), png,
                     "the likelihood figure needs two grids with width x height values");
@@ -102,15 +107,18 @@ FigureInfo RenderLikelihoodFigure(const LikelihoodFigureData& data,
 
   internal::Header header;
   header.title = fo.title.empty() ? "Measurement likelihood around the true pose" : fo.title;
+  // The pedestrians that can block the robot's view here, not everyone in the world.
+  constexpr double kNearby = 5.0;  // m from the true position to a pedestrian's edge
+  const auto nearby =
+      std::count_if(data.pedestrians.begin(), data.pedestrians.end(), [&](const Circle& p) {
+        return (p.center - data.true_pose.translation()).norm() - p.radius <= kNearby;
+      });
+  char when[48] = "";
+  if (std::isfinite(data.time_s)) std::snprintf(when, sizeof(when), "t = %.1f s, ", data.time_s);
   char sub[200];
-  if (std::isfinite(data.time_s)) {
-    std::snprintf(sub, sizeof(sub),
-                  "Over (x, y) at the true heading, t = %.1f s, %zu pedestrians nearby. Map frame.",
-                  data.time_s, data.pedestrians.size());
-  } else {
-    std::snprintf(sub, sizeof(sub), "Over (x, y) at the true heading, %zu pedestrians nearby. Map frame.",
-                  data.pedestrians.size());
-  }
+  std::snprintf(sub, sizeof(sub),
+                "Over (x, y) at the true heading, %s%td pedestrians within %.0f m. Map frame.",
+                when, nearby, kNearby);
   header.subtitle = sub;
   header.legend = {{"true pose", palette::kTruth, LegendSymbol::kArrow, Marker::kDisc, 3.0, true},
                    {"likelihood peak", palette::kText, LegendSymbol::kRing},

@@ -9,6 +9,7 @@
 #include "viz/figures.hpp"
 #include "viz/internal/figure_layout.hpp"
 #include "viz/internal/layers.hpp"
+#include "viz/style.hpp"
 
 namespace retrace::viz {
 namespace {
@@ -64,39 +65,42 @@ FigureInfo RenderPlaybackFigure(const PlaybackFigureData& data, const std::files
     inset_center = data.target[data.target.size() / 2].translation();
   }
   // At most a third of the overview (an inset must zoom) and small enough for 30 px/m.
-  const double inset_size =
-      std::min({options.inset_size, box.Size().maxCoeff() / 3.0,
-                std::min(inset_plot_w, plot_h) / kInsetMinPixelsPerMeter});
+  const double inset_size = std::min({options.inset_size, box.Size().maxCoeff() / 3.0,
+                                      std::min(inset_plot_w, plot_h) / kInsetMinPixelsPerMeter});
   const Box2 inset_box = Box2::Of(inset_center - Vec2(0.5 * inset_size, 0.5 * inset_size),
                                   inset_center + Vec2(0.5 * inset_size, 0.5 * inset_size));
 
   internal::Header header;
   const std::size_t n = data.runs.size();
-  header.title = !fo.title.empty() ? fo.title
-                                   : "Playback" + (data.mode.empty() ? std::string() : " (" + data.mode + " maps)") +
-                                         ": target path and " + std::to_string(n) + " run" +
-                                         (n == 1 ? "" : "s");
+  header.title = !fo.title.empty()
+                     ? fo.title
+                     : "Playback" +
+                           (data.mode.empty() ? std::string() : " (" + ModeMaps(data.mode) + ")") +
+                           ": target path and " + std::to_string(n) + " run" + (n == 1 ? "" : "s");
   char sub[256];
   if (spread.found && !options.inset_center) {
-    std::snprintf(sub, sizeof(sub),
-                  "Ground truth in the world frame W. Right: %.0f m inset where the runs spread most "
-                  "(%.2f m across, %.0f m along the target path).",
-                  inset_size, spread.spread, spread.arc_length);
+    std::snprintf(
+        sub, sizeof(sub),
+        "Ground truth in the world frame W. Right: %.0f m inset where the runs spread most "
+        "(%.2f m across, %.0f m along the target path).",
+        inset_size, spread.spread, spread.arc_length);
   } else {
     std::snprintf(sub, sizeof(sub), "Ground truth in the world frame W. Right: %.0f m inset.",
                   inset_size);
   }
   header.subtitle = sub;
-  header.legend.push_back({"target path (taught)", palette::kTaughtPath, LegendSymbol::kLine,
-                           Marker::kDisc, 3.0});
+  header.legend.push_back(
+      {"target path (taught)", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 3.0});
   if (n <= palette::kRuns.size()) {
     for (std::size_t i = 0; i < n; ++i) {
-      const std::string label = data.runs[i].label.empty() ? "run " + std::to_string(i) : data.runs[i].label;
-      header.legend.push_back({label, RunColor(static_cast<int>(i)), LegendSymbol::kLine,
-                               Marker::kDisc, 2.0});
+      const std::string label =
+          data.runs[i].label.empty() ? "run " + std::to_string(i) : data.runs[i].label;
+      header.legend.push_back(
+          {label, RunColor(static_cast<int>(i)), LegendSymbol::kLine, Marker::kDisc, 2.0});
     }
   } else {
-    header.legend.push_back({"runs (colours cycle)", RunColor(0), LegendSymbol::kLine, Marker::kDisc, 2.0});
+    header.legend.push_back(
+        {"runs (colours cycle)", RunColor(0), LegendSymbol::kLine, Marker::kDisc, 2.0});
   }
   header.legend.push_back(internal::StartLegend());
   if (!data.switch_poses.empty()) header.legend.push_back(internal::SwitchLegend());
@@ -114,19 +118,19 @@ FigureInfo RenderPlaybackFigure(const PlaybackFigureData& data, const std::files
   const Box2 shown = internal::ShownBox(inset_rect, inset_box);
   const std::vector<Vec2> frame{shown.min, Vec2(shown.max.x(), shown.min.y()), shown.max,
                                 Vec2(shown.min.x(), shown.max.y())};
-  panels.push_back(internal::RenderMapPanel(fig, main_rect, box, "world", "Whole route",
-                                            fo.supersample, [&](GlCanvas& c) {
-                                              DrawRuns(c, data, 3.0, 1.6);
-                                              c.DrawPolyline(frame, 2.0, palette::kInsetFrame, true);
-                                            }));
+  panels.push_back(internal::RenderMapPanel(
+      fig, main_rect, box, "world", "Whole route", fo.supersample, [&](GlCanvas& c) {
+        DrawRuns(c, data, 3.0, 1.6);
+        c.DrawPolyline(frame, 2.0, palette::kInsetFrame, true);
+      }));
   {
     const cv::Point corner = internal::FigurePoint(panels.back(), shown.max);
     internal::PutLabel(fig, "inset", corner + cv::Point(4, -4), internal::Align::kLeft,
                        internal::VAlign::kBottom, internal::kSmallText,
                        palette::kBackground.WithAlpha(210), 2);
   }
-  panels.push_back(internal::RenderMapPanel(fig, inset_rect, inset_box, "inset",
-                                            "Inset (zoomed)", fo.supersample,
+  panels.push_back(internal::RenderMapPanel(fig, inset_rect, inset_box, "inset", "Inset (zoomed)",
+                                            fo.supersample,
                                             [&](GlCanvas& c) { DrawRuns(c, data, 5.0, 2.2); },
                                             {"x (m)", "y (m)", true, palette::kBackground}));
   return internal::FinishFigure(fig, png, std::move(panels));
