@@ -199,12 +199,17 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
 
   // Figures last: a rendering failure (no OSMesa context, say) leaves the numbers intact.
   if (options.figures) {
+    const auto warn = [&](const char* what) {
+      std::cerr << "retrace: warning: no figures: " << what
+                << " (the results are complete; retry with `retrace render " << out.string()
+                << "`)\n";
+    };
     try {
       RenderResults(out);
     } catch (const core::Error& e) {
-      std::cerr << "retrace: warning: no figures: " << e.what()
-                << " (the results are complete; retry with `retrace render " << out.string()
-                << "`)\n";
+      warn(e.what());
+    } catch (const std::filesystem::filesystem_error& e) {  // e.g. a figures/ that is a file
+      warn(e.what());
     }
   }
 

@@ -149,6 +149,21 @@ TEST(Episode, RunCommandWritesFilesThatParseBack) {
 // the odometry drift in between, and localization in it fails. With strong drift (3 % scale
 // error, 0.3 % wheel-radius mismatch) one map of both laps (mode single, i.e. no switch before
 // the revisit) loses the robot, while the partial maps of the same drive still work.
+// Figures come last: when they cannot be written the numbers stay, with a warning and exit 0.
+TEST(Episode, AFigureFailureLeavesTheResultsAndTheExitCode) {
+  const retrace::testing::TempDir tmp;
+  const RunOptions options = SmallRun("partial", tmp.path() / "small", 1);
+  std::filesystem::create_directories(options.out);
+  { std::ofstream(options.out / "figures") << "a file where the figures folder goes\n"; }
+  ::testing::internal::CaptureStderr();
+  const int code = RunRunCommand(options, RunPhases::kAll, "retrace run (test)");
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(code, 0);
+  EXPECT_NE(err.find("warning: no figures"), std::string::npos) << err;
+  EXPECT_TRUE(std::filesystem::exists(options.out / "partial/metrics.json"));
+  EXPECT_TRUE(std::filesystem::exists(options.out / "partial/runs/0/gt.tum"));
+}
+
 TEST(Episode, ASegmentThatRevisitsItselfFailsAsThePaperPredicts) {
   const Scenario scenario =
       Small({"sim.odometry.scale_error=0.03", "sim.odometry.radius_mismatch=0.003"});
