@@ -191,41 +191,45 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
   const auto miss = static_cast<float>(MissLogOdds(config_.inverse_model));
   MapperStats stats;
   stats.keyframes = stats_.keyframes + 1;
+  // Hits first, then the clearing beams, so that these stop at this scan's end points too.
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const BeamPlan& plan = plans[i];
-    if (plan.kind == BeamKind::kSkip) {
-      ++stats.beams_skipped;
-      continue;
-    }
+    if (plan.kind == BeamKind::kSkip) ++stats.beams_skipped;
+    if (plan.kind != BeamKind::kHit) continue;
+    ++stats.beams_hit;
     const double a = X_ML.theta + scan.Angle(i);
-    const core::Vec2 dir(std::cos(a), std::sin(a));
-    if (plan.kind == BeamKind::kHit) {
-      ++stats.beams_hit;
-      TraverseCells(
-          grid_, p_ML, dir, plan.length, [&](core::CellIndex c, double t_in, double t_out) {
-            const double d = SignedDistanceToEndPoint(t_in, t_out, plan.z);
-            if (d > config_.inverse_model.ReachBehind()) return false;
-            // Exact constants away from the end point; the model's curve near it.
-            const float delta = d < -config_.inverse_model.ReachBehind() ? miss
-                                : d == 0.0
-                                    ? hit
-                                    : static_cast<float>(LogOddsUpdate(config_.inverse_model, d));
-            if (delta != 0.0f) ProposeUpdate(c, delta, d == 0.0);
-            return true;
-          });
-    } else {
-      // A beam without a usable return cannot tell open space from a dropout on a wall: it
-      // clears only up to the first cell the map already holds as occupied, so that dropouts
-      // neither wear walls away nor paint free space behind them.
-      ++stats.beams_cleared;
-      const std::vector<float>& before = grid_.log_odds();
-      TraverseCells(grid_, p_ML, dir, plan.length,
-                    [&](core::CellIndex c, double /*t_in*/, double t_out) {
-                      if (t_out > plan.clear_to || before[grid_.Index(c)] > 0.0f) return false;
-                      ProposeUpdate(c, miss, false);
-                      return true;
-                    });
-    }
+    TraverseCells(grid_, p_ML, core::Vec2(std::cos(a), std::sin(a)), plan.length,
+                  [&](core::CellIndex c, double t_in, double t_out) {
+                    const double d = SignedDistanceToEndPoint(t_in, t_out, plan.z);
+                    if (d > config_.inverse_model.ReachBehind()) return false;
+                    // Exact constants away from the end point; the model's curve near it.
+                    const float delta =
+                        d < -config_.inverse_model.ReachBehind() ? miss
+                        : d == 0.0                               ? hit
+                                   : static_cast<float>(LogOddsUpdate(config_.inverse_model, d));
+                    if (delta != 0.0f) ProposeUpdate(c, delta, d == 0.0);
+                    return true;
+                  });
+  }
+  // A beam without a usable return cannot tell open space from a dropout on a wall: it clears
+  // only up to the first cell that the map already holds as occupied or that this scan's hits
+  // mark, so that dropouts neither wear walls away nor paint free space behind them (a wall
+  // first seen in this scan included).
+  const std::vector<float>& before = grid_.log_odds();
+  const auto blocks = [&](std::size_t cell) {
+    return before[cell] > 0.0f || (stamp_[cell] == scan_id_ && end_cell_[cell] != 0);
+  };
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const BeamPlan& plan = plans[i];
+    if (plan.kind != BeamKind::kClear) continue;
+    ++stats.beams_cleared;
+    const double a = X_ML.theta + scan.Angle(i);
+    TraverseCells(grid_, p_ML, core::Vec2(std::cos(a), std::sin(a)), plan.length,
+                  [&](core::CellIndex c, double /*t_in*/, double t_out) {
+                    if (t_out > plan.clear_to || blocks(grid_.Index(c))) return false;
+                    ProposeUpdate(c, miss, false);
+                    return true;
+                  });
   }
 
   std::vector<float>& log_odds = grid_.log_odds();

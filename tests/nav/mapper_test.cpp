@@ -275,6 +275,40 @@ TEST(Mapper, NoReturnBeamsClearUpToTheClearingRangeWithoutMarking) {
   }
 }
 
+// A flat wall at x = 3.03 m seen over 90 degrees, with every 7th beam a dropout (+inf).
+core::LaserScan WallScanWithDropouts() {
+  core::LaserScan scan = UniformScan(361, core::DegToRad(90.0), 0.0f);
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    scan.ranges[i] = i % 7 == 3 ? kInf : static_cast<float>(3.03 / std::cos(scan.Angle(i)));
+  }
+  return scan;
+}
+
+// Dropouts would otherwise paint free rays through a wall into the unknown behind it: in the
+// scan that first sees the wall (they stop at its end points) and in later scans (they stop at
+// cells the map holds as occupied).
+TEST(Mapper, NoReturnBeamsStopAtTheWallsOfTheirOwnScanAndOfTheMap) {
+  MapperConfig config;
+  config.no_return_range = 10.0;
+  config.keyframe_distance = 0.0;
+  Mapper mapper(config);
+  mapper.SetPose(Pose2(0.05, 0.05, 0.0));
+  ASSERT_TRUE(mapper.OnScan(WallScanWithDropouts()));
+  EXPECT_EQ(mapper.stats().beams_cleared, 52u);
+  const auto free_behind_the_wall = [&] {
+    int n = 0;
+    for (const core::CellIndex& c : CellsWhere(mapper.grid(), Negative)) {
+      n += mapper.grid().CellToWorld(c).x() > 3.2 ? 1 : 0;
+    }
+    return n;
+  };
+  EXPECT_EQ(free_behind_the_wall(), 0);
+  core::LaserScan all_dropouts = UniformScan(361, core::DegToRad(90.0), kInf);
+  mapper.Integrate(all_dropouts, Pose2(0.05, 0.05, 0.0));
+  EXPECT_EQ(free_behind_the_wall(), 0);
+  EXPECT_FALSE(CellsWhere(mapper.grid(), Positive).empty());  // the wall is still there
+}
+
 TEST(Mapper, ReadingsBeyondTheHitRangeOnlyClear) {
   MapperConfig config;
   config.hit_range_max = 5.0;
