@@ -69,7 +69,19 @@ FigureInfo RenderComparisonFigure(const ComparisonFigureData& data,
   const int rows = (static_cast<int>(metrics.size()) + cols - 1) / cols;
   const int tile_w = W / cols;
   const int plot_h = 300;
-  const int tile_h = internal::kChartTop + plot_h + internal::kChartBottom - 20;
+  // Panel titles too long for a tile take more lines; every row then makes room for them.
+  std::vector<std::vector<std::string>> titles;
+  std::size_t title_lines = 1;
+  for (const std::string& metric : metrics) {
+    // Centred over the plot, which sits right of the tile's centre: the right half limits.
+    titles.push_back(
+        internal::WrapText(metric, internal::kPanelTitleText,
+                           tile_w - internal::kChartLeft + internal::kChartRight - 12));
+    title_lines = std::max(title_lines, titles.back().size());
+  }
+  const int line_h = internal::TextExtent("Ag", internal::kPanelTitleText).height + 6;
+  const int title_extra = static_cast<int>(title_lines - 1) * line_h;
+  const int tile_h = internal::kChartTop + title_extra + plot_h + internal::kChartBottom - 20;
   const int top = internal::HeaderHeight(header, W);
   cv::Mat fig = internal::NewFigure(W, top + rows * tile_h + 8);
   internal::DrawHeader(fig, header);
@@ -101,12 +113,16 @@ FigureInfo RenderComparisonFigure(const ComparisonFigureData& data,
     internal::Chart chart;
     const int x0 = col * tile_w;
     const int y0 = top + row * tile_h;
-    chart.plot = cv::Rect(x0 + internal::kChartLeft, y0 + internal::kChartTop,
+    chart.plot = cv::Rect(x0 + internal::kChartLeft, y0 + internal::kChartTop + title_extra,
                           tile_w - internal::kChartLeft - internal::kChartRight, plot_h);
     chart.box = Box2::Of(Vec2(0.0, y_lo), Vec2(n_modes, y_hi));
     internal::DrawChartAxes(fig, chart, "", "", false);
-    internal::PutText(fig, metrics[k], cv::Point(chart.plot.x + chart.plot.width / 2, y0 + 8),
-                      internal::Align::kCenter, internal::VAlign::kTop, internal::kPanelTitleText);
+    for (std::size_t j = 0; j < titles[k].size(); ++j) {
+      internal::PutText(
+          fig, titles[k][j],
+          cv::Point(chart.plot.x + chart.plot.width / 2, y0 + 8 + static_cast<int>(j) * line_h),
+          internal::Align::kCenter, internal::VAlign::kTop, internal::kPanelTitleText);
+    }
     const cv::Point2d zero = chart.Px(0.0, 0.0);
     for (int i = 0; i < n_modes; ++i) {
       const ModeMetrics& m = data.modes[static_cast<std::size_t>(i)];

@@ -101,7 +101,8 @@ TEST_F(FiguresTest, MapsCompareFigureShowsBothMaps) {
   d.maps = maps.maps;
   d.maps[0].label = "consistent";
   d.maps[1].label = "single";
-  const FigureInfo info = RenderMapsCompareFigure(d, tmp_.path() / "maps_compare.png", {1200, 2, ""});
+  const FigureInfo info =
+      RenderMapsCompareFigure(d, tmp_.path() / "maps_compare.png", {1200, 2, ""});
   const Image img = CheckFile(info, 1200);
   EXPECT_TRUE(ColorNear(PixelAt(img, info.Panel("map0"), Vec2(7, 0)), palette::kTaughtPath));
   EXPECT_TRUE(ColorNear(PixelAt(img, info.Panel("map1"), Vec2(7, 4)), palette::kMapFree, 6));
@@ -262,8 +263,8 @@ TEST_F(FiguresTest, SnapshotFigureColoursScanPointsByClass) {
     d.weights.push_back(1.0 + i % 3);
   }
   for (double x = 0.0; x <= 10.0; x += 0.5) d.scan.push_back({Vec2(x, 8.05), false, false});
-  d.scan.push_back({Vec2(6.0, 4.0), true, true});    // a pedestrian, rejected
-  d.scan.push_back({Vec2(8.0, 4.0), true, false});   // rejected, but static
+  d.scan.push_back({Vec2(6.0, 4.0), true, true});   // a pedestrian, rejected
+  d.scan.push_back({Vec2(8.0, 4.0), true, false});  // rejected, but static
   d.pedestrians = {{Vec2(6.2, 4.0), 0.3}};
   const FigureInfo info = RenderSnapshotFigure(d, tmp_.path() / "snapshot.png");
   const Image img = CheckFile(info, 1600);
@@ -336,6 +337,34 @@ TEST_F(FiguresTest, ComparisonFigureDrawsABarPerModeAndMetric) {
   EXPECT_EQ(Bytes(info), Bytes(RenderComparisonFigure(d, tmp_.path() / "c2.png")));
   EXPECT_THROW(RenderComparisonFigure(d, BadPath()), core::IoError);
   EXPECT_THROW(RenderComparisonFigure({}, tmp_.path() / "c3.png"), core::IoError);
+}
+
+// A metric name wider than its panel wraps onto more lines (instead of running into the next
+// panel's title); every plot moves down by the same amount and the bars stay where they belong.
+TEST_F(FiguresTest, ComparisonFigureWrapsPanelTitlesWiderThanThePanel) {
+  const std::string long_name =
+      "pedestrian collisions, robot driving into them (incidents per run), pooled over every seed";
+  auto data = [](const std::string& third) {
+    ComparisonFigureData d;
+    for (const char* mode : {"partial", "consistent"}) {
+      ModeMetrics m;
+      m.mode = mode;
+      for (const std::string& metric : {std::string("a (m)"), std::string("b (m)"), third}) {
+        m.metrics.push_back({metric, 0.5});
+      }
+      d.modes.push_back(m);
+    }
+    return d;
+  };
+  const FigureInfo short_titles = RenderComparisonFigure(data("c (m)"), tmp_.path() / "s.png");
+  const FigureInfo long_titles = RenderComparisonFigure(data(long_name), tmp_.path() / "l.png");
+  const Image img = CheckFile(long_titles, 1600);
+  const int extra = long_titles.Panel("a (m)").y - short_titles.Panel("a (m)").y;
+  EXPECT_GT(extra, 10);
+  EXPECT_EQ(long_titles.height - short_titles.height, extra);
+  EXPECT_EQ(long_titles.Panel(long_name).y, long_titles.Panel("a (m)").y);
+  const PanelInfo& c = long_titles.Panel(long_name);
+  EXPECT_TRUE(ColorNear(PixelAt(img, c, Vec2(1.5, 0.25)), ModeColor("consistent", 1), 4));
 }
 
 TEST_F(FiguresTest, WorldFigureShowsGeometryRouteAndPedestrians) {

@@ -36,6 +36,26 @@ void PutText(cv::Mat& img, const std::string& text, cv::Point at, Align align, V
               style.thickness, cv::LINE_AA);
 }
 
+std::vector<std::string> WrapText(const std::string& text, const TextStyle& style, int max_width) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t space = std::min(text.find(' ', start), text.size());
+    const std::string word = text.substr(start, space - start);
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && TextExtent(longer, style).width > max_width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+    start = space + 1;
+  }
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
+}
+
 void PutLabel(cv::Mat& img, const std::string& text, cv::Point at, Align align, VAlign valign,
               const TextStyle& style, Rgba box, int pad) {
   if (text.empty()) return;
@@ -110,7 +130,8 @@ int EntryWidth(const LegendEntry& e) {
   return kLegendSymbolWidth + kLegendGap + TextExtent(e.label, kLabelText).width;
 }
 
-std::vector<std::vector<std::size_t>> LegendRows(const std::vector<LegendEntry>& entries, int width) {
+std::vector<std::vector<std::size_t>> LegendRows(const std::vector<LegendEntry>& entries,
+                                                 int width) {
   std::vector<std::vector<std::size_t>> rows;
   int x = 0;
   for (std::size_t i = 0; i < entries.size(); ++i) {
@@ -147,7 +168,8 @@ void DrawLegendSymbol(cv::Mat& img, const LegendEntry& e, cv::Point c) {
     case LegendSymbol::kMapPatch: {
       const Rgba stripes[3] = {palette::kMapFree, palette::kMapUnknown, palette::kMapOccupied};
       for (int i = 0; i < 3; ++i) {
-        cv::rectangle(img, cv::Rect(c.x - 12 + 8 * i, c.y - 8, 8, 16), ToScalar(stripes[i]), cv::FILLED);
+        cv::rectangle(img, cv::Rect(c.x - 12 + 8 * i, c.y - 8, 8, 16), ToScalar(stripes[i]),
+                      cv::FILLED);
       }
       cv::rectangle(img, cv::Rect(c.x - 12, c.y - 8, 24, 16), ToScalar(palette::kWorldEdge), 1);
       break;
@@ -157,10 +179,11 @@ void DrawLegendSymbol(cv::Mat& img, const LegendEntry& e, cv::Point c) {
       break;
     case LegendSymbol::kArrow: {
       const double L = 20.0;
-      std::vector<cv::Point> dart{c + cv::Point(static_cast<int>(0.55 * L), 0),
-                                  c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(-0.38 * L)),
-                                  c + cv::Point(static_cast<int>(-0.2 * L), 0),
-                                  c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(0.38 * L))};
+      std::vector<cv::Point> dart{
+          c + cv::Point(static_cast<int>(0.55 * L), 0),
+          c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(-0.38 * L)),
+          c + cv::Point(static_cast<int>(-0.2 * L), 0),
+          c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(0.38 * L))};
       cv::fillPoly(img, std::vector<std::vector<cv::Point>>{dart}, col, cv::LINE_AA);
       if (e.outlined) cv::polylines(img, dart, true, black, 1, cv::LINE_AA);
       break;
@@ -174,13 +197,15 @@ void DrawLegendSymbol(cv::Mat& img, const LegendEntry& e, cv::Point c) {
           if (e.outlined) cv::circle(img, c, r, black, 1, cv::LINE_AA);
           return;
         case Marker::kSquare:
-          poly = {c + cv::Point(-r, -r), c + cv::Point(r, -r), c + cv::Point(r, r), c + cv::Point(-r, r)};
+          poly = {c + cv::Point(-r, -r), c + cv::Point(r, -r), c + cv::Point(r, r),
+                  c + cv::Point(-r, r)};
           break;
         case Marker::kTriangle:
           poly = {c + cv::Point(0, -r), c + cv::Point(r, r * 2 / 3), c + cv::Point(-r, r * 2 / 3)};
           break;
         case Marker::kDiamond:
-          poly = {c + cv::Point(0, -r * 6 / 5), c + cv::Point(r, 0), c + cv::Point(0, r * 6 / 5), c + cv::Point(-r, 0)};
+          poly = {c + cv::Point(0, -r * 6 / 5), c + cv::Point(r, 0), c + cv::Point(0, r * 6 / 5),
+                  c + cv::Point(-r, 0)};
           break;
         case Marker::kCross:
           cv::line(img, c - cv::Point(r, 0), c + cv::Point(r, 0), col, 2, cv::LINE_AA);
@@ -293,7 +318,8 @@ void DrawColorBar(cv::Mat& img, cv::Rect bar, double lo, double hi, const std::s
   const auto& lut = Viridis();
   for (int y = 0; y < bar.height; ++y) {
     const double t = 1.0 - (y + 0.5) / bar.height;
-    const Rgba c = lut[static_cast<std::size_t>(std::clamp(static_cast<int>(t * 255.0 + 0.5), 0, 255))];
+    const Rgba c =
+        lut[static_cast<std::size_t>(std::clamp(static_cast<int>(t * 255.0 + 0.5), 0, 255))];
     cv::line(img, cv::Point(bar.x, bar.y + y), cv::Point(bar.x + bar.width - 1, bar.y + y),
              ToScalar(c), 1);
   }
@@ -303,7 +329,8 @@ void DrawColorBar(cv::Mat& img, cv::Rect bar, double lo, double hi, const std::s
   int max_w = 0;
   for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * std::abs(hi - lo); t += step) {
     const int y = bar.y + static_cast<int>(std::lround((hi - t) / (hi - lo) * bar.height));
-    cv::line(img, cv::Point(bar.x + bar.width + 1, y), cv::Point(bar.x + bar.width + 7, y), axis, 1);
+    cv::line(img, cv::Point(bar.x + bar.width + 1, y), cv::Point(bar.x + bar.width + 7, y), axis,
+             1);
     const std::string s = FormatTick(t, step);
     max_w = std::max(max_w, TextExtent(s, kTickText).width);
     PutText(img, s, cv::Point(bar.x + bar.width + 10, y), Align::kLeft, VAlign::kMiddle, kTickText);

@@ -34,6 +34,9 @@ cv::Size TextExtent(const std::string& text, const TextStyle& style);
 /// Draws `text` with its box anchored at `at` as the alignments say.
 void PutText(cv::Mat& img, const std::string& text, cv::Point at, Align align, VAlign valign,
              const TextStyle& style);
+/// `text` broken at spaces into lines no wider than `max_width` px (a word wider than that
+/// stays whole on its own line).
+std::vector<std::string> WrapText(const std::string& text, const TextStyle& style, int max_width);
 /// The same on a filled box (`pad` px around) for labels over maps and plots.
 void PutLabel(cv::Mat& img, const std::string& text, cv::Point at, Align align, VAlign valign,
               const TextStyle& style, Rgba box = palette::kBackground, int pad = 3);
