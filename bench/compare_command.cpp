@@ -46,7 +46,7 @@ MapMode ParseReference(const std::string& name, const std::vector<MapMode>& mode
 
 void AddCompareOptions(CLI::App* command, CompareOptions* options) {
   command->add_option("scenario", options->scenario, "Scenario file (YAML)")->required();
-  command->add_option("--modes", options->modes, "Map modes to compare, comma-separated")
+  command->add_option("--modes", options->modes, "Map modes to compare, comma-separated, or all")
       ->delimiter(',')
       ->default_str("partial,single,consistent");
   command->add_option("--reference", options->reference, "The mode the others are compared against")

@@ -33,9 +33,6 @@ namespace {
 std::vector<MapMode> ResolveModes(const std::vector<std::string>& names,
                                   const std::vector<MapMode>& scenario_modes, RunPhases phases) {
   if (names.empty()) return scenario_modes;
-  if (names == std::vector<std::string>{"all"}) {
-    return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
-  }
   std::vector<MapMode> modes = ParseModeList(names, "--mode");
   if (phases == RunPhases::kPlaybackOnly && modes.size() > 1) {
     throw core::ConfigError("--mode", "a teach folder holds the maps of one mode; give that one");

@@ -31,6 +31,7 @@ expect_bad() {  # expect_bad <name> <expected substring> <compare args...>
 expect_bad unknown-mode "--modes: unknown mode 'perfect'" "$small" --modes partial,perfect --seeds 2
 expect_bad one-mode "--modes: a comparison needs at least two modes" "$small" --modes partial --reference partial
 expect_bad twice "--modes: mode 'partial' is given twice" "$small" --modes partial,partial,consistent
+expect_bad all-in-a-list "--modes: all means every mode; give it alone" "$small" --modes partial,all --seeds 2
 expect_bad reference-missing "--reference: mode 'consistent' is not among the compared modes" "$small" --modes partial,single
 expect_bad reference-unknown "--reference: unknown mode 'slam'" "$small" --reference slam
 expect_bad one-seed "--seeds: at least 2 seeds are needed for a confidence interval, got 1" "$small" --seeds 1
