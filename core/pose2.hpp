@@ -1,5 +1,5 @@
 #pragma once
-// SE(2) poses. Notation (DESIGN §2): X_AB is the pose of frame B expressed in frame A, and
+// SE(2) poses. Notation (docs/DESIGN.md §2): X_AB is the pose of frame B expressed in frame A, and
 // X_AC = X_AB * X_BC.
 
 #include <Eigen/Core>
@@ -18,8 +18,7 @@ struct Pose2 {
   double theta = 0.0;
 
   Pose2() = default;
-  Pose2(double x_in, double y_in, double theta_in)
-      : x(x_in), y(y_in), theta(WrapAngle(theta_in)) {}
+  Pose2(double x_in, double y_in, double theta_in) : x(x_in), y(y_in), theta(WrapAngle(theta_in)) {}
 
   static Pose2 Identity() { return {}; }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Seedable, splittable pseudo-random numbers with their own samplers, so that results do not
-// depend on the standard library's distributions (DESIGN §3). Generator: xoshiro256**,
+// depend on the standard library's distributions (docs/DESIGN.md §3). Generator: xoshiro256**,
 // seeded through SplitMix64.
 
 #include <array>
@@ -41,6 +41,7 @@ class Rng {
 };
 
 /// 64-bit FNV-1a hash, used to derive stream seeds from names and for determinism hashes.
-std::uint64_t HashBytes(const void* data, std::size_t size, std::uint64_t h = 0xcbf29ce484222325ULL);
+std::uint64_t HashBytes(const void* data, std::size_t size,
+                        std::uint64_t h = 0xcbf29ce484222325ULL);
 
 }  // namespace retrace::core

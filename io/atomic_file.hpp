@@ -1,7 +1,7 @@
 #pragma once
-// Atomic file writes (DESIGN §8): the contents go to a temporary file in the target's folder,
-// which is flushed, closed and checked, then renamed over the target. A reader sees either the
-// old file or the complete new one, never a partial file, and a failed write leaves no
+// Atomic file writes (docs/DESIGN.md §8): the contents go to a temporary file in the target's
+// folder, which is flushed, closed and checked, then renamed over the target. A reader sees either
+// the old file or the complete new one, never a partial file, and a failed write leaves no
 // temporary file behind. Parent folders are created as needed. Not fsync'ed: the guarantee
 // is against crashes and errors of the writing process, not against power loss.
 

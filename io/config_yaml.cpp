@@ -243,4 +243,34 @@ void ApplyOverrides(YAML::Node& root, const std::vector<ConfigOverride>& overrid
   }
 }
 
+void RejectMovedKeys(const YAML::Node& root, const std::string& source,
+                     const std::vector<ConfigOverride>& overrides,
+                     const std::vector<MovedKey>& moved, std::string_view why) {
+  for (const MovedKey& m : moved) {
+    internal::ReadContext ctx{source, "", &overrides};
+    // YAML::Node's operator= writes into the node it refers to: walk with reset() instead.
+    YAML::Node at;
+    at.reset(root);
+    YAML::Node key_node;
+    std::stringstream keys{std::string(m.path)};
+    std::string key;
+    bool present = true;
+    while (present && std::getline(keys, key, '.')) {
+      present = false;
+      if (!at.IsMap()) break;
+      for (const auto& kv : at) {
+        if (kv.first.Scalar() != key) continue;
+        key_node.reset(kv.first);
+        at.reset(kv.second);
+        ctx = ctx.Child(key);
+        present = true;
+        break;
+      }
+    }
+    if (present) {
+      internal::Fail(key_node, ctx, "unknown key; " + std::string(why) + " " + std::string(m.now));
+    }
+  }
+}
+
 }  // namespace retrace::io

@@ -29,6 +29,18 @@ YAML::Node LoadYamlFile(const std::filesystem::path& file);
 /// addressed by index ("walls.2.thickness"). Throws ConfigError on an invalid value.
 void ApplyOverrides(YAML::Node& root, const std::vector<ConfigOverride>& overrides);
 
+/// A key a config does not have because another key states its value (one source per value).
+struct MovedKey {
+  std::string_view path;  ///< dotted key path that is refused, e.g. "nav.avoidance.robot_radius"
+  std::string_view now;   ///< the key that holds the value, e.g. "sim.robot.radius"
+};
+
+/// Throws a located ConfigError, "<file>:<line>: <path>: unknown key; <why> <now>", for the
+/// first key of `moved` present in `root` (from the file or from an override).
+void RejectMovedKeys(const YAML::Node& root, const std::string& source,
+                     const std::vector<ConfigOverride>& overrides,
+                     const std::vector<MovedKey>& moved, std::string_view why);
+
 namespace internal {
 
 /// Where a value came from, for error messages.
@@ -135,7 +147,8 @@ void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
     out.resize(node.size());
     for (std::size_t i = 0; i < node.size(); ++i) Read(node[i], out[i], ctx.Element(i));
   } else if constexpr (core::Reflectable<T>) {
-    if (!node.IsMap()) Fail(node, ctx, node.IsNull() ? "expected a mapping, got nothing" : "expected a mapping");
+    if (!node.IsMap())
+      Fail(node, ctx, node.IsNull() ? "expected a mapping, got nothing" : "expected a mapping");
     std::vector<std::string_view> keys;
     KeyCollector collector{&keys};
     out.Reflect(collector);

@@ -8,12 +8,25 @@
 
 namespace retrace::io {
 
-void WriteJsonAtomic(const std::filesystem::path& path, const nlohmann::json& value) {
-  // nlohmann::json already prints non-finite numbers as null and doubles in shortest
-  // round-trip form; `replace` keeps a stray non-UTF-8 byte from aborting the write.
-  std::string text = value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+namespace {
+
+template <class Json>
+void Write(const std::filesystem::path& path, const Json& value) {
+  // nlohmann::json prints non-finite numbers as null and doubles in shortest round-trip form;
+  // `replace` keeps a stray non-UTF-8 byte from aborting the write.
+  std::string text = value.dump(2, ' ', false, Json::error_handler_t::replace);
   text += '\n';
   WriteFileAtomic(path, text);
+}
+
+}  // namespace
+
+void WriteJsonAtomic(const std::filesystem::path& path, const nlohmann::json& value) {
+  Write(path, value);
+}
+
+void WriteJsonAtomic(const std::filesystem::path& path, const nlohmann::ordered_json& value) {
+  Write(path, value);
 }
 
 nlohmann::json ReadJsonFile(const std::filesystem::path& path) {

@@ -1,8 +1,8 @@
 #pragma once
 // The likelihood field of a map (paper eq. 5-6): an exact Euclidean distance transform of the
 // occupied cells and a per-cell table of the log-likelihood of a beam end point, so that one
-// beam evaluation is one table lookup. The untruncated distance field (m) is kept as well: the
-// grid ray caster sphere-traces on it.
+// beam evaluation is one table lookup. The untruncated distance field (m) is kept as well
+// (the grid ray caster builds its own clearance grid from the occupancy for sphere tracing).
 
 #include <cstdint>
 #include <limits>
@@ -20,12 +20,12 @@ namespace retrace::nav {
 /// d (m) is the distance from the beam end point's cell centre to the nearest occupied cell
 /// centre minus half a cell (0 in occupied cells; a surface lies inside its cell, so the face a
 /// beam meets is on average half a cell nearer than the centre, and without the correction the
-/// field pulls end points into the wall cells), truncated at max_distance. p_hit is the 1-D normal density of d (1/m), so that it is
-/// commensurable with the uniform density z_rand / range_max (1/m) as in Probabilistic Robotics
-/// Table 6.3. Max-range readings (+inf) are not weighted at all, so z_max does not appear.
-/// The default σ = 0.2 m covers a 0.1 m grid's quantisation (up to 0.07 m to a cell centre),
-/// LiDAR noise (0.01-0.04 m) and the blur of odometry-built maps, while still separating poses
-/// 0.1 m apart (the original implementation used about 0.28 m).
+/// field pulls end points into the wall cells), truncated at max_distance. p_hit is the 1-D normal
+/// density of d (1/m), so that it is commensurable with the uniform density z_rand / range_max
+/// (1/m) as in Probabilistic Robotics Table 6.3. Max-range readings (+inf) are not weighted at all,
+/// so z_max does not appear. The default σ = 0.2 m covers a 0.1 m grid's quantisation (up to 0.07 m
+/// to a cell centre), LiDAR noise (0.01-0.04 m) and the blur of odometry-built maps, while still
+/// separating poses 0.1 m apart (the original implementation used about 0.28 m).
 struct LikelihoodFieldConfig {
   double occupied_threshold = 0.65;  ///< a cell is occupied when its probability >= this
   double max_distance = 2.0;         ///< m, truncation of d in the likelihood table
@@ -73,7 +73,8 @@ class LikelihoodField {
   float LogLikelihood(const core::Vec2& p_M) const {
     const double gx = (p_M.x() - origin_.x()) * inv_resolution_;
     const double gy = (p_M.y() - origin_.y()) * inv_resolution_;
-    if (!(gx >= 0.0 && gy >= 0.0 && gx < width_d_ && gy < height_d_)) return outside_log_likelihood_;
+    if (!(gx >= 0.0 && gy >= 0.0 && gx < width_d_ && gy < height_d_))
+      return outside_log_likelihood_;
     return log_likelihood_[static_cast<std::size_t>(static_cast<int>(gy)) *
                                static_cast<std::size_t>(width_) +
                            static_cast<std::size_t>(static_cast<int>(gx))];

@@ -5,9 +5,9 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <tuple>
 #include <span>
 #include <string>
+#include <tuple>
 #include <unordered_set>
 #include <utility>
 
@@ -71,13 +71,6 @@ void KldConfig::Validate() const {
 void LocalizerConfig::Validate() const {
   core::RequireIntInRange("particles", particles, 1, 10'000'000);
   core::RequireIntInRange("beam_step", beam_step, 1, 1'000'000);
-  core::RequireNonNegative("range_min", range_min);
-  core::RequirePositive("range_max", range_max);
-  core::RequireGreater("range_max", range_max, "range_min", range_min);
-  if (!std::isfinite(lidar_mount.x) || !std::isfinite(lidar_mount.y) ||
-      !std::isfinite(lidar_mount.theta)) {
-    throw core::ConfigError("lidar_mount", "must be finite [x, y, theta]");
-  }
   core::RequireNonNegative("update_distance", update_distance);
   core::RequireNonNegative("update_angle_deg", update_angle_deg);
   core::RequireInRange("resample_ess_ratio", resample_ess_ratio, 0.0, 1.0);
@@ -88,9 +81,10 @@ void LocalizerConfig::Validate() const {
   ValidateNested("kld", kld);
 }
 
-Localizer::Localizer(const LocalizerConfig& config, core::Rng rng)
-    : config_(config), rng_(rng) {
+Localizer::Localizer(const LocalizerConfig& config, const RobotGeometry& robot, core::Rng rng)
+    : config_(config), robot_(robot), rng_(rng) {
   config_.Validate();
+  robot_.Validate();
 }
 
 Localizer::~Localizer() = default;
@@ -110,16 +104,17 @@ void Localizer::ResetAverages() {
 
 void Localizer::SetMap(const core::OccupancyGrid& map) {
   // Build the new field before dropping the caster that points into the old one.
-  auto field = std::make_unique<LikelihoodField>(map, config_.likelihood_field, config_.range_max);
+  auto field = std::make_unique<LikelihoodField>(map, config_.likelihood_field, robot_.range_max);
   caster_ = std::make_unique<GridRayCaster>(*field);
   field_ = std::move(field);
-  beam_model_ = std::make_unique<BeamModel>(config_.rejection.beam_model, config_.range_max);
+  beam_model_ = std::make_unique<BeamModel>(config_.rejection.beam_model, robot_.range_max);
   free_cells_.clear();
   RETRACE_CHECK(map.log_odds().size() <= std::numeric_limits<std::uint32_t>::max());
   const double free_log_odds = core::Logit(config_.augmented.free_threshold);
   const std::vector<float>& l = map.log_odds();
   for (std::size_t i = 0; i < l.size(); ++i) {
-    if (static_cast<double>(l[i]) <= free_log_odds) free_cells_.push_back(static_cast<std::uint32_t>(i));
+    if (static_cast<double>(l[i]) <= free_log_odds)
+      free_cells_.push_back(static_cast<std::uint32_t>(i));
   }
   ResetAverages();
   force_update_ = true;
@@ -182,8 +177,8 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   if (!moved && !force_update_) return out;
 
   // Select every beam_step-th valid finite reading inside the configured limits.
-  const double lo = std::max(scan.range_min, config_.range_min);
-  const double hi = std::min(scan.range_max, config_.range_max);
+  const double lo = std::max(scan.range_min, robot_.range_min);
+  const double hi = std::min(scan.range_max, robot_.range_max);
   std::vector<int> tested;
   for (std::size_t i = 0; i < scan.size(); i += static_cast<std::size_t>(config_.beam_step)) {
     if (!scan.Valid(i)) continue;
@@ -199,7 +194,7 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
 
   const std::size_t n = particles_.size();
   std::vector<core::Pose2> X_ML(n);
-  for (std::size_t j = 0; j < n; ++j) X_ML[j] = particles_[j].X_MR * config_.lidar_mount;
+  for (std::size_t j = 0; j < n; ++j) X_ML[j] = particles_[j].X_MR * robot_.X_RL;
 
   // Dynamic scan point rejection (eq. 7-9).
   out.beams.assign(scan.size(), BeamUse::kUnused);
@@ -344,8 +339,8 @@ std::vector<Particle> Localizer::ResampleKld(const std::vector<double>& weights)
     const std::uint64_t key = key_of(X.x / kld.bin_xy) << 42 | key_of(X.y / kld.bin_xy) << 21 |
                               key_of(X.theta / bin_theta);
     if (bins.insert(key).second) {
-      bound = std::max<double>(kld.min_particles,
-                               KldBound(static_cast<int>(bins.size()), kld.epsilon, kld.z_quantile));
+      bound = std::max<double>(
+          kld.min_particles, KldBound(static_cast<int>(bins.size()), kld.epsilon, kld.z_quantile));
     }
   }
   return next;
@@ -354,14 +349,19 @@ std::vector<Particle> Localizer::ResampleKld(const std::vector<double>& weights)
 core::Pose2 Localizer::RandomPose(const core::Pose2& around, bool near) {
   const AugmentedMclConfig& aug = config_.augmented;
   if (near || free_cells_.empty()) {
-    return {around.x + aug.near_sigma_xy * rng_.Normal(), around.y + aug.near_sigma_xy * rng_.Normal(),
+    return {around.x + aug.near_sigma_xy * rng_.Normal(),
+            around.y + aug.near_sigma_xy * rng_.Normal(),
             around.theta + aug.near_sigma_theta * rng_.Normal()};
   }
   const std::uint32_t cell = free_cells_[rng_.UniformIndex(free_cells_.size())];
   const int w = field_->width();
   const double res = field_->resolution();
-  const double x = field_->origin().x() + (static_cast<double>(cell % static_cast<std::uint32_t>(w)) + rng_.Uniform()) * res;
-  const double y = field_->origin().y() + (static_cast<double>(cell / static_cast<std::uint32_t>(w)) + rng_.Uniform()) * res;
+  const double x =
+      field_->origin().x() +
+      (static_cast<double>(cell % static_cast<std::uint32_t>(w)) + rng_.Uniform()) * res;
+  const double y =
+      field_->origin().y() +
+      (static_cast<double>(cell / static_cast<std::uint32_t>(w)) + rng_.Uniform()) * res;
   return {x, y, rng_.Uniform(-core::kPi, core::kPi)};
 }
 

@@ -20,6 +20,7 @@
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
 #include "nav/motion_model.hpp"
+#include "nav/robot_geometry.hpp"
 
 namespace retrace::nav {
 
@@ -45,8 +46,8 @@ struct DynamicRejectionConfig {
 ///
 /// The average likelihood of an update is the expectation over the belief (prior weights) of
 /// the per-beam geometric mean exp(Σ_i log p_i / n) (1/m): with about a hundred beams the plain
-/// product would underflow, and the per-beam mean keeps the rates independent of the beam count. Both
-/// averages start at the first update's value after Initialize, SetMap or ApplyMapSwitch
+/// product would underflow, and the per-beam mean keeps the rates independent of the beam count.
+/// Both averages start at the first update's value after Initialize, SetMap or ApplyMapSwitch
 /// (starting at 0 as in the book would make w_slow lag for thousands of updates). With updates
 /// every 0.2 m, alpha_slow = 1e-3 remembers about 200 m of route and alpha_fast = 0.1 about 2 m.
 /// Random particles: near_fraction of them around the current estimate (Gaussian), the rest
@@ -102,7 +103,7 @@ struct KldConfig {
 };
 
 /// Localizer configuration. Defaults follow the original implementation where sound
-/// (reference/method.md): every 10th beam (108 of 1081), z_hit 0.9 / z_short 0.1 / z_max 0.05,
+/// (docs/METHOD.md): every 10th beam (109 of 1081), z_hit 0.9 / z_short 0.1 / z_max 0.05,
 /// λ_short 0.05, χ 0.9, updates after 0.2 m or 2°, resampling when n_eff < 0.5 N; 500 particles
 /// instead of 200. The weighting (likelihood_field, z_rand 0.05, σ 0.2 m) and the rejection test
 /// (rejection.beam_model, z_rand 0.01, σ 0.1 m) are separate models with separate parameters,
@@ -114,14 +115,11 @@ struct KldConfig {
 /// an unmapped return as a hit would otherwise veto its rejection (with injection feeding back
 /// through the lower likelihood of unrejected beams, this made the filter diverge in tests).
 struct LocalizerConfig {
-  int particles = 500;  ///< fixed count (the initial count with KLD-sampling)
-  int beam_step = 10;   ///< use scan beams 0, step, 2 step, ...
-  double range_min = 0.05;  ///< m: readings below are ignored
-  double range_max = 30.0;  ///< m: readings above are ignored; the models' maximum range
-  core::Pose2 lidar_mount;  ///< X_RL: the LiDAR frame L in the robot frame R
-  double update_distance = 0.2;    ///< m of motion before a measurement update
-  double update_angle_deg = 2.0;   ///< or this much rotation
-  double resample_ess_ratio = 0.5; ///< resample when n_eff < ratio · N
+  int particles = 500;              ///< fixed count (the initial count with KLD-sampling)
+  int beam_step = 10;               ///< use scan beams 0, step, 2 step, ...
+  double update_distance = 0.2;     ///< m of motion before a measurement update
+  double update_angle_deg = 2.0;    ///< or this much rotation
+  double resample_ess_ratio = 0.5;  ///< resample when n_eff < ratio · N
   MotionModelConfig motion;
   LikelihoodFieldConfig likelihood_field;
   DynamicRejectionConfig rejection;
@@ -132,9 +130,6 @@ struct LocalizerConfig {
   void Reflect(V& v) {
     v("particles", particles);
     v("beam_step", beam_step);
-    v("range_min", range_min);
-    v("range_max", range_max);
-    v("lidar_mount", lidar_mount);
     v("update_distance", update_distance);
     v("update_angle_deg", update_angle_deg);
     v("resample_ess_ratio", resample_ess_ratio);
@@ -163,19 +158,19 @@ enum class BeamUse : std::uint8_t {
 
 /// Diagnostics of one Update call (no timings: nav has no clock).
 struct LocalizerUpdate {
-  bool ran = false;          ///< false: gated (no motion since the last update) or no usable beam
-  int beams_tested = 0;      ///< selected valid beams
-  int beams_used = 0;        ///< beams in the weights
-  int beams_rejected = 0;    ///< beams classified dynamic
+  bool ran = false;            ///< false: gated (no motion since the last update) or no usable beam
+  int beams_tested = 0;        ///< selected valid beams
+  int beams_used = 0;          ///< beams in the weights
+  int beams_rejected = 0;      ///< beams classified dynamic
   std::vector<BeamUse> beams;  ///< per scan beam (size of the scan when ran, else empty)
-  double n_eff = 0.0;        ///< effective sample size after weighting, before resampling
+  double n_eff = 0.0;          ///< effective sample size after weighting, before resampling
   bool resampled = false;
-  double w_avg = 0.0;        ///< average per-beam likelihood of this update (1/m)
+  double w_avg = 0.0;  ///< average per-beam likelihood of this update (1/m)
   double w_slow = 0.0;
   double w_fast = 0.0;
   double inject_probability = 0.0;
-  int injected = 0;          ///< random particles added by this update's resampling
-  int particles = 0;         ///< particle count after the update
+  int injected = 0;   ///< random particles added by this update's resampling
+  int particles = 0;  ///< particle count after the update
 };
 
 /// Augmented Monte Carlo localization with dynamic scan point rejection in a map frame M.
@@ -183,9 +178,11 @@ class Localizer {
  public:
   static constexpr double kClusterRadius = 1.0;  ///< m
   static constexpr double kClusterAngle = 0.5;   ///< rad
-  /// Validates the config (throws core::ConfigError naming the key); all randomness comes from
-  /// rng. No map and no particles until SetMap and Initialize.
-  Localizer(const LocalizerConfig& config, core::Rng rng);
+  /// Validates the config and the geometry (throws core::ConfigError naming the key); all
+  /// randomness comes from rng. Readings outside [robot.range_min, robot.range_max] are
+  /// ignored, and robot.range_max is the sensor models' maximum range. No map and no particles
+  /// until SetMap and Initialize.
+  Localizer(const LocalizerConfig& config, const RobotGeometry& robot, core::Rng rng);
   ~Localizer();
   Localizer(Localizer&&) noexcept;
   Localizer& operator=(Localizer&&) noexcept;
@@ -204,7 +201,7 @@ class Localizer {
   /// Moves every particle by one odometry increment (robot frame) with the sample motion
   /// model; call on every odometry tick. Also feeds the motion gate of Update.
   void Predict(const core::OdometryDelta& delta);
-  /// Measurement update with a scan in the LiDAR frame L (mounted at config.lidar_mount), run
+  /// Measurement update with a scan in the LiDAR frame L (mounted at robot.X_RL), run
   /// only after update_distance or update_angle_deg of odometry since the last update (or once
   /// after Initialize, SetMap, ApplyMapSwitch): standing still never reuses a scan.
   LocalizerUpdate Update(const core::LaserScan& scan);
@@ -219,11 +216,12 @@ class Localizer {
   Eigen::Matrix3d Covariance() const;
   /// Paper eq. (1) at a map switch: every particle becomes X_new_old * X_old_R (so does the
   /// estimate, a function of the particles), then next_map replaces the map as in SetMap.
-  /// X_new_old is the old map frame in the new one, i.e. inverse(X_{M_k S}) (DESIGN §2).
+  /// X_new_old is the old map frame in the new one, i.e. inverse(X_{M_k S}) (docs/DESIGN.md §2).
   void ApplyMapSwitch(const core::OccupancyGrid& next_map, const core::Pose2& X_new_old);
 
   const std::vector<Particle>& particles() const { return particles_; }
   const LocalizerConfig& config() const { return config_; }
+  const RobotGeometry& robot() const { return robot_; }
   bool has_map() const { return field_ != nullptr; }
   /// The current map's likelihood field (requires has_map()).
   const LikelihoodField& likelihood_field() const;
@@ -235,6 +233,7 @@ class Localizer {
   core::Pose2 RandomPose(const core::Pose2& around, bool near);
 
   LocalizerConfig config_;
+  RobotGeometry robot_;
   core::Rng rng_;
   std::unique_ptr<LikelihoodField> field_;
   std::unique_ptr<GridRayCaster> caster_;

@@ -26,7 +26,8 @@ struct BeamPlan {
   double clear_to = 0.0;  // m, clearing beams: cells with t_out <= clear_to are free
 };
 
-BeamPlan PlanBeam(const MapperConfig& config, const core::LaserScan& scan, std::size_t i) {
+BeamPlan PlanBeam(const MapperConfig& config, double hit_range_max, const core::LaserScan& scan,
+                  std::size_t i) {
   BeamPlan plan;
   if (scan.NoReturn(i)) {
     if (config.no_return_range <= 0.0) return plan;
@@ -37,7 +38,7 @@ BeamPlan PlanBeam(const MapperConfig& config, const core::LaserScan& scan, std::
   }
   if (!scan.Valid(i)) return plan;  // NaN, -inf, or outside [range_min, range_max]
   const double z = scan.ranges[i];
-  if (z <= config.hit_range_max) {
+  if (z <= hit_range_max) {
     plan.kind = BeamKind::kHit;
     plan.z = z;
     plan.length = z + config.inverse_model.ReachBehind();
@@ -109,11 +110,7 @@ void MapperConfig::Validate() const {
                 "must be a finite number < 0, got " + core::FormatNumber(log_odds_min));
   RequireConfig(log_odds_max > 0.0 && std::isfinite(log_odds_max), "log_odds_max",
                 "must be a finite number > 0, got " + core::FormatNumber(log_odds_max));
-  core::RequirePositive("hit_range_max", hit_range_max);
   core::RequireNonNegative("no_return_range", no_return_range);
-  RequireConfig(std::isfinite(lidar_mount.x) && std::isfinite(lidar_mount.y) &&
-                    std::isfinite(lidar_mount.theta),
-                "lidar_mount", "must be finite");
   try {
     inverse_model.Validate();
   } catch (const core::ConfigError& e) {
@@ -121,8 +118,10 @@ void MapperConfig::Validate() const {
   }
 }
 
-Mapper::Mapper(const MapperConfig& config) : config_(config) {
+Mapper::Mapper(const MapperConfig& config, const RobotGeometry& robot)
+    : config_(config), robot_(robot) {
   config_.Validate();
+  robot_.Validate();
   const int half = static_cast<int>(std::ceil(0.5 * config_.initial_size / config_.resolution));
   grid_ = core::OccupancyGrid(2 * half, 2 * half, config_.resolution,
                               core::Vec2(-half * config_.resolution, -half * config_.resolution));
@@ -159,14 +158,14 @@ void Mapper::ProposeUpdate(core::CellIndex c, float delta, bool end_cell) {
 
 void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
   RETRACE_CHECK(std::isfinite(X_MR.x) && std::isfinite(X_MR.y) && std::isfinite(X_MR.theta));
-  const core::Pose2 X_ML = X_MR * config_.lidar_mount;
+  const core::Pose2 X_ML = X_MR * robot_.X_RL;
   const core::Vec2 p_ML = X_ML.translation();
 
   std::vector<BeamPlan> plans(scan.size());
   core::Vec2 lo = p_ML;
   core::Vec2 hi = p_ML;
   for (std::size_t i = 0; i < scan.size(); ++i) {
-    plans[i] = PlanBeam(config_, scan, i);
+    plans[i] = PlanBeam(config_, robot_.range_max, scan, i);
     if (plans[i].kind == BeamKind::kSkip) continue;
     const double a = X_ML.theta + scan.Angle(i);
     const core::Vec2 end = p_ML + plans[i].length * core::Vec2(std::cos(a), std::sin(a));

@@ -14,6 +14,7 @@
 #include "core/path.hpp"
 #include "core/pose2.hpp"
 #include "nav/inverse_sensor_model.hpp"
+#include "nav/robot_geometry.hpp"
 
 namespace retrace::nav {
 
@@ -28,12 +29,9 @@ struct MapperConfig {
   /// that are already saturated free during teaching leaves no trace.
   double log_odds_min = -8.0;
   double log_odds_max = 8.0;
-  /// m: finite readings longer than this mark no hit; they only clear free space, like +inf.
-  double hit_range_max = 30.0;
   /// m: no-return (+inf) beams clear free cells up to this range, without marking a hit, and
   /// never beyond a cell the map already holds as occupied (a dropout is not open space).
   double no_return_range = 10.0;
-  core::Pose2 lidar_mount;  ///< X_RL: the LiDAR frame L in the robot frame R
   InverseSensorModelConfig inverse_model;
 
   template <class V>
@@ -44,14 +42,12 @@ struct MapperConfig {
     v("keyframe_angle_deg", keyframe_angle_deg);
     v("log_odds_min", log_odds_min);
     v("log_odds_max", log_odds_max);
-    v("hit_range_max", hit_range_max);
     v("no_return_range", no_return_range);
-    v("lidar_mount", lidar_mount);
     v("inverse_model", inverse_model);
   }
   /// Throws core::ConfigError naming the key path (e.g. "resolution",
   /// "inverse_model.sigma"): non-positive sizes or ranges, negative keyframe thresholds,
-  /// log_odds_min >= 0 or log_odds_max <= 0, a non-finite mount.
+  /// log_odds_min >= 0 or log_odds_max <= 0.
   void Validate() const;
 };
 
@@ -67,9 +63,10 @@ struct MapperStats {
 /// Builds one occupancy grid and its keyframe path in the frame M where it was started.
 class Mapper {
  public:
-  /// An empty map with the robot at the origin of M. Throws core::ConfigError for an invalid
-  /// config.
-  explicit Mapper(const MapperConfig& config);
+  /// An empty map with the robot at the origin of M. Scans come from the LiDAR at
+  /// robot.X_RL; finite readings beyond robot.range_max mark no hit (they only clear free
+  /// space, like +inf). Throws core::ConfigError for an invalid config or geometry.
+  Mapper(const MapperConfig& config, const RobotGeometry& robot);
 
   /// Sets the robot's current pose X_MR (m, rad, in M).
   void SetPose(const core::Pose2& X_MR) { X_MR_ = X_MR; }
@@ -98,6 +95,7 @@ class Mapper {
   void ProposeUpdate(core::CellIndex c, float delta, bool end_cell);
 
   MapperConfig config_;
+  RobotGeometry robot_;
   core::OccupancyGrid grid_;
   core::Path path_;
   core::Pose2 X_MR_;

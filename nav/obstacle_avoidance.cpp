@@ -14,9 +14,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kStraight = 1e-9;  // 1/m, below this |curvature| the arc is a straight line
 constexpr double kTwoPi = 2.0 * core::kPi;
 
-const ObstacleAvoidanceConfig& Validated(const ObstacleAvoidanceConfig& config) {
-  config.Validate();
-  return config;
+template <class T>
+const T& Validated(const T& value) {
+  value.Validate();
+  return value;
 }
 
 // Position of the footprint centre after travelling `sigma` rad along the arc of signed
@@ -53,15 +54,15 @@ double DistanceToTrace(double kappa, double distance, const core::Vec2& p) {
 }  // namespace
 
 void ObstacleAvoidanceConfig::Validate() const {
-  core::RequirePositive("robot_radius", robot_radius);
   core::RequireNonNegative("safety_margin", safety_margin);
   core::RequirePositive("horizon", horizon);
   core::RequireNonNegative("min_prediction_distance", min_prediction_distance);
   core::RequireNonNegative("omega_window", omega_window);
   core::RequirePositive("omega_step", omega_step);
   if (omega_window / omega_step > 1000.0) {
-    throw core::ConfigError("omega_step", "gives more than 1000 candidates per side (omega_window " +
-                                              core::FormatNumber(omega_window) + ")");
+    throw core::ConfigError("omega_step",
+                            "gives more than 1000 candidates per side (omega_window " +
+                                core::FormatNumber(omega_window) + ")");
   }
   core::RequirePositive("max_yaw_rate", max_yaw_rate);
   core::RequireNonNegative("side_switch_penalty", side_switch_penalty);
@@ -76,9 +77,6 @@ void ObstacleAvoidanceConfig::Validate() const {
   }
   core::RequireNonNegative("emergency_stop_length", emergency_stop_length);
   core::RequirePositive("emergency_stop_width", emergency_stop_width);
-  core::RequireFinite("lidar_mount", lidar_mount.x);
-  core::RequireFinite("lidar_mount", lidar_mount.y);
-  core::RequireFinite("lidar_mount", lidar_mount.theta);
 }
 
 double DistanceToContact(double curvature, double radius, double max_distance,
@@ -111,14 +109,15 @@ double DistanceToContact(double curvature, double radius, double max_distance,
   return s <= max_distance ? s : kInf;
 }
 
-ObstacleAvoidance::ObstacleAvoidance(const ObstacleAvoidanceConfig& config)
-    : config_(Validated(config)) {}
+ObstacleAvoidance::ObstacleAvoidance(const ObstacleAvoidanceConfig& config,
+                                     const RobotGeometry& robot)
+    : config_(Validated(config)), robot_(Validated(robot)) {}
 
 ObstacleAvoidance::Clearance ObstacleAvoidance::Evaluate(double v, double omega, double distance,
                                                          bool want_clearance, bool margin) {
   RETRACE_CHECK(v > 0.0);
   const double kappa = omega / v;
-  const double inflated = config_.robot_radius + (margin ? config_.safety_margin : 0.0);
+  const double inflated = robot_.radius + (margin ? config_.safety_margin : 0.0);
   const double inflated2 = inflated * inflated;
   Clearance out;
   const std::size_t n = points_R_.size();
@@ -130,7 +129,7 @@ ObstacleAvoidance::Clearance ObstacleAvoidance::Evaluate(double v, double omega,
     const core::Vec2& p = points_R_[i];
     // A point already within the margin only has to stay outside the bare footprint, so the
     // robot can still move away from (or along) something that came too close.
-    const double radius = p.squaredNorm() < inflated2 ? config_.robot_radius : inflated;
+    const double radius = p.squaredNorm() < inflated2 ? robot_.radius : inflated;
     if (want_clearance) {
       out.clearance = std::min(out.clearance, DistanceToTrace(kappa, distance, p) - radius);
     }
@@ -148,8 +147,7 @@ ObstacleAvoidance::Clearance ObstacleAvoidance::Evaluate(double v, double omega,
   return out;
 }
 
-AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
-                                          const core::LaserScan& scan) {
+AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired, const core::LaserScan& scan) {
   RETRACE_CHECK(std::isfinite(desired.v) && std::isfinite(desired.omega));
   AvoidanceOutput out;
   out.command = desired;
@@ -169,18 +167,17 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
       continue;
     }
     const double a = scan.Angle(i);
-    points_R_.push_back(config_.lidar_mount * core::Vec2(range * std::cos(a), range * std::sin(a)));
+    points_R_.push_back(robot_.X_RL * core::Vec2(range * std::cos(a), range * std::sin(a)));
   }
 
-  const double distance =
-      std::max(desired.v * config_.horizon, config_.min_prediction_distance);
+  const double distance = std::max(desired.v * config_.horizon, config_.min_prediction_distance);
   exact_contact_ = true;  // the first contact of the desired command: time_to_collision
   const double contact = Evaluate(desired.v, desired.omega, distance, false).contact;
   exact_contact_ = false;
   out.time_to_collision = contact / desired.v;
 
   // Emergency stop: anything in the rectangle ahead of the robot's centre line.
-  const double zone_x = config_.robot_radius + config_.emergency_stop_length;
+  const double zone_x = robot_.radius + config_.emergency_stop_length;
   const double zone_y = 0.5 * config_.emergency_stop_width;
   for (const core::Vec2& p : points_R_) {
     if (p.x() > 0.0 && p.x() <= zone_x && std::abs(p.y()) <= zone_y) {
@@ -219,7 +216,8 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
     double reach;
     bool margin;
   };
-  for (const Tier tier : {Tier{config_.candidate_reach * distance, true}, Tier{distance, true}, Tier{distance, false}}) {
+  for (const Tier tier : {Tier{config_.candidate_reach * distance, true}, Tier{distance, true},
+                          Tier{distance, false}}) {
     const double reach = tier.reach;
     Candidate best[2];  // [0]: left (omega >= omega_d), [1]: right
     for (int side = 0; side < 2; ++side) {
@@ -231,8 +229,9 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
           const double v = desired.v * config_.speed_factors[f];
           if (std::isfinite(Evaluate(v, omega, reach, false, tier.margin).contact)) continue;
           const bool switches = k > 0 && last_side_ != 0 && last_side_ != sign;
-          best[side] = {{v, omega}, f, k * config_.omega_step +
-                                           (switches ? config_.side_switch_penalty : 0.0)};
+          best[side] = {{v, omega},
+                        f,
+                        k * config_.omega_step + (switches ? config_.side_switch_penalty : 0.0)};
           break;
         }
       }
@@ -244,9 +243,11 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired,
           pick = best[1].factor < best[0].factor ? 1 : 0;
         } else {
           const double left =
-              Evaluate(best[0].command.v, best[0].command.omega, reach, true, tier.margin).clearance;
+              Evaluate(best[0].command.v, best[0].command.omega, reach, true, tier.margin)
+                  .clearance;
           const double right =
-              Evaluate(best[1].command.v, best[1].command.omega, reach, true, tier.margin).clearance;
+              Evaluate(best[1].command.v, best[1].command.omega, reach, true, tier.margin)
+                  .clearance;
           pick = right > left ? 1 : 0;
         }
       }

@@ -1,6 +1,6 @@
 #pragma once
-// Reactive obstacle avoidance (DESIGN §5): predicts the robot's circular footprint along the
-// commanded arc against the current scan and, if it would collide, picks the closest
+// Reactive obstacle avoidance (docs/DESIGN.md §5): predicts the robot's circular footprint along
+// the commanded arc against the current scan and, if it would collide, picks the closest
 // collision-free (v, omega) from a sampled window; stops when nothing is free.
 //
 // Selection when the desired command (v_d, omega_d) collides within the prediction distance:
@@ -29,16 +29,17 @@
 #include "core/laser_scan.hpp"
 #include "core/pose2.hpp"
 #include "core/twist.hpp"
+#include "nav/robot_geometry.hpp"
 
 namespace retrace::nav {
 
-/// Footprint, prediction and search window of the avoidance. Defaults match the simulated
-/// robot's default (radius 0.3 m, 1 m/s), the paper's omega step (0.02 rad/s) and its speed
-/// x 0.8 while avoiding; the window spans the whole yaw-rate range (see above).
+/// Prediction and search window of the avoidance (the footprint is the robot's: RobotGeometry).
+/// Defaults match the simulated robot's default speed (1 m/s), the paper's omega step
+/// (0.02 rad/s) and its speed x 0.8 while avoiding; the window spans the whole yaw-rate range
+/// (see above).
 struct ObstacleAvoidanceConfig {
-  bool enabled = true;  ///< false: Filter passes the command through unchanged
-  double robot_radius = 0.3;   ///< m, circular footprint (keep equal to the robot's)
-  double safety_margin = 0.1;  ///< m, added to robot_radius for points not already that close
+  bool enabled = true;         ///< false: Filter passes the command through unchanged
+  double safety_margin = 0.1;  ///< m, added to the robot's radius for points not already that close
   /// s. The footprint is predicted over v_d * horizon of arc length (at least
   /// min_prediction_distance) for every candidate, so slowing down never shortens the look.
   /// The paper used 5 s; at 1 m/s, 2 s (2 m, four braking distances at 1 m/s²) reacts in time
@@ -59,18 +60,16 @@ struct ObstacleAvoidanceConfig {
   /// Speed candidates as fractions of the desired speed, most preferred first (each in
   /// (0, 1]); the paper slows to 0.8 while avoiding.
   std::vector<double> speed_factors = {0.8, 0.5};
-  /// m, the emergency-stop zone: the rectangle 0 < x <= robot_radius + emergency_stop_length,
+  /// m, the emergency-stop zone: the rectangle 0 < x <= radius + emergency_stop_length,
   /// |y| <= emergency_stop_width / 2 in R. Points behind or beside it never count. Shorter than
   /// safety_margin so that the avoidance's own detours do not run into it: it catches what
   /// appears suddenly (a pedestrian stepping in).
   double emergency_stop_length = 0.05;
   double emergency_stop_width = 0.6;  ///< m
-  core::Pose2 lidar_mount;            ///< X_RL: the LiDAR frame L in the robot frame R
 
   template <class V>
   void Reflect(V& v) {
     v("enabled", enabled);
-    v("robot_radius", robot_radius);
     v("safety_margin", safety_margin);
     v("horizon", horizon);
     v("min_prediction_distance", min_prediction_distance);
@@ -82,13 +81,11 @@ struct ObstacleAvoidanceConfig {
     v("speed_factors", speed_factors);
     v("emergency_stop_length", emergency_stop_length);
     v("emergency_stop_width", emergency_stop_width);
-    v("lidar_mount", lidar_mount);
   }
-  /// Throws core::ConfigError naming the key: robot_radius, horizon, omega_step, max_yaw_rate
-  /// and emergency_stop_width must be > 0, the other lengths, omega_window and
+  /// Throws core::ConfigError naming the key: horizon, omega_step, max_yaw_rate and
+  /// emergency_stop_width must be > 0, the other lengths, omega_window and
   /// side_switch_penalty >= 0, candidate_reach in [1, 10],
-  /// omega_window / omega_step <= 1000, speed_factors non-empty with each in (0, 1], and
-  /// lidar_mount finite.
+  /// omega_window / omega_step <= 1000, speed_factors non-empty with each in (0, 1].
   void Validate() const;
 };
 
@@ -115,10 +112,12 @@ double DistanceToContact(double curvature, double radius, double max_distance,
 /// Filters the follower's command against the latest scan.
 class ObstacleAvoidance {
  public:
-  /// Throws core::ConfigError if the config is invalid.
-  explicit ObstacleAvoidance(const ObstacleAvoidanceConfig& config);
+  /// Avoidance for the robot `robot` (its radius is the footprint; scans come from its LiDAR at
+  /// X_RL). Throws core::ConfigError if the config or the geometry is invalid.
+  ObstacleAvoidance(const ObstacleAvoidanceConfig& config, const RobotGeometry& robot);
 
   const ObstacleAvoidanceConfig& config() const { return config_; }
+  const RobotGeometry& robot() const { return robot_; }
 
   /// Returns a collision-free version of `desired` ((v, omega) in R) for `scan` (taken by the
   /// LiDAR L mounted at X_RL). Commands with v <= 0 are passed through (a circular footprint
@@ -128,17 +127,19 @@ class ObstacleAvoidance {
 
  private:
   struct Clearance {
-    double contact = std::numeric_limits<double>::infinity();  // m of arc to first contact
+    double contact = std::numeric_limits<double>::infinity();    // m of arc to first contact
     double clearance = std::numeric_limits<double>::infinity();  // m, only if requested
   };
   /// `margin`: keep safety_margin from points farther than it (false: the bare footprint).
-  Clearance Evaluate(double v, double omega, double distance, bool want_clearance, bool margin = true);
+  Clearance Evaluate(double v, double omega, double distance, bool want_clearance,
+                     bool margin = true);
 
   ObstacleAvoidanceConfig config_;
+  RobotGeometry robot_;
   std::vector<core::Vec2> points_R_;  // scan points of the current Filter call, in R
-  int last_side_ = 0;  // side of the current detour: +1 left, -1 right, 0 none
-  std::size_t hint_ = 0;        // index of the last blocking point, tested first
-  bool exact_contact_ = false;  // Evaluate must find the first contact, not just any
+  int last_side_ = 0;                 // side of the current detour: +1 left, -1 right, 0 none
+  std::size_t hint_ = 0;              // index of the last blocking point, tested first
+  bool exact_contact_ = false;        // Evaluate must find the first contact, not just any
 };
 
 }  // namespace retrace::nav

@@ -1,6 +1,6 @@
 #pragma once
-// The path follower (paper §4.3, DESIGN §5): PD control on the lateral and heading errors to a
-// taught path with a curvature feed-forward, a speed profile that looks ahead for curves and
+// The path follower (paper §4.3, docs/DESIGN.md §5): PD control on the lateral and heading errors
+// to a taught path with a curvature feed-forward, a speed profile that looks ahead for curves and
 // the end of the path, and monotonic progress.
 //
 // Control law (every Compute, errors at the projection s* of the robot onto the path):
@@ -48,13 +48,13 @@ struct PathFollowerConfig {
   double progress_window = 1.5;
   /// m. Length of the chord that defines the path tangent (and curvature) at an arc length.
   double tangent_window = 0.5;
-  double max_speed = 1.0;    ///< m/s
-  double min_speed = 0.05;   ///< m/s, floor while driving so that the robot never stalls
-  double max_yaw_rate = 1.0; ///< rad/s, |omega| limit of the command
-  double kp_lateral = 1.0;   ///< rad/s per m of lateral error
-  double kd_lateral = 0.5;   ///< rad/s per m/s of lateral error rate
-  double kp_heading = 1.2;   ///< rad/s per rad of heading error
-  double kd_heading = 0.05;  ///< rad/s per rad/s of heading error rate (keep < 1)
+  double max_speed = 1.0;     ///< m/s
+  double min_speed = 0.05;    ///< m/s, floor while driving so that the robot never stalls
+  double max_yaw_rate = 1.0;  ///< rad/s, |omega| limit of the command
+  double kp_lateral = 1.0;    ///< rad/s per m of lateral error
+  double kd_lateral = 0.5;    ///< rad/s per m/s of lateral error rate
+  double kp_heading = 1.2;    ///< rad/s per rad of heading error
+  double kd_heading = 0.05;   ///< rad/s per rad/s of heading error rate (keep < 1)
   /// s. Time constant of the first-order low-pass on both error derivatives (0 = none).
   double derivative_filter_tau = 0.1;
   /// m. The lateral error is clipped to +-this before the PD terms.
@@ -120,7 +120,7 @@ class PathFollower {
 
  private:
   struct Projection {
-    double s = 0.0;        // arc length of the closest point (m)
+    double s = 0.0;  // arc length of the closest point (m)
     double distance = std::numeric_limits<double>::infinity();
   };
   Projection Project(const core::Vec2& p_M, double s_from, double s_to) const;

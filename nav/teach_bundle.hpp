@@ -1,6 +1,6 @@
 #pragma once
-// The teach bundle: what the teaching run leaves for playback (DESIGN §6) — per partial map k
-// its occupancy grid, its taught path and its switch pose — and its files on disk, laid out as
+// The teach bundle: what the teaching run leaves for playback (docs/DESIGN.md §6) — per partial map
+// k its occupancy grid, its taught path and its switch pose — and its files on disk, laid out as
 // AutoNavi writes them:
 //
 //   <dir>/maps/ogm_k.yaml, maps/ogm_k.pgm   map k (ROS map_server, trinary), k = 0, 1, ...

@@ -7,7 +7,8 @@
 
 namespace retrace::nav {
 
-TeachRecorder::TeachRecorder(const MapperConfig& config) : config_(config), mapper_(config) {}
+TeachRecorder::TeachRecorder(const MapperConfig& config, const RobotGeometry& robot)
+    : config_(config), robot_(robot), mapper_(config, robot) {}
 
 void TeachRecorder::OnPose(const core::Pose2& X_OR) {
   RETRACE_CHECK(!finished_);
@@ -38,7 +39,7 @@ void TeachRecorder::CloseMap() {
   map.grid = mapper_.grid();
   closed_.push_back(std::move(map));
 
-  mapper_ = Mapper(config_);
+  mapper_ = Mapper(config_, robot_);
   X_OM_ = X_OR_;  // map k+1 starts at the switch; if no pose is known yet, at the first one
 }
 

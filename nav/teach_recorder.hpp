@@ -1,5 +1,5 @@
 #pragma once
-// The teach recorder (DESIGN §5): runs the mapper during the teaching drive and, on the
+// The teach recorder (docs/DESIGN.md §5): runs the mapper during the teaching drive and, on the
 // operator's switch signal, closes the current partial map and starts the next one at the
 // identity. It takes the robot's pose from whatever source the caller uses — integrated
 // odometry for the `partial` and `single` map modes, ground truth for `consistent` — as an
@@ -24,8 +24,9 @@ namespace retrace::nav {
 /// Builds the partial maps of one teaching drive.
 class TeachRecorder {
  public:
-  /// Starts map 0. Throws core::ConfigError for an invalid mapper config.
-  explicit TeachRecorder(const MapperConfig& config);
+  /// Starts map 0 for the robot `robot`. Throws core::ConfigError for an invalid mapper config
+  /// or geometry.
+  TeachRecorder(const MapperConfig& config, const RobotGeometry& robot);
 
   /// The robot's pose X_OR (m, rad) in the pose source's frame O, at each odometry tick.
   void OnPose(const core::Pose2& X_OR);
@@ -55,6 +56,7 @@ class TeachRecorder {
 
  private:
   MapperConfig config_;
+  RobotGeometry robot_;
   Mapper mapper_;
   std::optional<core::Pose2> X_OM_;  // origin of the current map in O, once known
   std::optional<core::Pose2> X_OR_;  // latest source pose

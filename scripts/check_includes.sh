@@ -1,26 +1,47 @@
 #!/usr/bin/env bash
-# Checks the dependency rules of DESIGN.md §1: which library may include which, and that
-# third-party types stay out of the public headers of sim, nav and viz.
+# Checks the dependency rules of docs/DESIGN.md §1 on the #includes: which library may include
+# which (internal/ folders included), that third-party types stay out of the public headers of
+# sim, nav and viz, and that CLI11 lives only in the command line. The layers, bottom up:
+#
+#   core → io → sim, nav, viz → bench/engine → bench/metrics → bench/output, bench/suite,
+#   bench/sweep, bench/compare → bench/cli        (bench/worldgen: on core, io and sim only)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 fail=0
-check() {  # check <dir> <file-glob> <forbidden include regex> <reason>
+check() {  # check <dir> <file-glob> <forbidden include regex> <reason> [exempt path regex]
   local hits
-  hits=$(grep -rnE "#\s*include\s*[<\"]($3)" $1 --include="$2" 2>/dev/null | grep -v '/internal/' || true)
+  hits=$(grep -rnE "#\s*include\s*[<\"]($3)" "$1" --include="$2" 2>/dev/null || true)
+  if [ -n "${5:-}" ] && [ -n "$hits" ]; then hits=$(grep -vE "$5" <<<"$hits" || true); fi
   if [ -n "$hits" ]; then
     echo "include rule broken: $4"
     echo "$hits"
     fail=1
   fi
 }
-check core '*' 'io/|sim/|nav/|viz/|bench/|yaml-cpp|box2d|opencv2|nlohmann' "core depends on Eigen and std only"
-check io '*' 'sim/|nav/|viz/|bench/|box2d' "io depends on core only"
-check sim '*' 'nav/|viz/|bench/' "sim must not see nav, viz or bench"
-check nav '*' 'sim/|viz/|bench/|box2d' "nav must never see the simulator"
-check viz '*' 'sim/|nav/|bench/|box2d' "viz depends on core and io only"
+harness='bench/(engine|metrics|output|suite|sweep|compare|cli|worldgen)/'
+above_engine='bench/(metrics|output|suite|sweep|compare|cli|worldgen)/'
+check core '*' 'io/|sim/|nav/|viz/|bench/|yaml-cpp|box2d|opencv2|nlohmann|CLI/' "core depends on Eigen and std only"
+check io '*' 'sim/|nav/|viz/|bench/|box2d|CLI/' "io depends on core only"
+check sim '*' 'nav/|viz/|bench/|CLI/' "sim must not see nav, viz or bench"
+check nav '*' 'sim/|viz/|bench/|box2d|CLI/' "nav must never see the simulator"
+check viz '*' 'sim/|nav/|bench/|box2d|CLI/' "viz depends on core and io only"
 for lib in sim nav viz; do
-  [ -d "$lib" ] && check "$lib" '*.hpp' 'box2d|opencv2|yaml-cpp|io/config_yaml' \
-    "third-party types stay out of $lib's public headers"
+  check "$lib" '*.hpp' 'box2d|opencv2|yaml-cpp|io/config_yaml' \
+    "third-party types stay out of $lib's public headers" '/internal/'
 done
+check bench/engine '*' "$above_engine|viz/|CLI/" \
+  "the episode engine sees core, io, sim and nav only"
+check bench/metrics '*' 'bench/(output|suite|sweep|compare|cli|worldgen)/|viz/|CLI/' \
+  "metrics depend on the engine only"
+check bench/output '*' 'bench/(suite|sweep|compare|cli|worldgen)/|CLI/' \
+  "output depends on the engine, metrics and viz only"
+check bench/suite '*' 'bench/(output|sweep|compare|cli|worldgen)/|viz/|CLI/' \
+  "suites depend on the engine and metrics only"
+check bench/sweep '*' 'bench/(output|suite|compare|cli|worldgen)/|CLI/' \
+  "sweeps depend on the engine, metrics and viz only"
+check bench/compare '*' 'bench/(output|suite|sweep|cli|worldgen)/|CLI/' \
+  "the comparison study depends on metrics and viz only"
+check bench/worldgen '*' "bench/(engine|metrics|output|suite|sweep|compare|cli)/|nav/|viz/|CLI/" "world generation depends on core, io and sim only"
+check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim and nav kernels only"
 [ $fail -eq 0 ] && echo "include rules: ok"
 exit $fail

@@ -1,25 +1,46 @@
 #!/usr/bin/env bash
-# Installs what is missing, checks the include rules, builds and runs every test, runs the CI
-# regression suite against its committed baseline (navigation metrics gated, timing reported),
-# then builds once more with AddressSanitizer + UndefinedBehaviorSanitizer and runs the fast
-# tests again.
+# Installs what is missing, checks the include rules, builds and runs every test (unit,
+# integration and system tiers), runs the CI regression suite against its committed baseline
+# (navigation metrics gated, timing reported), then builds once more with AddressSanitizer +
+# UndefinedBehaviorSanitizer and runs the unit and integration tests again. Prints how long
+# each stage took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+jobs=$(nproc)
+start=$SECONDS
+stage_start=$SECONDS
+stage() {  # stage <title>: closes the previous stage's timing, opens the next
+  if [ -n "${stage_name:-}" ]; then
+    echo "== ${stage_name}: $((SECONDS - stage_start)) s"
+  fi
+  stage_name="$1"
+  stage_start=$SECONDS
+  [ -n "$1" ] && echo "== $1"
+  return 0
+}
+
+stage "Packages and include rules"
 scripts/install_deps.sh
 scripts/check_includes.sh
 
-jobs=$(nproc)
-echo "== Release build and tests"
+stage "Release build"
 scripts/build.sh build -DRETRACE_WERROR=ON
+
+stage "Release tests (unit, integration, system)"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
-echo "== Regression suite bench/suites/ci.yaml against results/baselines/ci.json"
+stage "Regression suite bench/suites/ci.yaml against results/baselines/ci.json"
 ./build/retrace bench bench/suites/ci.yaml --jobs "$jobs"
 
-echo "== AddressSanitizer + UBSan build and tests"
+stage "AddressSanitizer + UBSan build"
 # -g1 (line tables: what sanitizer stack traces print) compiles about 20 % faster than -g.
 scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DRETRACE_SANITIZE=ON \
   -DRETRACE_WERROR=ON -DRETRACE_BUILD_BENCHMARKS=OFF
+
+stage "AddressSanitizer + UBSan tests (unit, integration)"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE slow
+  ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|integration'
+
+stage ""
+echo "== all stages: $((SECONDS - start)) s"

@@ -1,5 +1,5 @@
 #pragma once
-// The simulated planar LiDAR (DESIGN §4): exact closest hits over the static geometry (the
+// The simulated planar LiDAR (docs/DESIGN.md §4): exact closest hits over the static geometry (the
 // world's, plus obstacles added at run time) and the pedestrians, Gaussian range noise, dropouts
 // and spurious short returns, REP-117 readings.
 

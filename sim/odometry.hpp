@@ -9,7 +9,7 @@
 
 namespace retrace::sim {
 
-/// Wheel-odometry error model (DESIGN §4).
+/// Wheel-odometry error model (docs/DESIGN.md §4).
 ///
 /// One odometry step turns the true wheel travel d_L, d_R (m) into a measured increment:
 ///

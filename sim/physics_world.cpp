@@ -71,7 +71,8 @@ class RobotContactListener final : public b2ContactListener {
 
 void PhysicsConfig::Validate() const {
   if (!(time_step > 0.0 && time_step <= 0.1)) {
-    throw core::ConfigError("time_step", "must be in (0, 0.1] s, got " + core::FormatNumber(time_step));
+    throw core::ConfigError("time_step",
+                            "must be in (0, 0.1] s, got " + core::FormatNumber(time_step));
   }
   core::RequireIntInRange("velocity_iterations", velocity_iterations, 1, 100);
   core::RequireIntInRange("position_iterations", position_iterations, 1, 100);
@@ -133,7 +134,7 @@ PhysicsWorld::PhysicsWorld(const StaticGeometry& geometry, const PhysicsConfig& 
   fixture.userData.pointer = kStaticTag;
   for (const Segment& s : geometry.segments()) {
     if ((s.b - s.a).norm() < kMinEdgeLength) continue;
-    // Two-sided: chain shapes collide on one side only (DESIGN §4).
+    // Two-sided: chain shapes collide on one side only (docs/DESIGN.md §4).
     b2EdgeShape edge;
     edge.SetTwoSided(ToB2(s.a), ToB2(s.b));
     fixture.shape = &edge;

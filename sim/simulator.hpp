@@ -3,7 +3,7 @@
 // odometry, advanced one fixed physics step at a time. It owns ground truth; the harness
 // (bench) reads sensors from it and feeds commands into it, and may change the world between
 // steps (scripted events: pedestrian groups and static obstacles added at run time). Sensors
-// fire on integer multiples of the physics step (DESIGN §3).
+// fire on integer multiples of the physics step (docs/DESIGN.md §3).
 
 #include <cstdint>
 #include <memory>

@@ -1,5 +1,6 @@
 #pragma once
-// The teacher: the simulated human operator who drives the route during teaching (DESIGN §4).
+// The teacher: the simulated human operator who drives the route during teaching (docs/DESIGN.md
+// §4).
 
 #include <cstddef>
 #include <vector>

@@ -15,6 +15,7 @@ namespace retrace::sim {
 namespace {
 
 constexpr std::int64_t kMaxCells = 8'000'000;
+constexpr double kMaxCellSize = 0.5;  // m: coarser cells would close the doors of a building
 constexpr double kSqrt2 = 1.4142135623730951;
 
 struct Neighbour {
@@ -35,26 +36,42 @@ void WalkPlannerConfig::Validate() const {
   core::RequireNonNegative("area_padding", area_padding);
 }
 
+double PlanningCellSize(const Aabb& area, const WalkPlannerConfig& config) {
+  config.Validate();
+  const Vec2 extent = area.max - area.min;
+  double cell = config.cell_size;
+  // The configured cell, or the first one coarser by whole centimetres that fits the limit.
+  auto cells = [&extent](double c) {
+    return std::ceil(extent.x() / c) * std::ceil(extent.y() / c);
+  };
+  if (extent.allFinite() && cells(cell) > static_cast<double>(kMaxCells)) {
+    cell = std::ceil(100.0 * std::sqrt(extent.x() * extent.y() / kMaxCells)) / 100.0;
+    while (cells(cell) > static_cast<double>(kMaxCells)) cell += 0.01;
+  }
+  return cell;
+}
+
 WalkPlanner::WalkPlanner(const GeometryIndex& index, const Aabb& area, double pedestrian_radius,
                          const WalkPlannerConfig& config)
-    : cell_(config.cell_size), inflation_(pedestrian_radius + config.margin), origin_(area.min) {
+    : cell_(PlanningCellSize(area, config)),
+      inflation_(pedestrian_radius + config.margin),
+      origin_(area.min) {
   config.Validate();
   RETRACE_CHECK(pedestrian_radius > 0.0);
   const Vec2 extent = area.max - area.min;
   if (!extent.allFinite() || !(extent.x() > 0.0) || !(extent.y() > 0.0)) {
     throw core::WorldError("pedestrian planning area is empty");
   }
-  const double cells_x = std::ceil(extent.x() / cell_);
-  const double cells_y = std::ceil(extent.y() / cell_);
-  if (cells_x * cells_y > static_cast<double>(kMaxCells)) {
+  if (cell_ > kMaxCellSize) {
     char buf[200];
-    std::snprintf(
-        buf, sizeof(buf),
-        "pedestrian planning area %.0f m x %.0f m needs %.0f cells of %.3f m (limit %lld); "
-        "use smaller pedestrian regions or a larger cell_size",
-        extent.x(), extent.y(), cells_x * cells_y, cell_, static_cast<long long>(kMaxCells));
+    std::snprintf(buf, sizeof(buf),
+                  "pedestrian planning area %.0f m x %.0f m needs cells of %.2f m to fit %lld "
+                  "cells (at most %.1f m resolve a door); use smaller pedestrian regions",
+                  extent.x(), extent.y(), cell_, static_cast<long long>(kMaxCells), kMaxCellSize);
     throw core::WorldError(buf);
   }
+  const double cells_x = std::ceil(extent.x() / cell_);
+  const double cells_y = std::ceil(extent.y() / cell_);
   nx_ = std::max(1, static_cast<int>(cells_x));
   ny_ = std::max(1, static_cast<int>(cells_y));
   const std::size_t n = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);

@@ -36,12 +36,16 @@ struct WalkPlannerConfig {
   void Validate() const;
 };
 
+/// The cell size (m) a planner over `area` uses: config.cell_size, or, when that would need
+/// more than 8 million cells, the smallest coarser one (in whole centimetres) that does not.
+double PlanningCellSize(const Aabb& area, const WalkPlannerConfig& config);
+
 class WalkPlanner {
  public:
-  /// Rasterises `area` (W, m): a cell is free when its centre lies outside every solid with
-  /// clearance >= pedestrian_radius + config.margin. Keeps no reference to `index`.
-  /// Throws core::ConfigError on an invalid config, core::WorldError if the area is empty or
-  /// would need more than 8 million cells.
+  /// Rasterises `area` (W, m) in cells of PlanningCellSize(area, config): a cell is free when
+  /// its centre lies outside every solid with clearance >= pedestrian_radius + config.margin.
+  /// Keeps no reference to `index`. Throws core::ConfigError on an invalid config,
+  /// core::WorldError if the area is empty or would need cells coarser than 0.5 m.
   WalkPlanner(const GeometryIndex& index, const Aabb& area, double pedestrian_radius,
               const WalkPlannerConfig& config);
 

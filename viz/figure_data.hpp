@@ -3,8 +3,8 @@
 // folder: maps with io::ReadRosMap, paths and trajectories with io::ReadTum (or the teach
 // bundle's path files), switch poses from switch_poses.txt, metrics from metrics.json.
 //
-// Frames (DESIGN §2): W the world (ground truth), M_k partial map k, O odometry. Every field
-// says which frame it is in; figures never guess a transform the data does not give.
+// Frames (docs/DESIGN.md §2): W the world (ground truth), M_k partial map k, O odometry. Every
+// field says which frame it is in; figures never guess a transform the data does not give.
 
 #include <limits>
 #include <optional>
@@ -127,7 +127,7 @@ struct SnapshotData {
   core::Pose2 truth;                   ///< local ground truth X_MR
   std::vector<ScanPoint> scan;         ///< end points in M
   std::vector<Circle> pedestrians;     ///< in M
-  double robot_radius = 0.3;           ///< m
+  double robot_radius = 0.0;           ///< m, the robot's (the run's sim.robot.radius)
 };
 
 /// Errors of one run along the route.
@@ -172,7 +172,7 @@ struct WorldFigureData {
   std::vector<Vec2> route;          ///< W
   std::vector<Circle> pedestrians;  ///< W
   std::optional<core::Pose2> robot;
-  double robot_radius = 0.3;
+  double robot_radius = 0.0;  ///< m, the robot's
 };
 
 }  // namespace retrace::viz

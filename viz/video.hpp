@@ -22,18 +22,19 @@ struct VideoFrame {
   double speed = 0.0;  ///< m/s, of the robot (ground truth or command: the caller's choice)
   int map_index = 0;
   int map_count = 1;
-  std::shared_ptr<const core::OccupancyGrid> map;          ///< current map in M (shared: not copied per frame)
-  std::shared_ptr<const std::vector<core::Pose2>> path;    ///< taught path of this map in M
-  core::Pose2 estimate;                                    ///< X_MR
-  core::Pose2 truth;                                       ///< local ground truth X_MR
+  std::shared_ptr<const core::OccupancyGrid>
+      map;  ///< current map in M (shared: not copied per frame)
+  std::shared_ptr<const std::vector<core::Pose2>> path;  ///< taught path of this map in M
+  core::Pose2 estimate;                                  ///< X_MR
+  core::Pose2 truth;                                     ///< local ground truth X_MR
   std::vector<core::Pose2> particles;
-  std::vector<double> weights;                             ///< one per particle or empty
-  std::vector<ScanPoint> scan;                             ///< end points in M
-  std::vector<Circle> pedestrians;                         ///< in M
-  double robot_radius = 0.3;                               ///< m
+  std::vector<double> weights;      ///< one per particle or empty
+  std::vector<ScanPoint> scan;      ///< end points in M
+  std::vector<Circle> pedestrians;  ///< in M
+  double robot_radius = 0.0;        ///< m, the robot's
   /// s since the last map switch; a banner shows for 3 s after one.
   double time_since_switch = std::numeric_limits<double>::infinity();
-  std::string caption;                                     ///< e.g. "partial maps, run 2"
+  std::string caption;  ///< e.g. "partial maps, run 2"
 };
 
 struct VideoFrameOptions {

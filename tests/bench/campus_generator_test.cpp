@@ -1,4 +1,4 @@
-#include "bench/campus_generator.hpp"
+#include "bench/worldgen/campus_generator.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,8 +11,8 @@
 #include <iterator>
 #include <vector>
 
-#include "bench/campus_command.hpp"
-#include "bench/switch_points.hpp"
+#include "bench/cli/campus_command.hpp"
+#include "bench/engine/switch_points.hpp"
 #include "core/config.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
@@ -22,56 +22,20 @@
 #include "sim/physics_world.hpp"
 #include "sim/route_check.hpp"
 #include "sim/world_file.hpp"
+#include "tests/bench/campus_routes.hpp"
 #include "tests/support/config_key.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
 namespace {
 
+using namespace testing_routes;
+
 using core::Vec2;
 using ::testing::HasSubstr;
 
 const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
 const std::vector<std::uint64_t> kSeeds{1, 2, 3, 4};
-
-// A random drive: straight runs of 20-50 m joined by turns of up to 120 degrees on arcs of
-// 6 m radius. Long enough routes of this kind cross themselves now and then.
-std::vector<Vec2> RandomRoute(std::uint64_t seed, int runs = 12) {
-  core::Rng rng(seed);
-  std::vector<Vec2> route{{0, 0}};
-  double heading = 0.0;
-  for (int i = 0; i < runs; ++i) {
-    const double run = rng.Uniform(20.0, 50.0);
-    route.push_back(route.back() + run * Vec2(std::cos(heading), std::sin(heading)));
-    const double turn = rng.Uniform(-2.1, 2.1);
-    constexpr double kRadius = 6.0;
-    const int steps = std::max(1, static_cast<int>(std::abs(turn) / 0.26));
-    for (int k = 1; k <= steps; ++k) {
-      const double a = heading + turn * k / steps;
-      const double a_prev = heading + turn * (k - 1) / steps;
-      // Chord of the arc piece from a_prev to a.
-      const double mid = 0.5 * (a + a_prev);
-      const double chord = 2.0 * kRadius * std::sin(0.5 * std::abs(a - a_prev));
-      route.push_back(route.back() + chord * Vec2(std::cos(mid), std::sin(mid)));
-    }
-    heading += turn;
-  }
-  return route;
-}
-
-// East 100 m, north, west, then south across the first leg at (50, 0), at right angles.
-std::vector<Vec2> SelfCrossingRoute() {
-  return {{0, 0}, {100, 0}, {100, 50}, {50, 50}, {50, -50}, {0, -50}};
-}
-
-// Twice round a 60 m x 40 m block: every stretch is driven twice.
-std::vector<Vec2> DoubleLoop() {
-  return {{0, 0}, {60, 0}, {60, 40}, {0, 40}, {0, 0}, {60, 0}, {60, 40}, {0, 40}, {0, 5}};
-}
-
-sim::StaticGeometry Geometry(const sim::WorldConfig& world) {
-  return sim::BuildGeometry(world, {});
-}
 
 double DistanceToRoute(const std::vector<Vec2>& route, const Vec2& p) {
   double best = 1e9;
@@ -138,27 +102,6 @@ TEST(CampusGenerator, PlacesEveryKindOfObjectOnBothSides) {
   }
   EXPECT_GT(left, 10);
   EXPECT_GT(right, 10);
-}
-
-TEST(CampusGenerator, RouteStaysDrivableIncludingWhereItCrossesOrRevisitsItself) {
-  std::vector<std::vector<Vec2>> routes{SelfCrossingRoute(), DoubleLoop()};
-  for (std::uint64_t r = 20; r < 24; ++r) routes.push_back(RandomRoute(r, 20));
-  CampusConfig dense;
-  dense.buildings_per_100m *= 3;
-  dense.hedges_per_100m *= 3;
-  dense.tree_rows_per_100m *= 3;
-  dense.poles_per_100m *= 3;
-  dense.benches_per_100m *= 3;
-  for (std::size_t i = 0; i < routes.size(); ++i) {
-    for (const CampusConfig& config : {CampusConfig{}, dense}) {
-      for (std::uint64_t seed : {1, 2}) {
-        const sim::StaticGeometry g = Geometry(GenerateCampus(routes[i], config, seed));
-        // The whole corridor is free, not only the robot's footprint.
-        EXPECT_NO_THROW(sim::CheckRouteIsDrivable(g, routes[i], config.corridor_half_width - 1e-3))
-            << "route " << i << " seed " << seed;
-      }
-    }
-  }
 }
 
 TEST(CampusGenerator, NarrowerCorridorKeepsItsWidth) {

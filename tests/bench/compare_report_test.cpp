@@ -6,7 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "bench/comparison_report.hpp"
+#include "bench/compare/comparison_report.hpp"
+#include "bench/metrics/flat_metrics.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "viz/figures.hpp"
 #include "viz/image.hpp"

@@ -1,4 +1,4 @@
-#include "bench/metrics.hpp"
+#include "bench/metrics/metrics.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/metrics/metrics_json.hpp"
 #include "core/rng.hpp"
 #include "tests/support/config_key.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <limits>
 
-#include "bench/baseline.hpp"
-#include "bench/suite_report.hpp"
-#include "bench/suite_spec.hpp"
+#include "bench/suite/baseline.hpp"
+#include "bench/suite/suite_report.hpp"
+#include "bench/suite/suite_spec.hpp"
 #include "core/errors.hpp"
 #include "tests/support/temp_dir.hpp"
 

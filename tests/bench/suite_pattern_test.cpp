@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/metric_pattern.hpp"
+#include "bench/suite/metric_pattern.hpp"
 
 namespace retrace::bench {
 namespace {

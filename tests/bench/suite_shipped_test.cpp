@@ -6,10 +6,10 @@
 
 #include <filesystem>
 
-#include "bench/baseline.hpp"
-#include "bench/suite_report.hpp"
-#include "bench/suite_runner.hpp"
-#include "bench/suite_spec.hpp"
+#include "bench/suite/baseline.hpp"
+#include "bench/suite/suite_report.hpp"
+#include "bench/suite/suite_runner.hpp"
+#include "bench/suite/suite_spec.hpp"
 
 namespace retrace::bench {
 namespace {

@@ -1,7 +1,7 @@
 // Suite files: what a well-formed suite reads as, the metric names it yields, and one clear
 // located error for each way a suite can be wrong.
 
-#include "bench/suite_spec.hpp"
+#include "bench/suite/suite_spec.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // not a number or an inconsistent combination is one core::IoError naming the file and line,
 // and no PNG is written.
 
-#include "bench/sweep_plot.hpp"
+#include "bench/sweep/sweep_plot.hpp"
 
 #include <gtest/gtest.h>
 

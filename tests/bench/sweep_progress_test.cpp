@@ -1,9 +1,9 @@
-// The text of the sweep's progress line (bench/progress.hpp); the line itself is drawn only on
+// The text of the sweep's progress line (bench/cli/progress.hpp); the line itself is drawn only on
 // a terminal.
 
 #include <gtest/gtest.h>
 
-#include "bench/progress.hpp"
+#include "bench/cli/progress.hpp"
 
 namespace retrace::bench {
 namespace {

@@ -1,4 +1,4 @@
-#include "bench/sweep_results.hpp"
+#include "bench/sweep/sweep_results.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/sweep_summary.hpp"
+#include "bench/sweep/sweep_summary.hpp"
 #include "core/errors.hpp"
 #include "io/csv_reader.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -1,4 +1,4 @@
-#include "bench/sweep_spec.hpp"
+#include "bench/sweep/sweep_spec.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

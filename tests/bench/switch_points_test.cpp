@@ -1,4 +1,4 @@
-#include "bench/switch_points.hpp"
+#include "bench/engine/switch_points.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The verdict on one suite metric against its baseline: deltas (absolute, relative), bounds,
 // improvements, the direction of "worse", undefined (NaN) values and timing metrics.
 
-#include "bench/tolerance.hpp"
+#include "bench/suite/tolerance.hpp"
 
 #include <gtest/gtest.h>
 

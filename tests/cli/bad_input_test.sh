@@ -73,6 +73,7 @@ scenario inside.yaml 'route: {points: [[4, 2], [9, 1]]}\n'
 scenario decreasing.yaml 'route: {points: [[1, 1], [9, 1]], switch_points: [5, 3]}\n'
 scenario bad_mode.yaml 'route: {points: [[1, 1], [9, 1]]}\nmodes: [partial, slam]\n'
 scenario missing_world.yaml 'route: {points: [[1, 1], [9, 1]]}\n'
+scenario nav_mount.yaml 'route: {points: [[1, 1], [9, 1]]}\nnav: {localizer: {lidar_mount: [0.1, 0, 0]}}\n'
 sed -i 's/room.yaml/nowhere.yaml/' "$tmp/missing_world.yaml"
 mkdir -p "$tmp/teach_broken/maps"
 echo 2 >"$tmp/teach_broken/sub_map_num.txt"
@@ -89,6 +90,9 @@ expect_bad run-bad-mode-flag "unknown mode 'slam'" run "$src/scenarios/small.yam
 expect_bad run-bad-mode-in-list "unknown mode 'slam'" run "$src/scenarios/small.yaml" --mode partial,slam "${out[@]}"
 expect_bad run-mode-twice "mode 'partial' is given twice" run "$src/scenarios/small.yaml" --mode partial,consistent,partial "${out[@]}"
 expect_bad run-bad-set "--set nav.localizer.particles=-5" run "$src/scenarios/small.yaml" --set nav.localizer.particles=-5 "${out[@]}"
+# The robot's geometry is stated once, under sim: nav keys that would repeat it name that key.
+expect_bad run-robot-radius-in-nav "nav.avoidance.robot_radius: unknown key; the robot's geometry is stated once, for the simulator and the navigation stack alike: set sim.robot.radius" run "$src/scenarios/small.yaml" --set nav.avoidance.robot_radius=0.5 "${out[@]}"
+expect_bad run-lidar-mount-in-nav "nav_mount.yaml:4: nav.localizer.lidar_mount: unknown key; the robot's geometry is stated once, for the simulator and the navigation stack alike: set sim.lidar.mount" run "$tmp/nav_mount.yaml" "${out[@]}"
 expect_bad playback-two-modes "one mode" playback "$src/scenarios/small.yaml" --teach "$tmp/nothing" --mode partial,single "${out[@]}"
 expect_bad playback-missing-bundle "no such teach folder" playback "$src/scenarios/small.yaml" --teach "$tmp/nothing" "${out[@]}"
 expect_bad playback-broken-bundle "teach_broken" playback "$src/scenarios/small.yaml" --teach "$tmp/teach_broken" "${out[@]}"

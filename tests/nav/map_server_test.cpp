@@ -55,7 +55,7 @@ TEST(MapServer, EquationOneMapsTheSwitchPoseToIdentityAndKeepsRelativePoses) {
 TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
   const core::Pose2 X_M0S(4.0, 1.0, 0.7);
   MapServer server(TwoMaps(X_M0S));
-  Localizer localizer(LocalizerConfig{}, core::Rng(3));
+  Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(3));
   PathFollower follower(PathFollowerConfig{});
   server.Start(localizer, follower);
   EXPECT_EQ(server.index(), 0u);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -14,6 +15,8 @@
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 #include "tests/support/config_key.hpp"
+#include "tests/support/fake_scan.hpp"
+#include "tests/support/reflect_coverage.hpp"
 
 namespace retrace::nav {
 namespace {
@@ -25,15 +28,9 @@ using retrace::testing::ValidationErrorKey;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// An axis-aligned rectangle [x0, x1] x [y0, y1] (m).
-struct Rect {
-  double x0, y0, x1, y1;
-};
-
-// A straight face of the world (m): one side of a rectangle.
-struct Segment {
-  Vec2 a, b;
-};
+using testing::Rect;
+using testing::ScanSpec;
+using testing::Segment;
 
 // A rectangular room with solid walls and solid boxes inside. Every coordinate lies 0.03 to
 // 0.04 m from a multiple of 0.1 m, so that no face runs along a cell border of a 0.1 m grid
@@ -69,47 +66,19 @@ struct Room {
   }
 };
 
-// Distance (m) from p along the unit vector d to the segment s; +inf if the ray misses it.
-double RaySegment(const Vec2& p, const Vec2& d, const Segment& s) {
-  const Vec2 e = s.b - s.a;
-  const double denom = d.x() * e.y() - d.y() * e.x();
-  if (std::abs(denom) < 1e-15) return std::numeric_limits<double>::infinity();
-  const Vec2 w = s.a - p;
-  const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
-  const double u = (w.x() * d.y() - w.y() * d.x()) / denom;
-  if (t <= 0.0 || u < 0.0 || u > 1.0) return std::numeric_limits<double>::infinity();
-  return t;
-}
-
-struct ScanSpec {
-  int beams = 1081;
-  double fov = core::DegToRad(270.0);
-  double range_min = 0.05;
-  double range_max = 30.0;
-  double sigma0 = 0.01;   // m, range noise at 0 m
-  double sigma1 = 0.001;  // m per m
-};
-
-// An exactly ray-cast scan of `faces` from the LiDAR at X_WL, with Gaussian range noise.
+// An exactly ray-cast scan of `faces` from the LiDAR at X_WL, with Gaussian range noise
+// σ = 0.01 m + 0.001 r (the simulated Hokuyo's) when rng is given.
 core::LaserScan MakeScan(const std::vector<Segment>& faces, const Pose2& X_WL, const ScanSpec& spec,
                          core::Rng* rng) {
-  core::LaserScan scan;
-  scan.angle_min = -0.5 * spec.fov;
-  scan.angle_increment = spec.fov / (spec.beams - 1);
-  scan.range_min = spec.range_min;
-  scan.range_max = spec.range_max;
-  scan.ranges.resize(spec.beams);
-  for (int i = 0; i < spec.beams; ++i) {
-    const double a = X_WL.theta + scan.Angle(static_cast<std::size_t>(i));
-    const Vec2 d(std::cos(a), std::sin(a));
-    double r = std::numeric_limits<double>::infinity();
-    for (const Segment& s : faces) r = std::min(r, RaySegment(X_WL.translation(), d, s));
-    if (std::isfinite(r) && rng != nullptr) r += rng->Normal(0.0, spec.sigma0 + spec.sigma1 * r);
-    scan.ranges[static_cast<std::size_t>(i)] = !std::isfinite(r) || r > spec.range_max ? kInf
-                                               : r < spec.range_min                    ? -kInf
-                                                                    : static_cast<float>(r);
+  std::function<double(double)> noise;
+  if (rng != nullptr) {
+    noise = [rng](double r) {
+      return std::isfinite(r) ? r + rng->Normal(0.0, 0.01 + 0.001 * r) : r;
+    };
   }
-  return scan;
+  return testing::FakeScan(
+      spec, X_WL,
+      [&](const Vec2& o, const Vec2& d) { return testing::NearestSegment(o, d, faces); }, noise);
 }
 
 // Poses of a loop around the boxes: straight legs in 0.05 m steps, turns on the spot in 1°
@@ -229,7 +198,7 @@ bool Negative(float l) { return l < 0.0f; }
 bool Touched(float l) { return l != 0.0f; }
 
 TEST(Mapper, OneHitAndOneMissGiveTheModelsProbabilitiesFromUnknown) {
-  Mapper mapper(MapperConfig{});
+  Mapper mapper(MapperConfig{}, RobotGeometry{});
   mapper.SetPose(Pose2(0.05, 0.05, 0.0));  // the centre of a cell, beam along its row
   ASSERT_TRUE(mapper.OnScan(UniformScan(1, 0.0, 3.03f)));
   const core::OccupancyGrid& grid = mapper.grid();
@@ -245,7 +214,7 @@ TEST(Mapper, RepeatedHitsSaturateAtLogOddsMaxAndMissesAtLogOddsMin) {
   MapperConfig config;
   config.log_odds_min = -4.0;
   config.log_odds_max = 6.0;
-  Mapper mapper(config);
+  Mapper mapper(config, RobotGeometry{});
   const core::LaserScan scan = UniformScan(1, 0.0, 3.03f);
   for (int i = 0; i < 20; ++i) mapper.Integrate(scan, Pose2(0.05, 0.05, 0.0));
   const core::OccupancyGrid& grid = mapper.grid();
@@ -259,7 +228,7 @@ TEST(Mapper, RepeatedHitsSaturateAtLogOddsMaxAndMissesAtLogOddsMin) {
 TEST(Mapper, NoReturnBeamsClearUpToTheClearingRangeWithoutMarking) {
   MapperConfig config;
   config.no_return_range = 10.0;
-  Mapper mapper(config);
+  Mapper mapper(config, RobotGeometry{});
   mapper.SetPose(Pose2(0.05, 0.05, 0.0));
   ASSERT_TRUE(mapper.OnScan(UniformScan(181, core::DegToRad(180.0), kInf)));
   const core::OccupancyGrid& grid = mapper.grid();
@@ -291,7 +260,7 @@ TEST(Mapper, NoReturnBeamsStopAtTheWallsOfTheirOwnScanAndOfTheMap) {
   MapperConfig config;
   config.no_return_range = 10.0;
   config.keyframe_distance = 0.0;
-  Mapper mapper(config);
+  Mapper mapper(config, RobotGeometry{});
   mapper.SetPose(Pose2(0.05, 0.05, 0.0));
   ASSERT_TRUE(mapper.OnScan(WallScanWithDropouts()));
   EXPECT_EQ(mapper.stats().beams_cleared, 52u);
@@ -309,10 +278,10 @@ TEST(Mapper, NoReturnBeamsStopAtTheWallsOfTheirOwnScanAndOfTheMap) {
   EXPECT_FALSE(CellsWhere(mapper.grid(), Positive).empty());  // the wall is still there
 }
 
-TEST(Mapper, ReadingsBeyondTheHitRangeOnlyClear) {
-  MapperConfig config;
-  config.hit_range_max = 5.0;
-  Mapper mapper(config);
+TEST(Mapper, ReadingsBeyondTheLidarsRangeOnlyClear) {
+  RobotGeometry robot;
+  robot.range_max = 5.0;
+  Mapper mapper(MapperConfig{}, robot);
   mapper.SetPose(Pose2(0.05, 0.05, 0.0));
   ASSERT_TRUE(mapper.OnScan(UniformScan(1, 0.0, 7.03f)));
   const core::OccupancyGrid& grid = mapper.grid();
@@ -322,7 +291,7 @@ TEST(Mapper, ReadingsBeyondTheHitRangeOnlyClear) {
 }
 
 TEST(Mapper, InvalidBeamsAreSkipped) {
-  Mapper mapper(MapperConfig{});
+  Mapper mapper(MapperConfig{}, RobotGeometry{});
   core::LaserScan scan = UniformScan(4, core::DegToRad(90.0), 2.0f);
   scan.ranges = {-kInf, std::numeric_limits<float>::quiet_NaN(), 0.01f, 31.0f};
   ASSERT_TRUE(mapper.OnScan(scan));
@@ -338,7 +307,7 @@ TEST(Mapper, RayCastingVisitsEveryCellTheBeamCrossesExactlyOnce) {
   MapperConfig config;
   config.inverse_model.neighbourhood_sigmas = 0.0;
   for (const double angle_deg : {0.0, 17.0, 45.0, 63.0, 90.0, 135.0, 200.0, 270.0, 333.0}) {
-    Mapper mapper(config);
+    Mapper mapper(config, RobotGeometry{});
     const Pose2 X_MR(0.237, -0.113, core::DegToRad(angle_deg));
     mapper.Integrate(UniformScan(1, 0.0, 4.0f), X_MR);
     const core::OccupancyGrid& grid = mapper.grid();
@@ -363,7 +332,7 @@ TEST(Mapper, RayCastingVisitsEveryCellTheBeamCrossesExactlyOnce) {
 }
 
 TEST(Mapper, IntegratesOnlyAtKeyframes) {
-  Mapper mapper(MapperConfig{});
+  Mapper mapper(MapperConfig{}, RobotGeometry{});
   const core::LaserScan scan = UniformScan(91, core::DegToRad(270.0), 4.0f);
   EXPECT_TRUE(mapper.OnScan(scan));  // the first scan
   const std::vector<float> after_first = mapper.grid().log_odds();
@@ -388,7 +357,7 @@ TEST(Mapper, IntegratesOnlyAtKeyframes) {
 TEST(Mapper, GridGrowsWhenDrivingOutOfTheInitialArea) {
   MapperConfig config;
   config.initial_size = 10.0;
-  Mapper mapper(config);
+  Mapper mapper(config, RobotGeometry{});
   EXPECT_EQ(mapper.grid().width(), 100);
   EXPECT_EQ(mapper.grid().height(), 100);
   // A corridor: walls 2.03 m to either side, nothing ahead.
@@ -428,39 +397,31 @@ TEST(Mapper, ConfigErrorsNameTheKey) {
   c = MapperConfig{};
   c.inverse_model.sigma = -0.01;
   EXPECT_EQ(ValidationErrorKey(c), "inverse_model.sigma");
-  c = MapperConfig{};
-  c.lidar_mount.x = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(ValidationErrorKey(c), "lidar_mount");
-  EXPECT_THROW(Mapper{c}, core::ConfigError);
+  EXPECT_THROW(Mapper(c, RobotGeometry{}), core::ConfigError);
+  RobotGeometry robot;
+  robot.X_RL.x = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ValidationErrorKey(robot), "X_RL");
+  EXPECT_THROW(Mapper(MapperConfig{}, robot), core::ConfigError);
 }
 
-TEST(Mapper, ConfigReflectsEveryField) {
-  std::vector<std::string> keys;
-  MapperConfig config;
-  auto collect = [&keys](std::string_view key, auto&) { keys.emplace_back(key); };
-  config.Reflect(collect);
-  EXPECT_EQ(keys, (std::vector<std::string>{"resolution", "initial_size", "keyframe_distance",
-                                            "keyframe_angle_deg", "log_odds_min", "log_odds_max",
-                                            "hit_range_max", "no_return_range", "lidar_mount",
-                                            "inverse_model"}));
-}
+TEST(Mapper, ConfigReflectsEveryField) { EXPECT_EQ(testing::UnreflectedBytes<MapperConfig>(), ""); }
 
-MapperConfig RoomConfig() {
-  MapperConfig config;
-  config.lidar_mount = Pose2(0.15, 0.05, 0.02);  // off-centre, to exercise X_RL
-  return config;
+RobotGeometry RoomRobot() {
+  RobotGeometry robot;
+  robot.X_RL = Pose2(0.15, 0.05, 0.02);  // off-centre, to exercise X_RL
+  return robot;
 }
 
 // Drives the loop with exact poses and noisy scans; returns the mapper.
-Mapper MapRoom(const MapperConfig& config, const Room& room, std::uint64_t seed) {
-  Mapper mapper(config);
+Mapper MapRoom(const RobotGeometry& robot, const Room& room, std::uint64_t seed) {
+  Mapper mapper(MapperConfig{}, robot);
   core::Rng rng(seed);
   const std::vector<Segment> faces = room.Faces();
   const Pose2 X_WM(-2.0, -1.5, 0.0);  // M starts at the loop's first pose
   for (const Pose2& X_WR : LoopPoses()) {
     const Pose2 X_MR = X_WM.Inverse() * X_WR;
     mapper.SetPose(X_MR);
-    mapper.OnScan(MakeScan(faces, X_WR * config.lidar_mount, ScanSpec{}, &rng));
+    mapper.OnScan(MakeScan(faces, X_WR * robot.X_RL, ScanSpec{}, &rng));
   }
   return mapper;
 }
@@ -477,7 +438,7 @@ Room RoomInMap(const Room& room) {
 TEST(Mapper, ReproducesTheWallsOfAKnownRoomFromExactPoses) {
   const Room room;
   for (const std::uint64_t seed : {1u, 2u, 3u}) {
-    const Mapper mapper = MapRoom(RoomConfig(), room, seed);
+    const Mapper mapper = MapRoom(RoomRobot(), room, seed);
     const MapScore score = Score(mapper.grid(), RoomInMap(room));
     std::printf(
         "[ mapper   ] seed %llu: banded IoU %.3f, IoU %.3f, recall %.3f; truth %d, "

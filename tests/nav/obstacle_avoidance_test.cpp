@@ -15,6 +15,7 @@
 #include "core/path.hpp"
 #include "nav/path_follower.hpp"
 #include "tests/support/config_key.hpp"
+#include "tests/support/fake_scan.hpp"
 
 namespace retrace::nav {
 namespace {
@@ -27,10 +28,7 @@ using retrace::testing::ValidationErrorKey;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDt = 0.05;  // s, control period
 
-struct Segment {
-  Vec2 a;
-  Vec2 b;
-};
+using testing::Segment;
 
 std::vector<Segment> Box(double x0, double y0, double x1, double y1) {
   return {{{x0, y0}, {x1, y0}}, {{x1, y0}, {x1, y1}}, {{x1, y1}, {x0, y1}}, {{x0, y1}, {x0, y0}}};
@@ -40,46 +38,15 @@ void Append(std::vector<Segment>& to, const std::vector<Segment>& more) {
   to.insert(to.end(), more.begin(), more.end());
 }
 
-struct ScanGeometry {
-  double fov = core::DegToRad(270.0);
-  int beams = 1081;
-  double range_min = 0.05;
-  double range_max = 30.0;
-};
+using ScanGeometry = testing::ScanSpec;
 
 // Exact ray casting of every beam of a LiDAR at X_WL against `segments` (in W): REP-117
 // readings (+inf no return, -inf closer than range_min).
 core::LaserScan CastScan(const std::vector<Segment>& segments, const Pose2& X_WL,
                          const ScanGeometry& g = {}) {
-  core::LaserScan scan;
-  scan.range_min = g.range_min;
-  scan.range_max = g.range_max;
-  const bool full = g.fov >= 2.0 * core::kPi - 1e-9;
-  scan.angle_increment = g.fov / (full ? g.beams : g.beams - 1);
-  scan.angle_min = full ? -core::kPi : -0.5 * g.fov;
-  const Vec2 o = X_WL.translation();
-  for (int i = 0; i < g.beams; ++i) {
-    const double a = X_WL.theta + scan.Angle(static_cast<std::size_t>(i));
-    const Vec2 d(std::cos(a), std::sin(a));
-    double best = kInf;
-    for (const Segment& s : segments) {
-      const Vec2 e = s.b - s.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Vec2 w = s.a - o;
-      const double t = (w.x() * e.y() - w.y() * e.x()) / den;
-      const double u = (w.x() * d.y() - w.y() * d.x()) / den;
-      if (t >= 0.0 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
-    }
-    float r = std::numeric_limits<float>::infinity();
-    if (best < g.range_min) {
-      r = -std::numeric_limits<float>::infinity();
-    } else if (best <= g.range_max) {
-      r = static_cast<float>(best);
-    }
-    scan.ranges.push_back(r);
-  }
-  return scan;
+  return testing::FakeScan(g, X_WL, [&](const Vec2& o, const Vec2& d) {
+    return testing::NearestSegment(o, d, segments);
+  });
 }
 
 double DistanceToSegment(const Vec2& p, const Segment& s) {
@@ -126,7 +93,7 @@ Rollout Roll(ObstacleAvoidance& avoidance, const std::vector<Segment>& world, Po
     bool done = false;
     const core::Twist desired = desired_of(r.robot.X_WR, &done);
     if (done) break;
-    const core::LaserScan scan = CastScan(world, r.robot.X_WR * avoidance.config().lidar_mount);
+    const core::LaserScan scan = CastScan(world, r.robot.X_WR * avoidance.robot().X_RL);
     const AvoidanceOutput out = avoidance.Filter(desired, scan);
     r.outputs.push_back(out);
     r.any_blocked |= out.blocked;
@@ -186,7 +153,7 @@ TEST(ObstacleAvoidance, DistanceToContactMatchesBruteForce) {
 }
 
 TEST(ObstacleAvoidance, ReportsTimeToCollisionWithAWallAhead) {
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const std::vector<Segment> wall = {{{1.9, -5.0}, {1.9, 5.0}}};
   const AvoidanceOutput out = avoidance.Filter({1.0, 0.0}, CastScan(wall, Pose2()));
   // Footprint radius + margin 0.4 m touches the wall after 1.5 m at 1 m/s.
@@ -198,7 +165,7 @@ TEST(ObstacleAvoidance, StopsBeforeADeadEnd) {
   // A corridor 2 m wide closed by a wall at x = 5; the desired command drives straight on.
   std::vector<Segment> world = {
       {{-1.0, -1.0}, {5.0, -1.0}}, {{-1.0, 1.0}, {5.0, 1.0}}, {{5.0, -1.0}, {5.0, 1.0}}};
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const Rollout r = Roll(avoidance, world, Pose2(), 15.0, [](const Pose2&, bool*) {
     return core::Twist{1.0, 0.0};
   });
@@ -218,7 +185,7 @@ TEST(ObstacleAvoidance, StopsForAClosedDoorAcrossThePathOfAFollower) {
       {{6.0, -1.5}, {6.0, 1.5}}, {{-1.0, -1.5}, {6.0, -1.5}}, {{-1.0, 1.5}, {6.0, 1.5}}};
   PathFollower follower({});
   follower.SetPath(core::Path({Pose2(0, 0, 0), Pose2(5, 0, 0), Pose2(10, 0, 0)}));
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const Rollout r = Roll(avoidance, world, Pose2(), 20.0, [&](const Pose2& X, bool* done) {
     const FollowerOutput f = follower.Compute(X, kDt);
     *done = f.goal_reached;
@@ -236,7 +203,7 @@ TEST(ObstacleAvoidance, SteersPastABoxPartlyBlockingThePath) {
   const std::vector<Segment> world = Box(6.0, -0.3, 6.6, 0.5);
   PathFollower follower({});
   follower.SetPath(core::Path({Pose2(0, 0, 0), Pose2(8, 0, 0), Pose2(16, 0, 0)}));
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   double max_deviation = 0.0;
   double final_error = kInf;
   bool reached = false;
@@ -266,20 +233,21 @@ TEST(ObstacleAvoidance, DrivesOnPastABinBesideItWhenOnlyTheMarginIsViolated) {
   const std::vector<Segment> world = Box(0.29, -1.11, 1.09, -0.31);
   PathFollower follower({});
   follower.SetPath(core::Path({Pose2(-2.0, -0.71, 0), Pose2(1.0, -0.71, 0), Pose2(5.0, -0.71, 0)}));
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   bool reached = false;
-  const Rollout r = Roll(avoidance, world, Pose2(0.0, 0.0, 0.0), 30.0, [&](const Pose2& X, bool* done) {
-    const FollowerOutput f = follower.Compute(X, kDt);
-    reached = *done = f.goal_reached;
-    return f.command;
-  });
+  const Rollout r =
+      Roll(avoidance, world, Pose2(0.0, 0.0, 0.0), 30.0, [&](const Pose2& X, bool* done) {
+        const FollowerOutput f = follower.Compute(X, kDt);
+        reached = *done = f.goal_reached;
+        return f.command;
+      });
   EXPECT_TRUE(reached);
   EXPECT_GT(r.min_clearance, 0.0);  // the footprint never touched the bin
   RecordProperty("bin_min_clearance", std::to_string(r.min_clearance));
 }
 
 TEST(ObstacleAvoidance, ChosenCommandIsFreeWithinLimitsAndSlowsDown) {
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const std::vector<Segment> world = Box(1.5, -0.3, 2.0, 0.3);
   const AvoidanceOutput out = avoidance.Filter({1.0, 0.1}, CastScan(world, Pose2()));
   ASSERT_TRUE(out.modified);
@@ -299,7 +267,7 @@ TEST(ObstacleAvoidance, PointsBehindAndBesideNeverTriggerTheEmergencyStop) {
   ScanGeometry full;
   full.fov = 2.0 * core::kPi;
   full.beams = 1440;
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const core::Twist desired{1.0, 0.0};
   const AvoidanceOutput out = avoidance.Filter(desired, CastScan(world, Pose2(), full));
   EXPECT_FALSE(out.emergency_stop);
@@ -309,7 +277,7 @@ TEST(ObstacleAvoidance, PointsBehindAndBesideNeverTriggerTheEmergencyStop) {
 }
 
 TEST(ObstacleAvoidance, EmergencyStopForSomethingJustAhead) {
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const AvoidanceOutput out =
       avoidance.Filter({0.5, 0.2}, CastScan(Box(0.33, -0.05, 0.43, 0.05), Pose2()));
   EXPECT_TRUE(out.emergency_stop);
@@ -322,7 +290,7 @@ TEST(ObstacleAvoidance, NegativeInfinityReadingsAreCloseObstacles) {
   core::LaserScan scan = CastScan({}, Pose2());
   ASSERT_TRUE(std::isinf(scan.ranges[540]) && scan.ranges[540] > 0);
   for (std::size_t i = 520; i <= 560; ++i) scan.ranges[i] = -std::numeric_limits<float>::infinity();
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const AvoidanceOutput out = avoidance.Filter({1.0, 0.0}, scan);
   EXPECT_TRUE(out.emergency_stop);
   EXPECT_EQ(out.command.v, 0.0);
@@ -335,14 +303,14 @@ TEST(ObstacleAvoidance, NegativeInfinityReadingsAreCloseObstacles) {
 
 TEST(ObstacleAvoidance, AppliesTheLidarMount) {
   // A LiDAR mounted 0.1 m ahead of the centre, looking backwards.
-  ObstacleAvoidanceConfig config;
-  config.lidar_mount = Pose2(0.1, 0.0, core::kPi);
-  ObstacleAvoidance avoidance(config);
+  RobotGeometry robot;
+  robot.X_RL = Pose2(0.1, 0.0, core::kPi);
+  ObstacleAvoidance avoidance({}, robot);
   ScanGeometry full;
   full.fov = 2.0 * core::kPi;
   full.beams = 720;
   // Something 0.2 m from the sensor along L's x axis lies behind the robot's centre.
-  const Pose2 X_WL = config.lidar_mount;
+  const Pose2 X_WL = robot.X_RL;
   const AvoidanceOutput behind =
       avoidance.Filter({1.0, 0.0}, CastScan(Box(-0.15, -0.05, -0.1, 0.05), X_WL, full));
   EXPECT_FALSE(behind.emergency_stop);
@@ -354,7 +322,7 @@ TEST(ObstacleAvoidance, AppliesTheLidarMount) {
 TEST(ObstacleAvoidance, DisabledPassesTheCommandThrough) {
   ObstacleAvoidanceConfig config;
   config.enabled = false;
-  ObstacleAvoidance avoidance(config);
+  ObstacleAvoidance avoidance(config, RobotGeometry{});
   const core::Twist desired{0.7, -0.3};
   const AvoidanceOutput out =
       avoidance.Filter(desired, CastScan({{{0.35, -2.0}, {0.35, 2.0}}}, Pose2()));
@@ -363,7 +331,7 @@ TEST(ObstacleAvoidance, DisabledPassesTheCommandThrough) {
 }
 
 TEST(ObstacleAvoidance, TurningInPlaceIsPassedThrough) {
-  ObstacleAvoidance avoidance({});
+  ObstacleAvoidance avoidance({}, RobotGeometry{});
   const core::Twist desired{0.0, 0.5};
   const AvoidanceOutput out =
       avoidance.Filter(desired, CastScan({{{0.35, -2.0}, {0.35, 2.0}}}, Pose2()));
@@ -373,8 +341,6 @@ TEST(ObstacleAvoidance, TurningInPlaceIsPassedThrough) {
 
 TEST(ObstacleAvoidance, RejectsInvalidConfigNamingTheKey) {
   EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto&) {}), kValid);
-  EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) { c.robot_radius = 0.0; }),
-            "robot_radius");
   EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) { c.omega_step = -0.1; }),
             "omega_step");
   EXPECT_EQ(ValidationErrorKey<ObstacleAvoidanceConfig>([](auto& c) { c.speed_factors = {}; }),
@@ -387,7 +353,10 @@ TEST(ObstacleAvoidance, RejectsInvalidConfigNamingTheKey) {
             "horizon");
   ObstacleAvoidanceConfig bad;
   bad.emergency_stop_width = 0.0;
-  EXPECT_THROW(ObstacleAvoidance{bad}, core::ConfigError);
+  EXPECT_THROW(ObstacleAvoidance(bad, RobotGeometry{}), core::ConfigError);
+  RobotGeometry bad_robot;
+  bad_robot.radius = 0.0;
+  EXPECT_THROW(ObstacleAvoidance({}, bad_robot), core::ConfigError);
 }
 
 }  // namespace

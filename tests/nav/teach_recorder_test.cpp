@@ -57,7 +57,7 @@ std::vector<Pose2> DriveAndRecord(TeachRecorder& recorder, const Pose2& X_OR0, i
 }
 
 TEST(TeachRecorder, NextMapStartsAtIdentityAndTheSwitchPoseIsThePoseAtTheSwitch) {
-  TeachRecorder recorder(MapperConfig{});
+  TeachRecorder recorder(MapperConfig{}, RobotGeometry{});
   const Pose2 X_OM0(1.0, 2.0, 0.3);
   const std::vector<Pose2> poses = DriveAndRecord(recorder, X_OM0, 150, 0, nullptr);
   const Pose2 X_OS = poses.back();
@@ -81,7 +81,7 @@ TEST(TeachRecorder, NextMapStartsAtIdentityAndTheSwitchPoseIsThePoseAtTheSwitch)
 }
 
 TEST(TeachRecorder, PathsAndMapsAreInTheirOwnFrames) {
-  TeachRecorder recorder(MapperConfig{});
+  TeachRecorder recorder(MapperConfig{}, RobotGeometry{});
   const Pose2 X_OM0(-3.0, 0.5, -0.2);
   std::vector<Pose2> switches;
   const std::vector<Pose2> poses = DriveAndRecord(recorder, X_OM0, 400, 130, &switches);
@@ -119,7 +119,7 @@ TEST(TeachRecorder, PathsAndMapsAreInTheirOwnFrames) {
 }
 
 TEST(TeachRecorder, SingleMapModeGivesOneMap) {
-  TeachRecorder recorder(MapperConfig{});
+  TeachRecorder recorder(MapperConfig{}, RobotGeometry{});
   const std::vector<Pose2> poses = DriveAndRecord(recorder, Pose2(), 200, 0, nullptr);
   const TeachBundle bundle = recorder.Finish();
   ASSERT_EQ(bundle.maps.size(), 1u);
@@ -128,7 +128,7 @@ TEST(TeachRecorder, SingleMapModeGivesOneMap) {
 }
 
 TEST(TeachRecorder, ScansBeforeTheFirstPoseAreIgnored) {
-  TeachRecorder recorder(MapperConfig{});
+  TeachRecorder recorder(MapperConfig{}, RobotGeometry{});
   EXPECT_FALSE(recorder.OnScan(WallScan(Pose2())));
   EXPECT_TRUE(recorder.mapper().path().empty());
   recorder.OnPose(Pose2(5.0, 5.0, 1.0));

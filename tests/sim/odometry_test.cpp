@@ -111,7 +111,8 @@ Ensemble StraightRuns(const OdometryConfig& config, double rate_hz) {
   return e;
 }
 
-// Analytic predictions for a straight run of true length L (DESIGN §4 model, header formulas).
+// Analytic predictions for a straight run of true length L (docs/DESIGN.md §4 model, header
+// formulas).
 struct StraightPrediction {
   double mean_theta, std_theta, mean_x, std_x, mean_y, std_y;
 };
@@ -280,8 +281,8 @@ DriftRms RmsDrift(const OdometryConfig& c, std::uint64_t first_seed, double dist
                   const std::function<core::Twist(double)>& command) {
   double sum_pos2 = 0.0, sum_th2 = 0.0;
   for (int seed = 0; seed < kSeeds; ++seed) {
-    const RunResult r = Drive(c, first_seed + static_cast<std::uint64_t>(seed), 50.0,
-                              distance / kSpeed, command);
+    const RunResult r =
+        Drive(c, first_seed + static_cast<std::uint64_t>(seed), 50.0, distance / kSpeed, command);
     const double e_pos = std::hypot(r.X_OR.x - r.X_OR_true.x, r.X_OR.y - r.X_OR_true.y);
     const double e_th = core::AngleDiff(r.X_OR.theta, r.X_OR_true.theta);
     sum_pos2 += e_pos * e_pos;
@@ -292,7 +293,7 @@ DriftRms RmsDrift(const OdometryConfig& c, std::uint64_t first_seed, double dist
 }
 
 TEST(Odometry, DefaultsDriftLikeARealRobot) {
-  // DESIGN §4: a few percent of the distance and several degrees of heading per 100 m.
+  // docs/DESIGN.md §4: a few percent of the distance and several degrees of heading per 100 m.
   const OdometryConfig c;
   const DriftRms straight = RmsDrift(c, 1000, kStraight, StraightAhead);
   EXPECT_GT(straight.position_percent, 1.0);

@@ -11,49 +11,17 @@
 #include "io/config_yaml.hpp"
 #include "sim/physics_world.hpp"
 #include "sim/robot.hpp"
+#include "tests/sim/rooms_and_corridor.hpp"
 #include "tests/support/config_key.hpp"
 #include "tests/support/pedestrian_group.hpp"
 
 namespace retrace::sim {
 namespace {
 
+using namespace testing_floor;
+
 using retrace::testing::kValid;
 using retrace::testing::ValidationErrorKey;
-
-void AddBox(StaticGeometry& g, double x0, double y0, double x1, double y1) {
-  g.AddPolygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
-}
-
-// 24 m x 14 m: two rooms at the bottom, a 2 m corridor across the middle and a hall on top
-// with a pillar and a table; 1.2 m doors.
-StaticGeometry RoomsAndCorridor() {
-  StaticGeometry g;
-  AddBox(g, -0.2, -0.2, 24.2, 0.0);
-  AddBox(g, -0.2, 14.0, 24.2, 14.2);
-  AddBox(g, -0.2, 0.0, 0.0, 14.0);
-  AddBox(g, 24.0, 0.0, 24.2, 14.0);
-  // Between the bottom rooms and the corridor, doors at x in [4.4, 5.6] and [18.4, 19.6].
-  AddBox(g, 0.0, 5.8, 4.4, 6.0);
-  AddBox(g, 5.6, 5.8, 18.4, 6.0);
-  AddBox(g, 19.6, 5.8, 24.0, 6.0);
-  // Between the corridor and the hall, doors at x in [2.4, 3.6] and [20.4, 21.6].
-  AddBox(g, 0.0, 8.0, 2.4, 8.2);
-  AddBox(g, 3.6, 8.0, 20.4, 8.2);
-  AddBox(g, 21.6, 8.0, 24.0, 8.2);
-  AddBox(g, 11.9, 0.0, 12.1, 5.8);  // between the bottom rooms
-  g.AddCircle({{12.0, 11.0}, 0.5});
-  AddBox(g, 6.0, 10.0, 8.0, 11.5);
-  return g;
-}
-
-using retrace::testing::Group;
-
-std::vector<PedestrianGroupConfig> RoomsAndCorridorGroups() {
-  return {Group(5, {0.0, 0.0}, {11.9, 5.8}), Group(5, {12.1, 0.0}, {24.0, 5.8}),
-          Group(4, {0.0, 8.2}, {24.0, 14.0}),
-          Group(6, {1.0, 6.2}, {23.0, 7.8}, PedestrianMode::kLoop,
-                {{5.0, 3.0}, {3.0, 11.0}, {21.0, 11.0}, {19.0, 3.0}})};
-}
 
 std::uint64_t HashPositions(const PhysicsWorld& world) {
   std::uint64_t h = core::HashBytes(nullptr, 0);
@@ -62,53 +30,6 @@ std::uint64_t HashPositions(const PhysicsWorld& world) {
     h = core::HashBytes(xy, sizeof(xy), h);
   }
   return h;
-}
-
-TEST(Pedestrians, LongRunStaysOutOfWallsAndEachOtherAndKeepsReachingGoals) {
-  const StaticGeometry g = RoomsAndCorridor();
-  const double r = 0.3;
-  for (const std::uint64_t seed : {1u, 2u, 2024u}) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    PhysicsWorld world(g);
-    Pedestrians crowd(RoomsAndCorridorGroups(), CrowdConfig{}, g, core::Rng(seed), {}, world);
-    ASSERT_EQ(crowd.size(), 20);
-    double min_clearance = 1e9, min_pair = 1e9;
-    const int steps = static_cast<int>(600.0 / world.time_step());  // 10 simulated minutes
-    for (int step = 0; step < steps; ++step) {
-      crowd.Update(world);
-      world.Step();
-      const auto circles = world.PedestrianCircles();
-      for (std::size_t i = 0; i < circles.size(); ++i) {
-        const double c = g.Clearance(circles[i].center);
-        min_clearance = std::min(min_clearance, c);
-        ASSERT_GE(c, r - 0.01) << "pedestrian " << i << " at step " << step;
-        for (std::size_t j = i + 1; j < circles.size(); ++j) {
-          const double d = (circles[i].center - circles[j].center).norm();
-          min_pair = std::min(min_pair, d);
-          // Box2D lets touching bodies overlap by up to 3 * b2_linearSlop (1.5 cm), and has no
-          // continuous collision between two moving bodies: people meeting at speed overlap
-          // by their closing distance in one step (~2 cm) until the contact pushes them apart.
-          ASSERT_GE(d, 2.0 * r - 0.025) << "pedestrians " << i << ", " << j << " at step " << step;
-        }
-      }
-    }
-    int min_goals = 1 << 30, total_goals = 0, replans = 0, abandoned = 0;
-    for (const auto& s : crowd.status()) {
-      min_goals = std::min(min_goals, s.goals_reached);
-      total_goals += s.goals_reached;
-      replans += s.replans;
-      abandoned += s.goals_abandoned;
-      EXPECT_GE(s.goals_reached, 5) << "pedestrian " << s.id << " (group " << s.group << ")";
-    }
-    const std::string suffix = "_seed" + std::to_string(seed);
-    RecordProperty("min_clearance" + suffix, std::to_string(min_clearance));
-    RecordProperty("min_pair_distance" + suffix, std::to_string(min_pair));
-    RecordProperty("min_goals" + suffix, std::to_string(min_goals));
-    RecordProperty("total_goals" + suffix, std::to_string(total_goals));
-    RecordProperty("replans" + suffix, std::to_string(replans));
-    RecordProperty("abandoned" + suffix, std::to_string(abandoned));
-    EXPECT_LE(abandoned, total_goals / 20);  // giving up is the exception
-  }
 }
 
 struct CorridorResult {

@@ -150,10 +150,22 @@ TEST(WalkPlanner, IsDeterministic) {
   for (std::size_t i = 0; i < pa->size(); ++i) EXPECT_EQ((*pa)[i], (*pb)[i]);
 }
 
+// A generated campus of 500 m x 270 m (a real 1.9 km route) needs 13.5 million cells of 0.1 m:
+// its pedestrians are planned on 0.13 m cells instead, within the 8 million cell limit.
+TEST(WalkPlanner, LargeAreasArePlannedOnCoarserCells) {
+  const WalkPlannerConfig config;
+  EXPECT_EQ(PlanningCellSize({{0.0, 0.0}, {50.0, 50.0}}, config), config.cell_size);
+  const double cell = PlanningCellSize({{0.0, 0.0}, {500.0, 270.0}}, config);
+  EXPECT_DOUBLE_EQ(cell, 0.13);
+  EXPECT_LE(std::ceil(500.0 / cell) * std::ceil(270.0 / cell), 8e6);
+  EXPECT_GT(std::ceil(500.0 / 0.12) * std::ceil(270.0 / 0.12), 8e6);  // the finest that fits
+}
+
 TEST(WalkPlanner, RejectsHugeAreasAndBadConfig) {
   const StaticGeometry g = RoomWithDoor(1.0);
   const GeometryIndex index(g);
-  EXPECT_THROW(WalkPlanner(index, {{0.0, 0.0}, {1000.0, 1000.0}}, kRadius, {}), core::WorldError);
+  // 5 km x 5 km would need cells of 1.8 m, which close doors: refused before anything is built.
+  EXPECT_THROW(WalkPlanner(index, {{0.0, 0.0}, {5000.0, 5000.0}}, kRadius, {}), core::WorldError);
   EXPECT_THROW(WalkPlanner(index, {{0.0, 0.0}, {0.0, 1.0}}, kRadius, {}), core::WorldError);
   WalkPlannerConfig bad;
   bad.cell_size = 0.0;

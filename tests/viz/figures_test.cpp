@@ -253,6 +253,7 @@ TEST_F(FiguresTest, LikelihoodFigureAcceptsPlainLikelihoodsOnALogScale) {
 
 TEST_F(FiguresTest, SnapshotFigureColoursScanPointsByClass) {
   SnapshotData d;
+  d.robot_radius = 0.3;
   d.time_s = 12.5;
   d.map_index = 1;
   d.grid = testing::SmallGrid();
@@ -374,6 +375,7 @@ TEST_F(FiguresTest, WorldFigureShowsGeometryRouteAndPedestrians) {
   d.route = {{3, 4}, {37, 4}, {37, 26}};
   d.pedestrians = {{Vec2(8, 26), 0.3}};
   d.robot = core::Pose2(3, 4, 0);
+  d.robot_radius = 0.3;
   const FigureInfo info = RenderWorldFigure(d, tmp_.path() / "world.png", {1000, 2, ""});
   const Image img = CheckFile(info, 1000);
   const PanelInfo& w = info.Panel("world");

@@ -18,12 +18,14 @@ using testing::ColorNear;
 
 VideoFrame SmallFrame(int i) {
   VideoFrame f;
+  f.robot_radius = 0.3;
   f.time_s = 10.0 + 0.1 * i;
   f.speed = 0.8;
   f.map_index = 1;
   f.map_count = 3;
   f.map = std::make_shared<const core::OccupancyGrid>(testing::SmallGrid());
-  f.path = std::make_shared<const std::vector<core::Pose2>>(testing::Densify({{0, 0}, {14, 0}}, 0.5));
+  f.path =
+      std::make_shared<const std::vector<core::Pose2>>(testing::Densify({{0, 0}, {14, 0}}, 0.5));
   f.truth = core::Pose2(2.0 + 0.08 * i, 0.0, 0.0);
   f.estimate = f.truth * core::Pose2(0.05, 0.02, 0.01);
   f.particles = {f.estimate, f.estimate * core::Pose2(0.1, 0.0, 0.0)};

@@ -1,0 +1,186 @@
+#include "bench/cli/bench_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <set>
+
+#include "bench/cli/progress.hpp"
+#include "bench/engine/parallel.hpp"
+#include "bench/suite/baseline.hpp"
+#include "bench/suite/suite_report.hpp"
+#include "bench/suite/suite_runner.hpp"
+#include "bench/suite/suite_spec.hpp"
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/config_override.hpp"
+#include "io/json_writer.hpp"
+
+namespace retrace::bench {
+namespace {
+
+std::string Seconds(double s) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f s", s);
+  return buffer;
+}
+
+// The baseline to compare with, read and checked before anything runs. When recording a new
+// one, an old baseline is compared with for information if it fits the suite, and another
+// suite's baseline is never overwritten.
+std::optional<Baseline> PriorBaseline(const BenchOptions& options, const SuiteSpec& spec,
+                                      const std::filesystem::path& file) {
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(file, ec);
+  if (!options.update_baseline) {
+    if (!exists) {
+      throw core::IoError(
+          "no baseline " + file.string() + " for suite '" + spec.name +
+          "'; record one with `retrace bench " + options.suite.string() + " --update-baseline" +
+          (options.baseline.empty() ? "" : " --baseline " + options.baseline.string()) + "`");
+    }
+    Baseline baseline = ReadBaseline(file);
+    CheckBaselineMatches(baseline, spec, file);
+    return baseline;
+  }
+  if (!exists) return std::nullopt;
+  std::optional<Baseline> old;
+  try {
+    old = ReadBaseline(file);
+  } catch (const core::IoError&) {
+    return std::nullopt;  // a broken baseline is what --update-baseline repairs
+  }
+  if (old->suite != spec.name) {
+    throw core::ConfigError("",
+                            file.string() + " is the baseline of suite '" + old->suite +
+                                "'; --update-baseline does not overwrite another suite's baseline",
+                            true);
+  }
+  try {
+    CheckBaselineMatches(*old, spec, file);
+  } catch (const core::ConfigError&) {
+    return std::nullopt;  // recorded for other entries: nothing to compare
+  }
+  return old;
+}
+
+std::string VerdictLine(const SuiteSpec& spec, const SuiteReport& report,
+                        const SuiteResults& results, const std::filesystem::path& baseline_file,
+                        const Baseline* baseline, bool updated, const std::filesystem::path& out,
+                        double wall_time_s) {
+  const std::string work =
+      std::to_string(spec.entries.size()) + (spec.entries.size() == 1 ? " entry, " : " entries, ") +
+      std::to_string(results.teaching_drives) + " teaching drives, " +
+      std::to_string(results.playback_runs) + " playback runs, " + Seconds(wall_time_s);
+  std::string line = "suite " + spec.name + ": ";
+  if (updated) {
+    line += "baseline written to " + baseline_file.string() + " (" +
+            std::to_string(report.checked) + " gated metrics";
+    if (baseline != nullptr) {
+      line += "; against the old one: " + std::to_string(report.failures) + " worse, " +
+              std::to_string(report.improved) + " improved";
+    }
+    return line + "); " + work;
+  }
+  if (report.failures > 0) {
+    line += "FAIL: " + std::to_string(report.failures) + " of " + std::to_string(report.checked) +
+            " metrics regressed (";
+    int listed = 0;
+    for (const ReportRow& row : report.rows) {
+      if (!IsFailure(row.check.verdict)) continue;
+      if (listed == 3) {
+        line += ", ...";
+        break;
+      }
+      line += (listed++ ? ", " : "") + row.name;
+    }
+    return line + ") against " + baseline_file.string() + "; report in " +
+           (out / "report.md").string() + "; " + work;
+  }
+  return line + "pass: " + std::to_string(report.checked) + " metrics within tolerance of " +
+         baseline_file.string() + " (git " + baseline->git_revision + ", " + baseline->date +
+         "), " + std::to_string(report.improved) + " improved, " + std::to_string(report.reported) +
+         " reported; " + work;
+}
+
+}  // namespace
+
+void AddBenchOptions(CLI::App* command, BenchOptions* options) {
+  command->add_option("suite", options->suite, "Suite file (YAML), e.g. bench/suites/ci.yaml")
+      ->required();
+  command->add_option("--baseline", options->baseline,
+                      "Baseline file (default: results/baselines/<suite name>.json)");
+  command->add_flag("--update-baseline", options->update_baseline,
+                    "Record the results as the suite's baseline instead of judging them");
+  command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--out", options->out, "Report folder (default: results/bench/<suite name>)");
+  command->add_option("--set", options->overrides,
+                      "Override a scenario key in every entry: a.b.c=value (repeatable)");
+}
+
+int RunBenchCommand(const BenchOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::vector<io::ConfigOverride> overrides;
+  for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
+  if (options.update_baseline && !overrides.empty()) {
+    throw core::ConfigError(
+        "",
+        "--set cannot be combined with --update-baseline: a baseline must be reproducible from "
+        "the suite file, so put the override into the entries' `set`",
+        true);
+  }
+
+  // Everything that can be wrong with the input is found here, before anything runs.
+  const SuiteSpec spec = LoadSuiteSpec(options.suite);
+  const std::filesystem::path baseline_file =
+      options.baseline.empty()
+          ? std::filesystem::path("results") / "baselines" / (spec.name + ".json")
+          : options.baseline;
+  const std::filesystem::path out =
+      options.out.empty() ? std::filesystem::path("results") / "bench" / spec.name : options.out;
+  const std::optional<Baseline> baseline = PriorBaseline(options, spec, baseline_file);
+  const int jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+  const SuiteScenarios scenarios = LoadSuiteScenarios(spec, overrides, jobs);
+  for (std::size_t e = 0; e < spec.entries.size(); ++e) {
+    std::set<std::string> seen;  // the same warning for every seed is said once
+    for (const Scenario& scenario : scenarios.scenarios[e]) {
+      for (const std::string& warning : scenario.warnings) {
+        if (seen.insert(warning).second)
+          std::cerr << "retrace: warning: " << spec.entries[e].name << ": " << warning << "\n";
+      }
+    }
+  }
+
+  ProgressLine progress;
+  const SuiteResults results = RunSuite(spec, scenarios, jobs, &progress);
+  progress.Clear();
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  const Baseline* compared = baseline ? &*baseline : nullptr;
+  const SuiteReport report = CompareWithBaseline(spec, results, compared);
+  ReportContext context;
+  context.suite_file = spec.source;
+  context.suite_digest = spec.digest;
+  context.baseline_file = baseline_file;
+  context.baseline = compared;
+  context.git_revision = BuildRevision();
+  context.date = UtcNow();
+  context.wall_time_s = wall_time;
+  context.jobs = jobs;
+  context.overrides = options.overrides;
+  io::WriteJsonAtomic(out / "report.json", ReportJson(report, context, spec, results));
+  io::WriteFileAtomic(out / "report.md", ReportMarkdown(report, context));
+  if (options.update_baseline) WriteBaseline(baseline_file, MakeBaseline(spec, results));
+
+  std::cout << ReportTable(report)
+            << VerdictLine(spec, report, results, baseline_file, compared, options.update_baseline,
+                           out, wall_time)
+            << "\n";
+  return !options.update_baseline && report.failures > 0 ? 1 : 0;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,35 @@
+#pragma once
+// `retrace bench <suite>`: runs a regression suite (bench/suite/suite_spec.hpp), compares every
+// gated metric with the committed baseline (bench/suite/baseline.hpp) under its tolerance
+// (bench/suite/tolerance.hpp), prints the table and a one-line verdict, and writes report.json and
+// report.md. `--update-baseline` records the results as the new baseline instead of judging
+// them.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace retrace::bench {
+
+struct BenchOptions {
+  std::filesystem::path suite;
+  std::filesystem::path baseline;  ///< empty: results/baselines/<suite name>.json
+  bool update_baseline = false;
+  int jobs = 0;                        ///< worker threads; 0: one per core
+  std::filesystem::path out;           ///< report folder; empty: results/bench/<suite name>
+  std::vector<std::string> overrides;  ///< --set, applied to every entry after its own `set`
+};
+
+/// Adds the options of `retrace bench` to a CLI11 subcommand.
+void AddBenchOptions(CLI::App* command, BenchOptions* options);
+
+/// Runs the command. Returns 0 (everything within tolerance, or a baseline recorded) or 1 (a
+/// regression). Throws core::Error on bad input — a malformed suite, a missing or foreign
+/// baseline, an unknown `--set` key — before anything runs or is written.
+int RunBenchCommand(const BenchOptions& options);
+
+}  // namespace retrace::bench

@@ -1,0 +1,37 @@
+#pragma once
+// `retrace generate-campus`: builds a campus world file around a route
+// (bench/worldgen/campus_generator.hpp).
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace retrace::bench {
+
+struct GenerateCampusOptions {
+  std::filesystem::path route_file;  ///< x y per line, or an AutoNavi path
+  std::filesystem::path out;         ///< the world file to write (YAML)
+  std::uint64_t seed = 1;
+  std::filesystem::path config_file;   ///< optional YAML with a CampusConfig
+  std::vector<std::string> overrides;  ///< --set key=value on the CampusConfig
+  int pedestrians = -1;                ///< overrides CampusConfig::pedestrians when >= 0
+};
+
+/// Adds the positional route file and --out, --seed, --config, --set and --pedestrians to
+/// `cmd`, writing into `options` (which must outlive the parse).
+void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options);
+
+/// Reads the route and the generator config, generates the campus, checks that the route is
+/// drivable in it, writes the world file atomically with a comment header that says how it
+/// was generated, loads it back and checks it again. Returns a one-line summary (objects by
+/// kind, route length). Throws core::IoError (missing or malformed route or config file,
+/// a route of fewer than 2 points), core::ConfigError (unknown or invalid config key) or
+/// core::WorldError; nothing is written then.
+std::string RunGenerateCampusCommand(const GenerateCampusOptions& options);
+
+}  // namespace retrace::bench

@@ -1,0 +1,141 @@
+#include "bench/cli/compare_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+
+#include "bench/cli/mode_list.hpp"
+#include "bench/cli/progress.hpp"
+#include "bench/compare/comparison_report.hpp"
+#include "bench/engine/parallel.hpp"
+#include "bench/engine/scenario.hpp"
+#include "bench/metrics/experiment.hpp"
+#include "bench/metrics/flat_metrics.hpp"
+#include "bench/output/staged_folder.hpp"
+#include "core/check.hpp"
+#include "core/errors.hpp"
+#include "git_revision.hpp"
+#include "io/atomic_file.hpp"
+#include "io/config_override.hpp"
+#include "io/json_writer.hpp"
+#include "viz/figures.hpp"
+
+namespace retrace::bench {
+namespace {
+
+std::vector<MapMode> ParseModes(const std::vector<std::string>& names) {
+  std::vector<MapMode> modes = ParseModeList(names, "--modes");
+  if (modes.size() < 2) throw core::ConfigError("--modes", "a comparison needs at least two modes");
+  return modes;
+}
+
+MapMode ParseReference(const std::string& name, const std::vector<MapMode>& modes) {
+  const auto mode = core::ParseEnum<MapMode>(name);
+  if (!mode) {
+    throw core::ConfigError("--reference", "unknown mode '" + name + "'; expected one of: " +
+                                               core::EnumNameList<MapMode>());
+  }
+  if (std::find(modes.begin(), modes.end(), *mode) == modes.end()) {
+    throw core::ConfigError("--reference",
+                            "mode '" + name + "' is not among the compared modes (--modes)");
+  }
+  return *mode;
+}
+
+}  // namespace
+
+void AddCompareOptions(CLI::App* command, CompareOptions* options) {
+  command->add_option("scenario", options->scenario, "Scenario file (YAML)")->required();
+  command->add_option("--modes", options->modes, "Map modes to compare, comma-separated, or all")
+      ->delimiter(',')
+      ->default_str("partial,single,consistent");
+  command->add_option("--reference", options->reference, "The mode the others are compared against")
+      ->default_str("consistent");
+  command->add_option("--seeds", options->seeds, "Scenario seeds (seed, seed + 1, ...), at least 2")
+      ->default_str("5");
+  command
+      ->add_option("--repeats", options->repeats,
+                   "Playback runs per mode and seed (default: the scenario's)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--out", options->out,
+                      "Output folder (default: results/compare/<scenario name>)");
+  command->add_option("--set", options->overrides,
+                      "Override a scenario key: a.b.c=value (repeatable)");
+}
+
+int RunCompareCommand(const CompareOptions& options, const std::string& command_line) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  // Every check before any work: nothing is run or written for bad input.
+  const std::vector<MapMode> modes = ParseModes(options.modes);
+  const MapMode reference = ParseReference(options.reference, modes);
+  if (options.seeds < 2) {
+    throw core::ConfigError("--seeds",
+                            "at least 2 seeds are needed for a confidence interval, got " +
+                                std::to_string(options.seeds));
+  }
+  std::vector<io::ConfigOverride> overrides;
+  for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
+  if (options.repeats)
+    overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
+  const Scenario scenario = LoadScenario(options.scenario, overrides);
+  for (const std::string& warning : scenario.warnings)
+    std::cerr << "retrace: warning: " << warning << "\n";
+  const std::filesystem::path out =
+      options.out.empty() ? std::filesystem::path("results") / "compare" / scenario.config.name
+                          : options.out;
+
+  ComparisonInput input;
+  input.scenario_name = scenario.config.name;
+  input.scenario_file = options.scenario.string();
+  input.command_line = command_line;
+  input.git_revision = RETRACE_GIT_REVISION;
+  input.repeats = scenario.config.playback.repeats;
+  input.modes = modes;
+  input.reference = reference;
+  const std::size_t n_seeds = static_cast<std::size_t>(options.seeds);
+  for (std::size_t i = 0; i < n_seeds; ++i) input.seeds.push_back(scenario.config.seed + i);
+  input.flat.assign(modes.size(), std::vector<std::map<std::string, double>>(n_seeds));
+
+  // Staged before the runs so that an unwritable --out fails now, not after them.
+  StagedFolder folder(out);
+
+  // Every seed's teaching drive, then every playback run, through the one scheduler: the
+  // numbers do not depend on --jobs.
+  std::vector<Scenario> seeded(n_seeds, scenario);
+  std::vector<const Scenario*> studies;
+  for (std::size_t s = 0; s < n_seeds; ++s) {
+    seeded[s].config.seed = input.seeds[s];
+    studies.push_back(&seeded[s]);
+  }
+  ProgressLine progress;
+  ExperimentOptions run_options;
+  run_options.repeats = input.repeats;
+  run_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+  run_options.progress = &progress;
+  const std::vector<Experiment> experiments = RunExperiments(studies, modes, run_options);
+  for (std::size_t s = 0; s < n_seeds; ++s) {
+    for (std::size_t m = 0; m < modes.size(); ++m) {
+      RETRACE_CHECK(experiments[s].modes[m].teach.mode == modes[m]);
+      input.flat[m][s] = FlatMetrics(experiments[s].modes[m].aggregate);
+    }
+  }
+  progress.Clear();
+  input.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  const Comparison comparison = Compare(std::move(input));
+  const std::string markdown = ComparisonMarkdown(comparison);
+  io::WriteJsonAtomic(folder.path() / "comparison.json", ComparisonJson(comparison));
+  io::WriteFileAtomic(folder.path() / "comparison.md", markdown);
+  viz::RenderComparisonFigure(ComparisonFigure(comparison), folder.path() / "comparison.png");
+  folder.Commit();
+
+  std::cout << markdown << "\nWritten: " << (out / "comparison.json").string()
+            << ", comparison.md, comparison.png\n";
+  return 0;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,167 @@
+#include "bench/cli/merge_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <iostream>
+#include <map>
+
+#include "bench/cli/progress.hpp"
+#include "bench/sweep/sweep_folder.hpp"
+#include "bench/sweep/sweep_results.hpp"
+#include "bench/sweep/sweep_summary.hpp"
+#include "core/errors.hpp"
+#include "io/json_writer.hpp"
+
+namespace retrace::bench {
+namespace {
+
+[[noreturn]] void Fail(const std::string& message) { throw core::ConfigError("", message, true); }
+
+std::string Name(const std::filesystem::path& folder) { return folder.string(); }
+
+}  // namespace
+
+void AddMergeOptions(CLI::App* command, MergeOptions* options) {
+  command
+      ->add_option("shards", options->inputs,
+                   "The results folders of the shards (retrace sweep --shard i/N)")
+      ->required();
+  command->add_option("--out", options->out, "Folder for the joined results")->required();
+  command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
+}
+
+int RunMergeCommand(const MergeOptions& options, const std::string& command_line) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const std::vector<std::filesystem::path>& inputs = options.inputs;
+  if (inputs.empty()) Fail("merge: name the results folders of the shards");
+
+  // Which sweep and shard each folder holds: one sweep, every shard exactly once.
+  std::vector<SweepRecord> records;
+  for (const std::filesystem::path& folder : inputs) {
+    if (!std::filesystem::is_directory(folder))
+      throw core::IoError(Name(folder) + ": no such folder");
+    if (!std::filesystem::exists(folder / "sweep.json")) {
+      throw core::IoError(Name(folder) + ": not a sweep results folder (it has no sweep.json)");
+    }
+    records.push_back(ReadSweepRecord(folder / "sweep.json"));
+  }
+  const SweepRecord& first = records.front();
+  const int count = first.shard.count;
+  std::vector<int> owner(static_cast<std::size_t>(count) + 1, -1);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const SweepRecord& r = records[i];
+    if (r.identity != first.identity) {
+      Fail(Name(inputs[i]) + " holds another sweep than " + Name(inputs[0]) + " ('" + r.name +
+           "' " + r.identity + " vs '" + first.name + "' " + first.identity + ")");
+    }
+    if (r.shard.count != count) {
+      Fail(Name(inputs[i]) + " is shard " + r.shard.ToString() + " but " + Name(inputs[0]) +
+           " is shard " + first.shard.ToString() +
+           ": the shards of one merge must split the sweep the same way");
+    }
+    int& slot = owner[static_cast<std::size_t>(r.shard.index)];
+    if (slot >= 0) {
+      Fail("shard " + r.shard.ToString() + " is given twice: " +
+           Name(inputs[static_cast<std::size_t>(slot)]) + " and " + Name(inputs[i]));
+    }
+    slot = static_cast<int>(i);
+  }
+  std::string missing;
+  for (int index = 1; index <= count; ++index) {
+    if (owner[static_cast<std::size_t>(index)] < 0) {
+      missing +=
+          (missing.empty() ? "" : ", ") + std::to_string(index) + "/" + std::to_string(count);
+    }
+  }
+  if (!missing.empty())
+    Fail("missing shard " + missing + " of sweep '" + first.name +
+         "': give the folder of every shard");
+
+  // The output must not be a shard (merging would overwrite it) nor another sweep's folder.
+  for (const std::filesystem::path& folder : inputs) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(folder, options.out, ec)) {
+      Fail("--out " + Name(options.out) + " is one of the shard folders; choose another");
+    }
+  }
+  if (std::filesystem::exists(options.out / "sweep.json")) {
+    const SweepRecord existing = ReadSweepRecord(options.out / "sweep.json");
+    if (existing.identity != first.identity || existing.shard.count != 1) {
+      Fail(Name(options.out) + " holds results of another sweep ('" + existing.name + "' " +
+           existing.identity + ", shard " + existing.shard.ToString() +
+           "); use another --out or remove it");
+    }
+  }
+
+  // Every shard complete, every case exactly once.
+  const SweepTableSchema schema = ResultsSchema(first.parameters, first.metrics);
+  const SweepTableSchema timings_schema = TimingsSchema(first.timing_metrics);
+  std::vector<SweepRow> rows, timings;
+  std::map<std::size_t, std::size_t> case_owner;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const SweepShard& shard = records[i].shard;
+    const std::filesystem::path file = inputs[i] / "results.csv";
+    const SweepTable table = ReadSweepTable(file, schema, PartialRow::kReject);
+    const std::size_t expected = shard.CaseCount(first.cases);
+    if (!records[i].complete || table.rows.size() != expected) {
+      Fail(Name(inputs[i]) + ": shard " + shard.ToString() +
+           " is incomplete: " + std::to_string(table.rows.size()) + " of " +
+           std::to_string(expected) + " cases done; run its `retrace sweep ... --shard " +
+           shard.ToString() + "` again to finish it");
+    }
+    for (const SweepRow& row : table.rows) {
+      const std::string where = file.string() + ":" + std::to_string(row.line_number) + ": case " +
+                                std::to_string(row.case_id);
+      if (row.case_id >= first.cases)
+        Fail(where + ": the sweep has only " + std::to_string(first.cases) + " cases");
+      if (!shard.Contains(row.case_id)) Fail(where + ": not a case of shard " + shard.ToString());
+      const auto [it, inserted] = case_owner.emplace(row.case_id, i);
+      if (!inserted)
+        Fail("case " + std::to_string(row.case_id) + " is in both " + Name(inputs[it->second]) +
+             " and " + Name(inputs[i]));
+      rows.push_back(row);
+    }
+    for (SweepRow& row :
+         ReadSweepTable(inputs[i] / "timings.csv", timings_schema, PartialRow::kDrop).rows) {
+      if (shard.Contains(row.case_id) && row.case_id < first.cases)
+        timings.push_back(std::move(row));
+    }
+  }
+  for (std::size_t id = 0; id < first.cases; ++id) {
+    if (!case_owner.contains(id))
+      Fail("case " + std::to_string(id) + " is missing from every shard");
+  }
+
+  std::filesystem::create_directories(options.out);
+  const SweepFolderLock lock(options.out);
+  WriteSortedSweepTable(options.out / "results.csv", schema, rows);
+  WriteSortedSweepTable(options.out / "timings.csv", timings_schema, timings);
+  nlohmann::json record = first.json;
+  record["shard"] = SweepShard{}.ToString();
+  record["shard_cases"] = first.cases;
+  record["cases_done"] = first.cases;
+  record["complete"] = true;
+  record["command"] = command_line;
+  record["cases_run"] = 0;
+  record["merged_from"] = nlohmann::json::array();
+  for (const std::filesystem::path& folder : inputs)
+    record["merged_from"].push_back(folder.string());
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  record["wall_time_s"] = wall_time;
+  io::WriteJsonAtomic(options.out / "sweep.json", record);
+
+  if (options.plot) {
+    const std::string problem =
+        PlotSweepFolder(options.out, first.name, first.plot_parameters, first.metrics);
+    if (!problem.empty())
+      std::cerr << "retrace: warning: no sweep.png: " << problem << " (results.csv is complete)\n";
+  }
+  std::cout << "merged " << count << " shards of sweep " << first.name << ": " << first.cases
+            << " cases in " << FormatDuration(wall_time) << "; results in "
+            << (options.out / "results.csv").string() << "\n";
+  std::cout << SweepSummaryTable(schema, first.parameters.size(), rows);
+  return 0;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,36 @@
+#include "bench/cli/mode_list.hpp"
+
+#include <algorithm>
+
+#include "core/errors.hpp"
+
+namespace retrace::bench {
+
+std::vector<MapMode> ParseModeList(const std::vector<std::string>& names, std::string_view option) {
+  const std::string where(option);
+  if (names.empty()) {
+    throw core::ConfigError(where, "no mode given; expected one or more of " +
+                                       core::EnumNameList<MapMode>() +
+                                       " (comma-separated), or all");
+  }
+  if (names == std::vector<std::string>{"all"}) {
+    return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
+  }
+  std::vector<MapMode> modes;
+  for (const std::string& name : names) {
+    if (name == "all") throw core::ConfigError(where, "all means every mode; give it alone");
+    const auto mode = core::ParseEnum<MapMode>(name);
+    if (!mode) {
+      throw core::ConfigError(where, "unknown mode '" + name + "'; expected one or more of " +
+                                         core::EnumNameList<MapMode>() +
+                                         " (comma-separated), or all");
+    }
+    if (std::find(modes.begin(), modes.end(), *mode) != modes.end()) {
+      throw core::ConfigError(where, "mode '" + name + "' is given twice");
+    }
+    modes.push_back(*mode);
+  }
+  return modes;
+}
+
+}  // namespace retrace::bench

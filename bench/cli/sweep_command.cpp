@@ -1,0 +1,251 @@
+#include "bench/cli/sweep_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "bench/cli/progress.hpp"
+#include "bench/engine/parallel.hpp"
+#include "bench/engine/scenario.hpp"
+#include "bench/metrics/experiment.hpp"
+#include "bench/metrics/flat_metrics.hpp"
+#include "bench/sweep/sweep_folder.hpp"
+#include "bench/sweep/sweep_plan.hpp"
+#include "bench/sweep/sweep_results.hpp"
+#include "bench/sweep/sweep_summary.hpp"
+#include "core/check.hpp"
+#include "core/errors.hpp"
+#include "git_revision.hpp"
+#include "io/json_writer.hpp"
+
+namespace retrace::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A row read back from results.csv must be the row this sweep would write for its case:
+// anything else means the folder holds another sweep's results.
+void CheckRow(const SweepPlan& plan, const SweepShard& shard, const SweepRow& row,
+              const std::filesystem::path& file) {
+  const SweepSpec& s = plan.spec;
+  const std::size_t id = row.case_id;
+  const std::string where =
+      file.string() + ":" + std::to_string(row.line_number) + ": case " + std::to_string(id);
+  if (id >= s.case_count())
+    throw core::IoError(where + ": the sweep has only " + std::to_string(s.case_count()) +
+                        " cases");
+  if (!shard.Contains(id)) throw core::IoError(where + ": not a case of shard " + shard.ToString());
+  const std::size_t c = plan.combination(id);
+  std::vector<std::string> expected = {std::to_string(c), std::to_string(plan.repeat(id)),
+                                       std::to_string(plan.seed(id))};
+  expected.insert(expected.end(), s.combinations[c].begin(), s.combinations[c].end());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    if (row.fields[1 + i] != expected[i]) {
+      throw core::IoError(where + ": " + ResultsSchema(s.parameters, s.metrics).header[1 + i] +
+                          " is '" + row.fields[1 + i] + "', this sweep has '" + expected[i] + "'");
+    }
+  }
+}
+
+struct FolderState {
+  SweepTable results;
+  SweepTable timings;
+};
+
+// What an existing results folder holds, checked against this sweep and shard. Writes nothing.
+FolderState InspectFolder(const std::filesystem::path& out, const SweepPlan& plan,
+                          const SweepShard& shard) {
+  FolderState state;
+  if (!std::filesystem::exists(out)) return state;
+  auto another = [&](const std::string& why) {
+    return core::ConfigError("--out",
+                             out.string() + " holds results of another sweep (" + why +
+                                 "); use another --out or remove it",
+                             true);
+  };
+  const std::filesystem::path results_file = out / "results.csv";
+  if (std::filesystem::exists(out / "sweep.json")) {
+    const SweepRecord record = ReadSweepRecord(out / "sweep.json");
+    if (record.identity != plan.identity) {
+      throw another("'" + record.name + "' with identity " + record.identity +
+                    "; this sweep's is " + plan.identity);
+    }
+    if (record.shard.index != shard.index || record.shard.count != shard.count) {
+      throw another("shard " + record.shard.ToString() + "; this is shard " + shard.ToString());
+    }
+  } else if (std::filesystem::exists(results_file)) {
+    throw another("a results.csv without sweep.json");
+  }
+  const SweepSpec& s = plan.spec;
+  state.results =
+      ReadSweepTable(results_file, ResultsSchema(s.parameters, s.metrics), PartialRow::kDrop);
+  for (const SweepRow& row : state.results.rows) CheckRow(plan, shard, row, results_file);
+  state.timings =
+      ReadSweepTable(out / "timings.csv", TimingsSchema(s.timing_metrics), PartialRow::kDrop);
+  return state;
+}
+
+struct CaseOutput {
+  std::vector<io::CsvCell> results;
+  std::vector<io::CsvCell> timings;
+};
+
+// One case: the scenario with the case's overrides, one teaching drive and one playback run of
+// its mode, on this thread.
+CaseOutput RunCase(const SweepPlan& plan, std::size_t id) {
+  const SweepSpec& s = plan.spec;
+  const std::size_t c = plan.combination(id);
+  const auto start = Clock::now();
+  std::map<std::string, double> metrics;
+  try {
+    const Scenario scenario = LoadScenario(s.scenario, plan.CaseOverrides(id));
+    ExperimentOptions options;
+    options.repeats = 1;
+    options.jobs = 1;
+    const Experiment experiment = RunExperiment(scenario, {s.CombinationMode(c)}, options);
+    metrics = FlatMetrics(experiment.modes.front().aggregate);
+  } catch (const core::Error& e) {
+    throw core::Error("case " + std::to_string(id) + " (" + s.DescribeCombination(c) + ", repeat " +
+                      std::to_string(plan.repeat(id)) + ", seed " + std::to_string(plan.seed(id)) +
+                      "): " + e.what());
+  }
+  auto metric = [&metrics](const std::string& name) {
+    const auto it = metrics.find(name);
+    return it == metrics.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
+  };
+  CaseOutput out;
+  out.results = {id, c, plan.repeat(id), plan.seed(id)};
+  for (const std::string& value : s.combinations[c]) out.results.emplace_back(value);
+  for (const std::string& name : s.metrics) out.results.emplace_back(metric(name));
+  out.timings = {id, SecondsSince(start)};
+  for (const std::string& name : s.timing_metrics) out.timings.emplace_back(metric(name));
+  return out;
+}
+
+}  // namespace
+
+void AddSweepOptions(CLI::App* command, SweepOptions* options) {
+  command->add_option("file", options->file, "Sweep file (YAML, see sweeps/)")->required();
+  command
+      ->add_option("--jobs", options->jobs,
+                   "Cases run at once, one thread each (default: one per core)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option(
+      "--out", options->out,
+      "Results folder (default: results/sweeps/<name>, or .../<name>/shard-<i>-of-<N>)");
+  command->add_option("--shard", options->shard,
+                      "Run only shard i of N: the cases with case % N == i - 1");
+  command->add_option("--set", options->overrides,
+                      "Override a scenario key in every case: a.b.c=value (repeatable)");
+  command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
+}
+
+int RunSweepCommand(const SweepOptions& options, const std::string& command_line) {
+  const auto wall_start = Clock::now();
+  std::vector<io::ConfigOverride> overrides;
+  for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
+  const SweepShard shard = options.shard.empty() ? SweepShard{} : ParseShard(options.shard);
+  const int jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+  const SweepPlan plan = PlanSweep(LoadSweepSpec(options.file, overrides), jobs);
+  const SweepSpec& spec = plan.spec;
+  const std::filesystem::path out =
+      options.out.empty() ? DefaultSweepFolder(spec.name, shard) : options.out;
+  // A folder of another sweep is an error before anything is written.
+  InspectFolder(out, plan, shard);
+
+  std::filesystem::create_directories(out);
+  const SweepFolderLock lock(out);
+  // Again, now that no other process can write the folder.
+  const FolderState state = InspectFolder(out, plan, shard);
+  const SweepTableSchema results_schema = ResultsSchema(spec.parameters, spec.metrics);
+  const SweepTableSchema timings_schema = TimingsSchema(spec.timing_metrics);
+  const std::size_t shard_cases = shard.CaseCount(spec.case_count());
+  nlohmann::json record = SweepJson(plan, shard);
+  record["command"] = command_line;
+  record["git_revision"] = RETRACE_GIT_REVISION;
+  record["build_type"] = RETRACE_BUILD_TYPE;
+  record["cases_done"] = state.results.rows.size();
+  io::WriteJsonAtomic(out / "sweep.json", record);
+  for (const std::string& warning : plan.warnings)
+    std::cerr << "retrace: warning: " << warning << "\n";
+  if (!state.results.dropped.empty()) {
+    std::cerr
+        << "retrace: warning: " << (out / "results.csv").string()
+        << ": dropped a half-written last row (the sweep was interrupted); its case runs again\n";
+  }
+
+  std::set<std::size_t> done, timed;
+  for (const SweepRow& row : state.results.rows) done.insert(row.case_id);
+  for (const SweepRow& row : state.timings.rows) timed.insert(row.case_id);
+  std::vector<std::size_t> todo;
+  for (std::size_t id = 0; id < spec.case_count(); ++id) {
+    if (shard.Contains(id) && !done.contains(id)) todo.push_back(id);
+  }
+  {
+    SweepTableAppender results(out / "results.csv", results_schema, state.results.complete_size);
+    SweepTableAppender timings(out / "timings.csv", timings_schema, state.timings.complete_size);
+    ProgressLine progress;
+    progress.CountdownPhase("sweep " + spec.name, static_cast<int>(shard_cases),
+                            static_cast<int>(shard_cases - todo.size()));
+    try {
+      ParallelFor(jobs, todo.size(), [&](std::size_t i) {
+        const CaseOutput output = RunCase(plan, todo[i]);
+        // results.csv first: a case counts as done once its row is there; its timing row is
+        // informative only.
+        results.Append(output.results);
+        if (!timed.contains(todo[i])) timings.Append(output.timings);
+        progress.UnitDone();
+      });
+    } catch (...) {
+      progress.Clear();
+      throw;
+    }
+    progress.Clear();
+  }
+
+  // Every case of the shard is done: publish the tables sorted by case id.
+  const SweepTable final_results =
+      ReadSweepTable(out / "results.csv", results_schema, PartialRow::kReject);
+  RETRACE_CHECK(final_results.rows.size() == shard_cases);
+  WriteSortedSweepTable(out / "results.csv", results_schema, final_results.rows);
+  WriteSortedSweepTable(
+      out / "timings.csv", timings_schema,
+      ReadSweepTable(out / "timings.csv", timings_schema, PartialRow::kDrop).rows);
+  const double wall_time = SecondsSince(wall_start);
+  record["cases_done"] = shard_cases;
+  record["complete"] = true;
+  record["cases_run"] = todo.size();
+  record["wall_time_s"] = wall_time;
+  io::WriteJsonAtomic(out / "sweep.json", record);
+
+  // The plot needs every case, so a shard leaves it to `retrace merge`.
+  if (options.plot && shard.count == 1) {
+    const std::string problem = PlotSweepFolder(out, spec.name, spec.plot_parameters, spec.metrics);
+    if (!problem.empty())
+      std::cerr << "retrace: warning: no sweep.png: " << problem << " (results.csv is complete)\n";
+  }
+
+  std::cout << "sweep " << spec.name << " (" << spec.scenario.string()
+            << "): " << spec.combinations.size() << " combinations x " << spec.repeats
+            << " repeats = " << spec.case_count() << " cases\n";
+  if (shard.count > 1) std::cout << "shard " << shard.ToString() << ": ";
+  std::cout << shard_cases << (shard_cases == 1 ? " case" : " cases") << " done (" << todo.size()
+            << " now, " << shard_cases - todo.size() << " before) in " << FormatDuration(wall_time)
+            << "; results in " << (out / "results.csv").string() << "\n";
+  if (shard.count == 1) {
+    std::cout << SweepSummaryTable(results_schema, spec.parameters.size(), final_results.rows);
+  } else {
+    std::cout << "join the " << shard.count
+              << " shards with `retrace merge <their folders> --out <folder>`\n";
+  }
+  return 0;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,55 @@
+#pragma once
+// Ground truth expressed in a partial map. A partial map's frame M_k is the teaching run's
+// odometry frame at the moment the map started, so it drifts against the world W: the truth
+// "where the robot is in M_k" only exists locally, relative to the teaching run. For a robot
+// at X_WR near teaching sample j of map k, the local truth is
+//
+//   X_{M_k R} = X_{M_k R_j} * inverse(X_{W R_j}) * X_{W R}            (docs/DESIGN.md §6)
+//
+// with j the nearest teaching sample of the map, tracked along the segment: searched within
+// `window` m of arc length behind and ahead of the previous match, so that a segment that
+// passes the same place twice (mode `single`) matches the right pass; only when that match is
+// farther than `fallback_distance` from the robot is the whole segment searched.
+
+#include <cstddef>
+#include <vector>
+
+#include "bench/engine/trace.hpp"
+#include "core/pose2.hpp"
+
+namespace retrace::bench {
+
+class LocalTruth {
+ public:
+  /// `map` must outlive this object and hold at least one sample (checked).
+  LocalTruth(const TeachMapTrace& map, double window, double fallback_distance);
+
+  /// The local truth X_{M_k R} for the ground truth X_WR; moves the match along.
+  core::Pose2 InMap(const core::Pose2& X_WR);
+  /// Starts the tracking again at the map's first sample (the robot entered the map).
+  void Reset() { match_ = 0; }
+  /// Index of the teaching sample matched by the last InMap.
+  std::size_t match() const { return match_; }
+  /// The local alignment of the last match, X_{W M_k} = X_{W R_j} * inverse(X_{M_k R_j}): it
+  /// carries an estimate in M_k into W (est.tum), so that comparing it with the ground truth
+  /// gives exactly the localization error.
+  core::Pose2 X_WM() const { return map_.X_WR[match_] * map_.X_MR[match_].Inverse(); }
+
+ private:
+  std::size_t Nearest(const core::Vec2& p, std::size_t lo, std::size_t hi, double* d2) const;
+
+  const TeachMapTrace& map_;
+  double window_;
+  double fallback_distance_;
+  std::vector<double> arc_;  // arc length of each sample's position along the segment
+  std::size_t match_ = 0;
+};
+
+/// Position (m) and heading (rad, absolute) error of an estimate against a truth.
+struct PoseError {
+  double distance = 0.0;
+  double angle = 0.0;
+};
+PoseError Compare(const core::Pose2& estimate, const core::Pose2& truth);
+
+}  // namespace retrace::bench

@@ -1,0 +1,138 @@
+#include "bench/engine/playback.hpp"
+
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "bench/engine/end_conditions.hpp"
+#include "bench/engine/local_truth.hpp"
+#include "bench/engine/run_recorder.hpp"
+#include "bench/engine/scripted_events.hpp"
+#include "bench/engine/stepper.hpp"
+#include "bench/engine/thread_cpu_time.hpp"
+#include "core/angle.hpp"
+#include "core/rng.hpp"
+#include "nav/localizer.hpp"
+#include "nav/map_server.hpp"
+#include "nav/obstacle_avoidance.hpp"
+#include "nav/path_follower.hpp"
+#include "sim/simulator.hpp"
+
+namespace retrace::bench {
+namespace {
+
+// The robot's true start: the teaching start plus a Gaussian offset.
+core::Pose2 StartPose(const Scenario& scenario, core::Rng rng) {
+  const PlaybackConfig& p = scenario.config.playback;
+  const double yaw_sigma = core::DegToRad(p.start_offset_yaw_deg);
+  const core::Pose2 X_start_offset(p.start_offset_xy * rng.Normal(),
+                                   p.start_offset_xy * rng.Normal(), yaw_sigma * rng.Normal());
+  return scenario.X_W_start * X_start_offset;
+}
+
+// What an observer (the video) sees besides the loop's own state: the latest scan and update.
+class ObserverFeed {
+ public:
+  explicit ObserverFeed(PlaybackObserver* observer) : observer_(observer) {}
+  void OnScan(const sim::LidarReading& lidar, const nav::LocalizerUpdate& update) {
+    if (!observer_) return;
+    lidar_ = lidar;
+    if (update.ran) update_ = update;
+  }
+  void OnSwitch(double t) { last_switch_ = t; }
+  void OnTick(double t, const nav::Localizer& localizer, const nav::MapServer& server,
+              const core::Pose2& X_WR, const core::Pose2& X_MR_truth, double speed,
+              const sim::Simulator& simulator) {
+    if (!observer_) return;
+    const std::vector<sim::DynamicCircle> pedestrians = simulator.PedestrianCircles();
+    observer_->OnTick({t, localizer, server, X_WR, X_MR_truth, speed, t - last_switch_,
+                       lidar_ ? &*lidar_ : nullptr, update_ ? &*update_ : nullptr, pedestrians});
+  }
+  void OnEnd() {
+    if (observer_) observer_->OnEnd();
+  }
+
+ private:
+  PlaybackObserver* observer_;
+  std::optional<sim::LidarReading> lidar_;
+  std::optional<nav::LocalizerUpdate> update_;
+  double last_switch_ = -std::numeric_limits<double>::infinity();
+};
+
+}  // namespace
+
+core::Rng PlaybackRng(const ScenarioConfig& config, int run) {
+  return core::Rng(config.seed).Split("playback").Split(static_cast<std::uint64_t>(run));
+}
+
+RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
+                     const TeachTrace& teach, int run, double timeout_s, const ProgressFn& progress,
+                     PlaybackObserver* observer) {
+  const double cpu_start = ThreadCpuSeconds();
+  const ScenarioConfig& config = scenario.config;
+  const core::Rng rng = PlaybackRng(config, run);
+  sim::Simulator simulator(scenario.playback_world, config.sim,
+                           StartPose(scenario, rng.Split("start")), rng.Split("sim"));
+  Stepper stepper(simulator, config.nav.control_rate_hz, progress);
+  ScriptedEvents events(config.events, EventPhase::kPlayback);
+  RouteProgress route_progress(scenario.route);
+  // The navigation stack: it believes the robot is at map 0's origin.
+  nav::Localizer localizer(config.nav.localizer, scenario.robot, rng.Split("localizer"));
+  nav::PathFollower follower(config.nav.follower);
+  nav::ObstacleAvoidance avoidance(config.nav.avoidance, scenario.robot);
+  nav::MapServer server(bundle);
+  server.Start(localizer, follower);
+  localizer.Initialize(core::Pose2::Identity(), config.playback.initial_sigma_xy,
+                       core::DegToRad(config.playback.initial_sigma_yaw_deg));
+  RunRecorder recorder(run, rng.seed(), teach, config.metrics, scenario.robot.radius);
+  EndConditions end(config.limits, timeout_s);
+  ObserverFeed feed(observer);
+  std::optional<core::LaserScan> latest_scan;
+  core::Twist command;
+  std::optional<Outcome> outcome;
+
+  while (!outcome) {
+    // 1. Step the world; the sensors that came due.
+    const sim::SimStep s = stepper.Step(command);
+    // 2. Localize: prediction from each odometry increment, correction from each scan.
+    if (s.odometry) localizer.Predict(*s.odometry);
+    if (s.lidar) {
+      const double cpu0 = ThreadCpuSeconds();
+      const nav::LocalizerUpdate update = localizer.Update(s.lidar->scan);
+      if (update.ran) {
+        recorder.OnUpdate(localizer, update, *s.lidar, s.time, ThreadCpuSeconds() - cpu0,
+                          server.index(), simulator);
+      }
+      latest_scan = s.lidar->scan;
+      feed.OnScan(*s.lidar, update);
+    }
+    if (!stepper.ControlDue()) continue;
+    const core::Pose2 X_WR = simulator.RobotPose();
+    // 3. Switch map: at the end of path k, map k+1 and the pose carried over by eq. (1).
+    nav::FollowerOutput follow = follower.Compute(localizer.Estimate(), stepper.control_dt());
+    if (server.SwitchDue(follow)) {
+      recorder.OnSwitch(s.time, server.SwitchToNext(localizer, follower), X_WR);
+      feed.OnSwitch(s.time);
+      follow = follower.Compute(localizer.Estimate(), stepper.control_dt());
+    }
+    // 4. Follow, avoid on the latest scan, command the robot.
+    nav::AvoidanceOutput avoid{.command = follow.command};
+    if (latest_scan) avoid = avoidance.Filter(follow.command, *latest_scan);
+    command = avoid.command;
+    // 5. Record; scripted events; check the end.
+    const core::Pose2 X_MR = localizer.Estimate();
+    const core::Pose2 X_MR_truth =
+        recorder.OnControlTick(s.time, server.index(), X_WR, X_MR, avoid, simulator);
+    feed.OnTick(s.time, localizer, server, X_WR, X_MR_truth, command.v, simulator);
+    recorder.OnEvents(s.time,
+                      events.Fire(s.time, route_progress.Update(X_WR.translation()), simulator));
+    outcome =
+        end.Check({s.time, follow.goal_reached, server.IsLast(), !stepper.collisions().empty(),
+                   Compare(X_MR, X_MR_truth).distance, server.index(), follow.remaining});
+  }
+  feed.OnEnd();
+  return recorder.Finish(*outcome, stepper.collisions(), simulator.time(),
+                         ThreadCpuSeconds() - cpu_start);
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,99 @@
+#include "bench/engine/run_recorder.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "bench/engine/snapshot_capture.hpp"
+
+namespace retrace::bench {
+namespace {
+
+// The robot's edge to the nearest pedestrian's (m), +inf without pedestrians.
+double PedestrianGap(const sim::Simulator& simulator, const core::Vec2& p_W, double radius) {
+  double gap = std::numeric_limits<double>::infinity();
+  for (const sim::DynamicCircle& c : simulator.PedestrianCircles()) {
+    gap = std::min(gap, (c.center - p_W).norm() - c.radius - radius);
+  }
+  return gap;
+}
+
+// Scores the localizer's dynamic-point mask against which beams really hit a pedestrian.
+LocalizerSample Score(const nav::LocalizerUpdate& update, const sim::LidarReading& reading,
+                      double time, double cpu_s) {
+  LocalizerSample sample;
+  sample.time = time;
+  sample.cpu_s = cpu_s;
+  sample.beams_tested = update.beams_tested;
+  sample.beams_rejected = update.beams_rejected;
+  for (std::size_t i = 0; i < update.beams.size(); ++i) {
+    if (update.beams[i] == nav::BeamUse::kUnused) continue;
+    const bool rejected = update.beams[i] == nav::BeamUse::kRejected;
+    const bool pedestrian = reading.truth[i].source == sim::BeamSource::kPedestrian;
+    if (rejected && pedestrian) ++sample.true_positive;
+    if (rejected && !pedestrian) ++sample.false_positive;
+    if (!rejected && pedestrian) ++sample.false_negative;
+  }
+  return sample;
+}
+
+}  // namespace
+
+RunRecorder::RunRecorder(int run, std::uint64_t seed, const TeachTrace& teach,
+                         const MetricsConfig& metrics, double robot_radius)
+    : teach_(teach), metrics_(metrics), robot_radius_(robot_radius) {
+  trace_.run = run;
+  trace_.seed = seed;
+  local_truth_.emplace(teach_.maps.at(0), metrics_.match_window, metrics_.match_fallback_distance);
+}
+
+void RunRecorder::OnUpdate(const nav::Localizer& localizer, const nav::LocalizerUpdate& update,
+                           const sim::LidarReading& lidar, double t, double cpu_s,
+                           std::size_t map_index, const sim::Simulator& simulator) {
+  trace_.updates.push_back(Score(update, lidar, t, cpu_s));
+  const int crowd = PedestrianBeams(update, lidar);
+  if (crowd > 0 && (!trace_.snapshot || crowd > trace_.snapshot->pedestrian_beams)) {
+    const core::Pose2 X_WR = simulator.RobotPose();
+    trace_.snapshot =
+        CaptureSnapshot(localizer, update, lidar, t, static_cast<int>(map_index), X_WR,
+                        local_truth_->InMap(X_WR), simulator.PedestrianCircles());
+  }
+}
+
+void RunRecorder::OnSwitch(double t, const nav::MapSwitch& map_switch, const core::Pose2& X_WR) {
+  trace_.switches.push_back({t, static_cast<int>(map_switch.from), static_cast<int>(map_switch.to),
+                             X_WR, map_switch.X_MnR});
+  local_truth_.emplace(teach_.maps.at(map_switch.to), metrics_.match_window,
+                       metrics_.match_fallback_distance);
+}
+
+core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const core::Pose2& X_WR,
+                                       const core::Pose2& X_MR, const nav::AvoidanceOutput& command,
+                                       const sim::Simulator& simulator) {
+  PlaybackSample sample;
+  sample.time = t;
+  sample.map_index = static_cast<int>(map_index);
+  sample.X_WR = X_WR;
+  sample.X_MR = X_MR;
+  sample.X_OR = simulator.OdometryPose();
+  sample.command = command.command;
+  sample.clearance = simulator.StaticClearance(X_WR.translation()) - robot_radius_;
+  sample.pedestrian_gap = PedestrianGap(simulator, X_WR.translation(), robot_radius_);
+  sample.avoiding = command.modified;
+  trace_.samples.push_back(sample);
+  return local_truth_->InMap(X_WR);
+}
+
+void RunRecorder::OnEvents(double t, const std::vector<std::string>& names) {
+  for (const std::string& name : names) trace_.events.push_back({t, name});
+}
+
+RunTrace RunRecorder::Finish(Outcome outcome, const std::vector<sim::CollisionEvent>& collisions,
+                             double sim_time_s, double cpu_time_s) {
+  trace_.outcome = outcome;
+  trace_.collisions = collisions;
+  trace_.sim_time_s = sim_time_s;
+  trace_.cpu_time_s = cpu_time_s;
+  return std::move(trace_);
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,213 @@
+#include "bench/engine/scenario.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "bench/engine/switch_points.hpp"
+#include "core/angle.hpp"
+#include "core/errors.hpp"
+#include "io/config_yaml.hpp"
+#include "io/route_file.hpp"
+#include "sim/route_check.hpp"
+
+namespace retrace::bench {
+namespace {
+
+// The world of one phase: the world file's geometry plus that phase's own objects.
+sim::World PhaseWorld(const sim::World& base, const PhaseObjectsConfig& objects) {
+  if (objects.empty()) return base;
+  sim::World world;
+  world.config = base.config;
+  world.source = base.source;
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  append(world.config.boxes, objects.boxes);
+  append(world.config.circles, objects.circles);
+  append(world.config.polygons, objects.polygons);
+  append(world.config.walls, objects.walls);
+  world.geometry = sim::BuildGeometry(world.config, base.source.parent_path());
+  return world;
+}
+
+std::string Where(const std::filesystem::path& file) { return file.string() + ": "; }
+
+// Keys that nav's configs once repeated from sim's (and the harness overwrote): refused with
+// the key that states the value.
+const std::vector<io::MovedKey> kRobotGeometryKeys = {
+    {"nav.avoidance.robot_radius", "sim.robot.radius"},
+    {"nav.avoidance.lidar_mount", "sim.lidar.mount"},
+    {"nav.localizer.lidar_mount", "sim.lidar.mount"},
+    {"nav.localizer.range_min", "sim.lidar.range_min"},
+    {"nav.localizer.range_max", "sim.lidar.range_max"},
+    {"nav.mapper.lidar_mount", "sim.lidar.mount"},
+    {"nav.mapper.hit_range_max", "sim.lidar.range_max"},
+};
+
+}  // namespace
+
+nav::RobotGeometry RobotGeometryOf(const sim::SimConfig& sim) {
+  nav::RobotGeometry robot;
+  robot.radius = sim.robot.radius;
+  robot.X_RL = sim.lidar.mount;
+  robot.range_min = sim.lidar.range_min;
+  robot.range_max = sim.lidar.range_max;
+  return robot;
+}
+
+void RouteConfig::Validate() const {
+  if (file.empty() == points.empty()) {
+    throw core::ConfigError(file.empty() ? "points" : "file",
+                            "give the route either as `file` or as inline `points`, not both");
+  }
+  for (std::size_t i = 0; i < switch_points.size(); ++i) {
+    core::RequirePositive("switch_points", switch_points[i]);
+    if (i > 0 && !(switch_points[i] > switch_points[i - 1])) {
+      throw core::ConfigError("switch_points", "must be strictly increasing, got " +
+                                                   core::FormatNumber(switch_points[i - 1]) +
+                                                   " then " + core::FormatNumber(switch_points[i]));
+    }
+  }
+  core::RequirePositive("revisit_radius", revisit_radius);
+}
+
+void CrossingConfig::Validate() const {
+  core::RequireIntInRange("count", count, 1, 1000);
+  core::RequireNonNegative("spread", spread);
+  core::RequirePositive("speed_mean", speed_mean);
+  core::RequireNonNegative("speed_std", speed_std);
+  if ((to - from).norm() < 1.0) throw core::ConfigError("to", "must be at least 1 m from `from`");
+}
+
+void EventConfig::Validate() const {
+  if (at_time.has_value() == at_route_s.has_value()) {
+    throw core::ConfigError("at_time", "give exactly one trigger: at_time (s) or at_route_s (m)");
+  }
+  if (at_time) core::RequireNonNegative("at_time", *at_time);
+  if (at_route_s) core::RequireNonNegative("at_route_s", *at_route_s);
+  if (action == EventAction::kObstacle && boxes.empty() && circles.empty()) {
+    throw core::ConfigError("boxes", "an obstacle event needs at least one box or circle");
+  }
+}
+
+void TeachConfig::Validate() const { core::RequireNonNegative("timeout_s", timeout_s); }
+
+void PlaybackConfig::Validate() const {
+  core::RequireIntInRange("repeats", repeats, 1, 10000);
+  core::RequireNonNegative("start_offset_xy", start_offset_xy);
+  core::RequireNonNegative("start_offset_yaw_deg", start_offset_yaw_deg);
+  core::RequirePositive("initial_sigma_xy", initial_sigma_xy);
+  core::RequirePositive("initial_sigma_yaw_deg", initial_sigma_yaw_deg);
+}
+
+void LimitsConfig::Validate() const {
+  core::RequireNonNegative("timeout_s", timeout_s);
+  core::RequirePositive("lost_distance", lost_distance);
+  core::RequirePositive("lost_time", lost_time);
+  core::RequirePositive("stall_time", stall_time);
+}
+
+void NavConfig::Validate() const {
+  core::RequireInRange("control_rate_hz", control_rate_hz, 1.0, 1000.0);
+}
+
+void ScenarioConfig::Validate() const {
+  if (name.empty()) throw core::ConfigError("name", "must not be empty");
+  if (world.empty()) throw core::ConfigError("world", "must name a world file");
+  if (modes.empty()) throw core::ConfigError("modes", "must list at least one map mode");
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (modes[i] == modes[j]) {
+        throw core::ConfigError("modes",
+                                "lists '" + std::string(core::EnumName(modes[i])) + "' twice");
+      }
+    }
+  }
+  sim.Validate();
+  // The control period must be a whole number of physics steps, like the sensors'.
+  sim::PeriodInSteps("nav.control_rate_hz", nav.control_rate_hz, sim.physics.time_step);
+  if (nav.follower.max_speed > sim.robot.max_speed) {
+    throw core::ConfigError("nav.follower.max_speed", "must not exceed sim.robot.max_speed (" +
+                                                          core::FormatNumber(sim.robot.max_speed) +
+                                                          " m/s)");
+  }
+  if (teach.teacher.speed > sim.robot.max_speed) {
+    throw core::ConfigError("teach.teacher.speed", "must not exceed sim.robot.max_speed (" +
+                                                       core::FormatNumber(sim.robot.max_speed) +
+                                                       " m/s)");
+  }
+}
+
+Scenario LoadScenario(const std::filesystem::path& file,
+                      const std::vector<io::ConfigOverride>& overrides) {
+  Scenario scenario;
+  scenario.source = file;
+  YAML::Node root = io::LoadYamlFile(file);
+  io::ApplyOverrides(root, overrides);
+  io::RejectMovedKeys(root, file.string(), overrides, kRobotGeometryKeys,
+                      "the robot's geometry is stated once, for the simulator and the navigation "
+                      "stack alike: set");
+  scenario.config = io::ReadConfig<ScenarioConfig>(root, file.string(), overrides);
+  ScenarioConfig& config = scenario.config;
+  const std::filesystem::path dir = file.parent_path();
+  scenario.robot = RobotGeometryOf(config.sim);
+
+  const sim::World world = sim::LoadWorld(dir / config.world);
+  scenario.teach_world = PhaseWorld(world, config.teach_only);
+  scenario.playback_world = PhaseWorld(world, config.playback_only);
+
+  scenario.route =
+      config.route.file.empty() ? config.route.points : io::ReadRouteFile(dir / config.route.file);
+  try {
+    sim::ValidateRoute(scenario.route);
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError(e.key_path(), Where(file) + e.what(), true);
+  }
+  scenario.route_length = RouteLength(scenario.route);
+  const double radius = config.sim.robot.radius;
+  try {
+    sim::CheckRouteIsDrivable(scenario.teach_world.geometry, scenario.route, radius);
+  } catch (const core::WorldError& e) {
+    throw core::WorldError(Where(file) + "the route is not drivable while teaching: " + e.what());
+  }
+  try {
+    sim::CheckRouteIsDrivable(scenario.playback_world.geometry, scenario.route, radius);
+  } catch (const core::WorldError& e) {
+    // A closed gate on the route during playback is a legitimate experiment (the robot must
+    // stop), so this is a warning, not an error.
+    scenario.playback_blocked = std::string("the route is blocked during playback: ") + e.what();
+  }
+  const core::Vec2 d = scenario.route[1] - scenario.route[0];
+  scenario.X_W_start =
+      core::Pose2(scenario.route[0].x(), scenario.route[0].y(), std::atan2(d.y(), d.x()));
+  try {
+    scenario.warnings =
+        CheckSwitchPoints(scenario.route, config.route.switch_points, config.route.revisit_radius);
+    for (std::size_t i = 0; i < config.events.size(); ++i) {
+      const EventConfig& event = config.events[i];
+      if (event.at_route_s && *event.at_route_s > scenario.route_length) {
+        throw core::ConfigError(
+            "events." + std::to_string(i) + ".at_route_s",
+            "lies beyond the route's end (" + core::FormatNumber(scenario.route_length) + " m)");
+      }
+    }
+  } catch (const core::ConfigError& e) {
+    if (e.located()) throw;
+    throw core::ConfigError(e.key_path(), Where(file) + e.what(), true);
+  }
+  if (!scenario.playback_blocked.empty()) scenario.warnings.push_back(scenario.playback_blocked);
+  return scenario;
+}
+
+double TeachTimeout(const Scenario& scenario) {
+  const ScenarioConfig& c = scenario.config;
+  if (c.teach.timeout_s > 0.0) return c.teach.timeout_s;
+  return 3.0 * scenario.route_length / c.teach.teacher.speed + 60.0;
+}
+
+double PlaybackTimeout(const Scenario& scenario, double teach_duration_s) {
+  const ScenarioConfig& c = scenario.config;
+  if (c.limits.timeout_s > 0.0) return c.limits.timeout_s;
+  return 2.0 * teach_duration_s + 60.0;
+}
+
+}  // namespace retrace::bench

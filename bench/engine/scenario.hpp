@@ -1,0 +1,289 @@
+#pragma once
+// Scenario files (scenarios/*.yaml): everything one teaching-playback experiment needs — the
+// world, the taught route and its map-switch points, the robot and its sensors, the
+// pedestrians, scripted events, how many playback runs, the limits that end a run, and every
+// navigation parameter. Strict: unknown keys and bad values are errors naming file, line and
+// key. Paths inside a scenario are relative to the scenario file's folder.
+//
+// The robot's radius, the LiDAR's mount and range are stated once, under `sim`; the navigation
+// stack (which cannot see sim) receives them as one value, Scenario::robot.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/engine/metrics_config.hpp"
+#include "bench/engine/trace.hpp"
+#include "core/config.hpp"
+#include "core/pose2.hpp"
+#include "io/config_override.hpp"
+#include "nav/localizer.hpp"
+#include "nav/mapper.hpp"
+#include "nav/obstacle_avoidance.hpp"
+#include "nav/path_follower.hpp"
+#include "nav/robot_geometry.hpp"
+#include "sim/simulator.hpp"
+#include "sim/teacher.hpp"
+#include "sim/world_file.hpp"
+
+namespace retrace::bench {
+
+/// The taught route: a polyline in W, from a route file or inline, and where the operator
+/// starts a new partial map (mode `partial`).
+struct RouteConfig {
+  std::string file;                ///< route file (x y per line, or AutoNavi x y z qx qy qz qw)
+  std::vector<core::Vec2> points;  ///< inline waypoints (W, m), when `file` is empty
+  /// Arc lengths (m) along the route at which map k+1 starts; strictly increasing, inside the
+  /// route. Empty: one partial map.
+  std::vector<double> switch_points;
+  /// m: a map's segment that comes back within this distance of where it already drove is
+  /// reported as a revisit (its switch point comes too late).
+  double revisit_radius = 3.0;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("file", file);
+    v("points", points);
+    v("switch_points", switch_points);
+    v("revisit_radius", revisit_radius);
+  }
+  void Validate() const;
+};
+
+/// Static objects that exist only during teaching or only during playback (parked cars, a
+/// moved bench, a closed gate): the world changes between teach and repeat.
+struct PhaseObjectsConfig {
+  std::vector<sim::BoxConfig> boxes;
+  std::vector<sim::CircleConfig> circles;
+  std::vector<sim::PolygonConfig> polygons;
+  std::vector<sim::WallConfig> walls;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("boxes", boxes);
+    v("circles", circles);
+    v("polygons", polygons);
+    v("walls", walls);
+  }
+  bool empty() const {
+    return boxes.empty() && circles.empty() && polygons.empty() && walls.empty();
+  }
+};
+
+enum class EventPhase { kTeach, kPlayback, kBoth };
+enum class EventAction { kPedestrians, kCrossing, kObstacle };
+
+/// Pedestrians sent across the robot's path: `count` people appear around `from` (within
+/// `spread`) and walk to `to` and back, again and again.
+struct CrossingConfig {
+  core::Vec2 from{0.0, 0.0};
+  core::Vec2 to{0.0, 0.0};
+  int count = 3;
+  double spread = 1.0;      ///< m, half-size of the square they appear in
+  double speed_mean = 1.2;  ///< m/s
+  double speed_std = 0.2;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("from", from);
+    v("to", to);
+    v("count", count);
+    v("spread", spread);
+    v("speed_mean", speed_mean);
+    v("speed_std", speed_std);
+  }
+  void Validate() const;
+};
+
+/// A scripted event: at a time, or when the robot's progress along the route passes an arc
+/// length, something happens in the world.
+///   pedestrians: the group `pedestrians` spawns (any sim pedestrian group)
+///   crossing:    pedestrians walk across the path (see CrossingConfig)
+///   obstacle:    `boxes` and `circles` appear (e.g. a bin put on the path)
+struct EventConfig {
+  std::string name;
+  EventPhase phase = EventPhase::kPlayback;
+  std::optional<double> at_time;     ///< s since the run (or the teaching drive) started
+  std::optional<double> at_route_s;  ///< m of progress along the route
+  EventAction action = EventAction::kPedestrians;
+  sim::PedestrianGroupConfig pedestrians;
+  CrossingConfig crossing;
+  std::vector<sim::BoxConfig> boxes;
+  std::vector<sim::CircleConfig> circles;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("name", name);
+    v("phase", phase);
+    v("at_time", at_time);
+    v("at_route_s", at_route_s);
+    v("action", action);
+    v("pedestrians", pedestrians);
+    v("crossing", crossing);
+    v("boxes", boxes);
+    v("circles", circles);
+  }
+  void Validate() const;
+};
+
+struct TeachConfig {
+  sim::TeacherConfig teacher;
+  bool pedestrians = true;  ///< the world's pedestrians walk during teaching too
+  double timeout_s = 0.0;   ///< s; 0: 3 × the route length at the teacher's speed + 60 s
+
+  template <class V>
+  void Reflect(V& v) {
+    v("teacher", teacher);
+    v("pedestrians", pedestrians);
+    v("timeout_s", timeout_s);
+  }
+  void Validate() const;
+};
+
+struct PlaybackConfig {
+  int repeats = 5;
+  double start_offset_xy = 0.1;       ///< m, std of the start's offset from the teaching start
+  double start_offset_yaw_deg = 2.0;  ///< std of the start's heading offset
+  double initial_sigma_xy = 0.2;      ///< m, the localizer's initial spread at map 0's origin
+  double initial_sigma_yaw_deg = 3.0;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("repeats", repeats);
+    v("start_offset_xy", start_offset_xy);
+    v("start_offset_yaw_deg", start_offset_yaw_deg);
+    v("initial_sigma_xy", initial_sigma_xy);
+    v("initial_sigma_yaw_deg", initial_sigma_yaw_deg);
+  }
+  void Validate() const;
+};
+
+/// When a playback run ends without reaching the goal.
+struct LimitsConfig {
+  double timeout_s = 0.0;      ///< s; 0: 2 × the teaching drive's duration + 60 s
+  double lost_distance = 2.0;  ///< m: localization error beyond this ...
+  double lost_time = 5.0;      ///< s: ... for this long ends the run as `lost`
+  /// s without 0.5 m of progress along the path (stuck behind an obstacle, or following a
+  /// wrong estimate into a wall) that ends the run as a timeout early
+  double stall_time = 60.0;
+  bool stop_on_collision = false;
+  /// Modes whose runs must all succeed; otherwise `retrace run` exits with code 1.
+  std::vector<MapMode> success_required = {MapMode::kPartial, MapMode::kConsistent};
+
+  template <class V>
+  void Reflect(V& v) {
+    v("timeout_s", timeout_s);
+    v("lost_distance", lost_distance);
+    v("lost_time", lost_time);
+    v("stall_time", stall_time);
+    v("stop_on_collision", stop_on_collision);
+    v("success_required", success_required);
+  }
+  void Validate() const;
+};
+
+/// The navigation stack's parameters.
+struct NavConfig {
+  double control_rate_hz = 20.0;  ///< follower and avoidance
+  nav::MapperConfig mapper;
+  nav::LocalizerConfig localizer;
+  nav::PathFollowerConfig follower;
+  nav::ObstacleAvoidanceConfig avoidance;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("control_rate_hz", control_rate_hz);
+    v("mapper", mapper);
+    v("localizer", localizer);
+    v("follower", follower);
+    v("avoidance", avoidance);
+  }
+  void Validate() const;
+};
+
+struct ScenarioConfig {
+  std::string name;
+  std::string world;  ///< world file
+  RouteConfig route;
+  std::uint64_t seed = 1;
+  std::vector<MapMode> modes = {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
+  TeachConfig teach;
+  PlaybackConfig playback;
+  LimitsConfig limits;
+  sim::SimConfig sim;
+  NavConfig nav;
+  MetricsConfig metrics;
+  PhaseObjectsConfig teach_only;
+  PhaseObjectsConfig playback_only;
+  std::vector<EventConfig> events;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("name", name);
+    v("world", world);
+    v("route", route);
+    v("seed", seed);
+    v("modes", modes);
+    v("teach", teach);
+    v("playback", playback);
+    v("limits", limits);
+    v("sim", sim);
+    v("nav", nav);
+    v("metrics", metrics);
+    v("teach_only", teach_only);
+    v("playback_only", playback_only);
+    v("events", events);
+  }
+  void Validate() const;
+};
+
+/// A loaded scenario: its effective config, the robot as nav sees it, the route, the two worlds
+/// (teaching and playback differ by the phase objects) and what was worth warning about.
+struct Scenario {
+  ScenarioConfig config;
+  nav::RobotGeometry robot;  ///< RobotGeometryOf(config.sim)
+  std::filesystem::path source;
+  std::vector<core::Vec2> route;
+  double route_length = 0.0;
+  core::Pose2 X_W_start;  ///< the teaching start: the first route point, facing the second
+  sim::World teach_world;
+  sim::World playback_world;
+  std::vector<std::string> warnings;
+  std::string playback_blocked;  ///< why the route is not drivable in the playback world, if so
+};
+
+/// The robot's geometry for the navigation stack: sim.robot.radius, sim.lidar.mount and
+/// sim.lidar.range_min / range_max.
+nav::RobotGeometry RobotGeometryOf(const sim::SimConfig& sim);
+
+/// Loads and checks a scenario: strict keys (nav keys that would repeat the robot's geometry
+/// are refused naming the sim key that holds it), overrides (`--set`), the world and route files,
+/// the route drivable by the robot in both worlds, switch points inside the route (revisits
+/// become warnings), the start free. Throws core::ConfigError / IoError / WorldError with one
+/// message naming the file.
+Scenario LoadScenario(const std::filesystem::path& file,
+                      const std::vector<io::ConfigOverride>& overrides = {});
+
+/// The timeouts with their automatic defaults resolved (s).
+double TeachTimeout(const Scenario& scenario);
+double PlaybackTimeout(const Scenario& scenario, double teach_duration_s);
+
+}  // namespace retrace::bench
+
+template <>
+struct retrace::core::EnumTraits<retrace::bench::EventPhase> {
+  static constexpr std::array<std::pair<retrace::bench::EventPhase, std::string_view>, 3> kNames{
+      {{retrace::bench::EventPhase::kTeach, "teach"},
+       {retrace::bench::EventPhase::kPlayback, "playback"},
+       {retrace::bench::EventPhase::kBoth, "both"}}};
+};
+
+template <>
+struct retrace::core::EnumTraits<retrace::bench::EventAction> {
+  static constexpr std::array<std::pair<retrace::bench::EventAction, std::string_view>, 3> kNames{
+      {{retrace::bench::EventAction::kPedestrians, "pedestrians"},
+       {retrace::bench::EventAction::kCrossing, "crossing"},
+       {retrace::bench::EventAction::kObstacle, "obstacle"}}};
+};

@@ -1,0 +1,52 @@
+#pragma once
+// The one scheduler of episodes: it runs the teaching drives of several jobs in parallel, then
+// all their playback runs, each phase longest first so that a long route does not leave cores
+// idle at the end. `retrace run`, `playback`, `bench`, `sweep` and `compare` all run through it.
+// Each run is seeded by its own index (PlaybackRng), so the results do not depend on the number
+// of threads or on which thread ran what.
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "bench/engine/playback_observer.hpp"
+#include "bench/engine/progress.hpp"
+#include "bench/engine/scenario.hpp"
+#include "bench/engine/teach_drive.hpp"
+#include "bench/engine/trace.hpp"
+
+namespace retrace::bench {
+
+/// One teaching drive (or teach folders read back) and its playback runs in every mode.
+struct EpisodeJob {
+  const Scenario* scenario = nullptr;  ///< must outlive the call
+  std::vector<MapMode> modes;          ///< modes to teach; ignored when `taught` is given
+  /// Already taught modes (e.g. teach folders read back): no teaching drive then.
+  std::vector<ModeTeach> taught;
+  double taught_duration_s = 0.0;  ///< with `taught`: the teaching drive's duration (s)
+  int repeats = 0;                 ///< playback runs per mode
+};
+
+struct EpisodeCallbacks {
+  /// A playback run finished: `job`, the index of its mode in the job, the mode's teach and
+  /// the run's trace (its `run` field says which). Called from a worker thread: write only the
+  /// slot of (job, mode, run).
+  std::function<void(std::size_t job, std::size_t mode, const ModeTeach& teach, RunTrace&& run)>
+      run_done;
+  /// Every run of (job, mode) finished (right after teaching when repeats is 0): the mode's
+  /// teach is handed over. Called once per (job, mode), from a worker thread, after all of its
+  /// run_done calls.
+  std::function<void(std::size_t job, std::size_t mode, ModeTeach&& teach)> mode_done;
+  /// Optional: an observer of run `run` (nullptr: none), e.g. a video recorder.
+  std::function<std::unique_ptr<PlaybackObserver>(const ModeTeach& teach, int run)> observe;
+};
+
+/// Runs the jobs on `threads` threads (>= 1) and returns each job's teaching duration (s,
+/// simulated). Progress: a "teach" phase of the drives (when any job teaches), then a
+/// "playback" phase of all runs. Throws core::WorldError when a teaching drive cannot finish
+/// its route or the world refuses a run's start; the first error by job order wins.
+std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, ProgressSink* progress,
+                                const EpisodeCallbacks& callbacks);
+
+}  // namespace retrace::bench

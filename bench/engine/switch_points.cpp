@@ -1,0 +1,177 @@
+#include "bench/engine/switch_points.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include "core/check.hpp"
+#include "core/config.hpp"
+#include "core/errors.hpp"
+
+namespace retrace::bench {
+namespace {
+
+using core::Vec2;
+
+// How far back (in multiples of the revisit radius) an earlier part of the route must lie to
+// count as a revisit; closer parts are simply the road just driven, bent by a turn.
+constexpr double kRevisitLagFactor = 3.0;
+
+std::vector<double> CumulativeArcLength(const std::vector<Vec2>& route) {
+  std::vector<double> cum(route.size(), 0.0);
+  for (std::size_t i = 1; i < route.size(); ++i)
+    cum[i] = cum[i - 1] + (route[i] - route[i - 1]).norm();
+  return cum;
+}
+
+Vec2 PointAt(const std::vector<Vec2>& route, const std::vector<double>& cum, double s) {
+  const auto it = std::upper_bound(cum.begin(), cum.end(), s);
+  if (it == cum.begin()) return route.front();
+  if (it == cum.end()) return route.back();
+  const std::size_t i = static_cast<std::size_t>(it - cum.begin()) - 1;
+  const double len = cum[i + 1] - cum[i];
+  const double t = len > 0.0 ? (s - cum[i]) / len : 0.0;
+  return route[i] + t * (route[i + 1] - route[i]);
+}
+
+// Distance from p to the route's stretch [s_from, s_to]; *s_closest gets the arc length of the
+// closest point.
+double DistanceToStretch(const std::vector<Vec2>& route, const std::vector<double>& cum,
+                         const Vec2& p, double s_from, double s_to, double* s_closest) {
+  double best = std::numeric_limits<double>::infinity();
+  *s_closest = s_from;
+  for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+    const double len = cum[i + 1] - cum[i];
+    if (cum[i + 1] < s_from || cum[i] > s_to || len <= 0.0) continue;
+    // The piece of segment i inside the window, as a parameter range along it.
+    const double t0 = std::max(0.0, (s_from - cum[i]) / len);
+    const double t1 = std::min(1.0, (s_to - cum[i]) / len);
+    const Vec2 d = route[i + 1] - route[i];
+    const double t = std::clamp((p - route[i]).dot(d) / (len * len), t0, t1);
+    const double dist = (route[i] + t * d - p).norm();
+    if (dist < best) {
+      best = dist;
+      *s_closest = cum[i] + t * len;
+    }
+  }
+  return best;
+}
+
+struct Revisit {
+  double s = 0.0;          // first sample that revisits
+  double s_before = 0.0;   // the sample before it (still fine)
+  double s_earlier = 0.0;  // where the route was before, within the radius
+};
+
+// Samples finely enough that a revisit cannot slip between two samples unnoticed by more than a
+// fraction of the radius.
+double SampleStep(double revisit_radius) { return std::clamp(revisit_radius / 8.0, 0.05, 0.5); }
+
+// The first sample of the stretch [s_start, s_end] that comes within revisit_radius of an
+// earlier part of the same stretch lying more than kRevisitLagFactor radii behind. Samples are
+// s_start + i·step and s_end, so CheckSwitchPoints and SuggestSwitchPoints see the same points.
+std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::vector<double>& cum,
+                                    double s_start, double s_end, double revisit_radius) {
+  const double step = SampleStep(revisit_radius);
+  const double lag = kRevisitLagFactor * revisit_radius;
+  double previous = s_start;
+  for (long i = 0;; ++i) {
+    double s = s_start + static_cast<double>(i) * step;
+    const bool last = s >= s_end;
+    if (last) s = s_end;
+    if (s - lag > s_start) {
+      double s_earlier = 0.0;
+      const double d =
+          DistanceToStretch(route, cum, PointAt(route, cum, s), s_start, s - lag, &s_earlier);
+      if (d < revisit_radius) return Revisit{s, previous, s_earlier};
+    }
+    if (last) return std::nullopt;
+    previous = s;
+  }
+}
+
+std::string Metres(double v) { return core::FormatNumber(std::round(v * 10.0) / 10.0) + " m"; }
+
+void RequireUsable(const std::vector<Vec2>& route, double revisit_radius) {
+  if (route.size() < 2) {
+    throw core::ConfigError("route",
+                            "needs at least 2 points, got " + std::to_string(route.size()));
+  }
+  core::RequirePositive("revisit_radius", revisit_radius);
+}
+
+}  // namespace
+
+double RouteLength(const std::vector<Vec2>& route) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < route.size(); ++i) length += (route[i] - route[i - 1]).norm();
+  return length;
+}
+
+double ProjectOntoRoute(const std::vector<Vec2>& route, const Vec2& p, double s_from, double s_to) {
+  RETRACE_CHECK(route.size() >= 2);
+  const std::vector<double> cum = CumulativeArcLength(route);
+  const double lo = std::clamp(std::min(s_from, s_to), 0.0, cum.back());
+  const double hi = std::clamp(std::max(s_from, s_to), 0.0, cum.back());
+  double s = lo;
+  DistanceToStretch(route, cum, p, lo, hi, &s);
+  return s;
+}
+
+std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
+                                           const std::vector<double>& switch_points,
+                                           double revisit_radius) {
+  RequireUsable(route, revisit_radius);
+  const std::vector<double> cum = CumulativeArcLength(route);
+  const double length = cum.back();
+  for (std::size_t i = 0; i < switch_points.size(); ++i) {
+    const double s = switch_points[i];
+    const std::string which =
+        "switch point " + std::to_string(i) + " (" + core::FormatNumber(s) + ")";
+    if (!(s > 0.0) || !(s < length)) {
+      throw core::ConfigError("route.switch_points",
+                              which + " must lie inside the route, between 0 and its length " +
+                                  Metres(length) + " (exclusive)");
+    }
+    if (i > 0 && !(s > switch_points[i - 1])) {
+      throw core::ConfigError("route.switch_points",
+                              which + " must be greater than the one before it (" +
+                                  core::FormatNumber(switch_points[i - 1]) +
+                                  "): switch points are arc lengths in increasing order");
+    }
+  }
+
+  std::vector<std::string> warnings;
+  for (std::size_t k = 0; k <= switch_points.size(); ++k) {
+    const double s_start = k == 0 ? 0.0 : switch_points[k - 1];
+    const double s_end = k == switch_points.size() ? length : switch_points[k];
+    const auto revisit = FirstRevisit(route, cum, s_start, s_end, revisit_radius);
+    if (!revisit) continue;
+    std::ostringstream msg;
+    msg << "partial map " << k << " (route " << Metres(s_start) << " to " << Metres(s_end)
+        << ") revisits its own path from " << Metres(revisit->s) << " on (within "
+        << core::FormatNumber(revisit_radius) << " m of where it was at "
+        << Metres(revisit->s_earlier) << "): the switch is too late; start the next map before "
+        << Metres(revisit->s);
+    warnings.push_back(msg.str());
+  }
+  return warnings;
+}
+
+std::vector<double> SuggestSwitchPoints(const std::vector<Vec2>& route, double revisit_radius) {
+  RequireUsable(route, revisit_radius);
+  const std::vector<double> cum = CumulativeArcLength(route);
+  std::vector<double> points;
+  double s_start = 0.0;
+  while (const auto revisit = FirstRevisit(route, cum, s_start, cum.back(), revisit_radius)) {
+    // The last sample before the revisit: the map ending there is still clean, and it lies at
+    // least (lag - step) beyond s_start, so the loop advances.
+    points.push_back(revisit->s_before);
+    s_start = revisit->s_before;
+  }
+  return points;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,40 @@
+#pragma once
+// The teaching drive: the simulated operator drives the route once while teach recorders build
+// the maps of every requested mode from the same sensor data — so that the modes differ only
+// in how the maps were made (docs/DESIGN.md §6):
+//   partial     odometry poses, a new map at every switch point (the paper's method)
+//   single      odometry poses, one map
+//   consistent  ground-truth poses relative to the start, one map (a perfect SLAM's map)
+
+#include <string>
+#include <vector>
+
+#include "bench/engine/progress.hpp"
+#include "bench/engine/scenario.hpp"
+#include "bench/engine/trace.hpp"
+#include "nav/teach_bundle.hpp"
+#include "sim/collision_event.hpp"
+
+namespace retrace::bench {
+
+struct ModeTeach {
+  MapMode mode = MapMode::kPartial;
+  nav::TeachBundle bundle;
+  TeachTrace trace;  ///< the drive's ground truth, with this mode's per-map references
+};
+
+struct TeachResult {
+  double duration_s = 0.0;  ///< simulated
+  double cpu_time_s = 0.0;
+  std::vector<sim::CollisionEvent> collisions;
+  std::vector<std::string> events;  ///< "time name" of each scripted event fired
+  std::vector<ModeTeach> modes;     ///< in the order requested
+};
+
+/// Drives the route with the teacher and builds the bundles of `modes`. Throws
+/// core::WorldError when the teacher does not finish the route within the teach timeout (a
+/// route it cannot drive), with where it got stuck.
+TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,
+                          const ProgressFn& progress = {});
+
+}  // namespace retrace::bench

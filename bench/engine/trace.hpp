@@ -1,0 +1,118 @@
+#pragma once
+// What an episode records: the teaching drive's ground truth next to each partial map's own
+// poses, and per playback run one sample per control tick plus the localizer updates, map
+// switches and collisions. The episode runner (bench/engine/playback.cpp) fills these; the metrics
+// (bench/metrics/metrics.cpp) are computed from them alone, after the run.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/engine/snapshot.hpp"
+#include "core/config.hpp"
+#include "core/pose2.hpp"
+#include "core/twist.hpp"
+#include "sim/collision_event.hpp"
+
+namespace retrace::bench {
+
+/// How the teach bundle's maps were built from the teaching drive.
+enum class MapMode {
+  kPartial,     ///< odometry maps, a new one at every switch point (the paper's method)
+  kSingle,      ///< one odometry map of the whole route
+  kConsistent,  ///< one map from ground-truth poses (what a perfect SLAM would give)
+};
+
+/// One partial map's reference: for every odometry tick of its segment of the teaching drive,
+/// the recorder's pose in the map and the ground truth at the same instant.
+struct TeachMapTrace {
+  std::vector<double> time;       ///< s since the teaching drive started
+  std::vector<core::Pose2> X_MR;  ///< X_{M_k R} (the mapper's pose in map k)
+  std::vector<core::Pose2> X_WR;  ///< ground truth X_{W R} at the same instant
+};
+
+/// The teaching drive as ground truth, and how it maps onto each partial map of one mode.
+struct TeachTrace {
+  std::vector<double> time;         ///< s, one entry per control tick of the teaching drive
+  std::vector<core::Pose2> X_WR;    ///< ground truth (the taught trajectory in W)
+  std::vector<core::Pose2> X_OR;    ///< the wheel odometry's own pose
+  std::vector<TeachMapTrace> maps;  ///< per partial map of the mode, in order
+};
+
+/// One control tick of a playback run.
+struct PlaybackSample {
+  double time = 0.0;            ///< s since the run started
+  int map_index = 0;            ///< the map the localizer works in
+  core::Pose2 X_WR;             ///< ground truth
+  core::Pose2 X_MR;             ///< the localizer's estimate in map `map_index`
+  core::Pose2 X_OR;             ///< wheel odometry
+  core::Twist command;          ///< sent to the robot (after avoidance)
+  double clearance = 0.0;       ///< m from the robot's edge to the nearest static surface
+  double pedestrian_gap = 0.0;  ///< m from the robot's edge to the nearest pedestrian's (inf: none)
+  bool avoiding = false;        ///< obstacle avoidance changed the follower's command
+};
+
+/// One localizer measurement update that ran, with the dynamic-point test scored against the
+/// LiDAR's own knowledge of which beams hit a pedestrian.
+struct LocalizerSample {
+  double time = 0.0;
+  int beams_tested = 0;
+  int beams_rejected = 0;
+  int true_positive = 0;   ///< rejected and hit a pedestrian
+  int false_positive = 0;  ///< rejected, but hit static geometry (or was spurious)
+  int false_negative = 0;  ///< tested, hit a pedestrian, not rejected
+  double cpu_s = 0.0;      ///< thread CPU time of the measurement update (s)
+};
+
+/// A map switch done by the map server.
+struct SwitchRecord {
+  double time = 0.0;
+  int from = 0;
+  int to = 0;
+  core::Pose2 X_WR;   ///< ground truth at the switch
+  core::Pose2 X_MnR;  ///< the estimate in the new map right after the transform (eq. 1)
+};
+
+/// A scripted event that fired.
+struct EventRecord {
+  double time = 0.0;
+  std::string name;
+};
+
+/// How a playback run ended.
+enum class Outcome { kSuccess, kTimeout, kCollision, kLost };
+
+struct RunTrace {
+  int run = 0;             ///< index among the repeats
+  std::uint64_t seed = 0;  ///< the run's own seed
+  Outcome outcome = Outcome::kTimeout;
+  std::vector<PlaybackSample> samples;
+  std::vector<LocalizerSample> updates;
+  std::vector<SwitchRecord> switches;
+  std::vector<sim::CollisionEvent> collisions;
+  std::vector<EventRecord> events;
+  /// The update in which the most tested beams hit pedestrians (none if no beam ever did).
+  std::optional<LocalizationSnapshot> snapshot;
+  double sim_time_s = 0.0;  ///< simulated duration
+  double cpu_time_s = 0.0;  ///< thread CPU time of the whole run
+};
+
+}  // namespace retrace::bench
+
+template <>
+struct retrace::core::EnumTraits<retrace::bench::MapMode> {
+  static constexpr std::array<std::pair<retrace::bench::MapMode, std::string_view>, 3> kNames{
+      {{retrace::bench::MapMode::kPartial, "partial"},
+       {retrace::bench::MapMode::kSingle, "single"},
+       {retrace::bench::MapMode::kConsistent, "consistent"}}};
+};
+
+template <>
+struct retrace::core::EnumTraits<retrace::bench::Outcome> {
+  static constexpr std::array<std::pair<retrace::bench::Outcome, std::string_view>, 4> kNames{
+      {{retrace::bench::Outcome::kSuccess, "success"},
+       {retrace::bench::Outcome::kTimeout, "timeout"},
+       {retrace::bench::Outcome::kCollision, "collision"},
+       {retrace::bench::Outcome::kLost, "lost"}}};
+};

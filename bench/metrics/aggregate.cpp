@@ -1,0 +1,119 @@
+#include <algorithm>
+#include <cmath>
+
+#include "bench/metrics/internal/run_series.hpp"
+#include "bench/metrics/internal/sample_stats.hpp"
+#include "bench/metrics/metrics.hpp"
+
+namespace retrace::bench {
+
+using namespace internal;
+
+AggregateMetrics Aggregate(const TeachTrace& teach, const std::vector<RunTrace>& runs,
+                           const std::vector<RunMetrics>& metrics, const MetricsConfig& config) {
+  RETRACE_CHECK(runs.size() == metrics.size());
+  AggregateMetrics a;
+  TeachIndex index(teach, config);
+  a.runs = static_cast<int>(runs.size());
+  a.taught_path_length_m = index.path.length();
+
+  std::vector<RunSeries> series;
+  std::vector<int> ids;
+  std::vector<double> tracking, loc_m, loc_rad;
+  for (const RunTrace& run : runs) {
+    series.push_back(Series(index, run, config, /*with_localization=*/true));
+    ids.push_back(run.run);
+    const RunSeries& s = series.back();
+    tracking.insert(tracking.end(), s.tracking_error_m.begin(), s.tracking_error_m.end());
+    loc_m.insert(loc_m.end(), s.localization_error_m.begin(), s.localization_error_m.end());
+    loc_rad.insert(loc_rad.end(), s.localization_error_rad.begin(), s.localization_error_rad.end());
+  }
+  a.tracking_error_m_pooled = Summarize(tracking);
+  a.localization_error_m_pooled = Summarize(loc_m);
+  a.localization_error_rad_pooled = Summarize(loc_rad);
+  a.lost_fraction_pooled = FractionAbove(loc_m, config.lost_error);
+  a.repeatability =
+      RepeatabilityFromSeries(index.path.length(), index.path.empty(), ids, series, config);
+
+  std::vector<const Summary*> tracking_runs, loc_m_runs, loc_rad_runs;
+  double time_sum = 0.0, length_sum = 0.0, progress_sum = 0.0, lost_sum = 0.0;
+  int lost_runs = 0;
+  double switch_sum_m = 0.0, switch_sum_rad = 0.0, update_ms_sum = 0.0;
+  for (const RunMetrics& m : metrics) {
+    if (m.success) ++a.successes;
+    const int outcome = static_cast<int>(m.outcome);
+    if (outcome >= 0 && outcome < static_cast<int>(a.outcome_counts.size())) {
+      ++a.outcome_counts[static_cast<std::size_t>(outcome)];
+    }
+    time_sum += m.time_s;
+    length_sum += m.path_length_m;
+    progress_sum += m.progress_m;
+    tracking_runs.push_back(&m.tracking_error_m);
+    loc_m_runs.push_back(&m.localization_error_m);
+    loc_rad_runs.push_back(&m.localization_error_rad);
+    if (std::isfinite(m.lost_fraction)) {
+      lost_sum += m.lost_fraction;
+      ++lost_runs;
+    }
+
+    CollisionStats& c = a.collisions;
+    c.static_incidents += m.collisions.static_incidents;
+    c.pedestrian_incidents += m.collisions.pedestrian_incidents;
+    c.pedestrian_incidents_robot_driving += m.collisions.pedestrian_incidents_robot_driving;
+    c.static_events += m.collisions.static_events;
+    c.pedestrian_events += m.collisions.pedestrian_events;
+    c.min_clearance_m = MinSkipNaN(c.min_clearance_m, m.collisions.min_clearance_m);
+    c.min_pedestrian_gap_m = MinSkipNaN(c.min_pedestrian_gap_m, m.collisions.min_pedestrian_gap_m);
+    if (m.collisions.static_incidents + m.collisions.pedestrian_incidents > 0) {
+      ++a.runs_with_collision;
+    }
+
+    for (const SwitchError& e : m.switches) {
+      if (!std::isfinite(e.error_m) || !std::isfinite(e.error_rad)) continue;
+      ++a.switch_error.count;
+      switch_sum_m += e.error_m;
+      switch_sum_rad += e.error_rad;
+      a.switch_error.max_m = MaxSkipNaN(a.switch_error.max_m, e.error_m);
+      a.switch_error.max_rad = MaxSkipNaN(a.switch_error.max_rad, e.error_rad);
+    }
+
+    DynamicPointStats& d = a.dynamic_points;
+    d.beams_tested += m.dynamic_points.beams_tested;
+    d.beams_rejected += m.dynamic_points.beams_rejected;
+    d.true_positive += m.dynamic_points.true_positive;
+    d.false_positive += m.dynamic_points.false_positive;
+    d.false_negative += m.dynamic_points.false_negative;
+
+    a.cpu.localizer_updates += m.cpu.localizer_updates;
+    if (m.cpu.localizer_updates > 0) {
+      update_ms_sum += m.cpu.localizer_update_mean_ms * m.cpu.localizer_updates;
+    }
+    a.cpu.localizer_update_max_ms =
+        MaxSkipNaN(a.cpu.localizer_update_max_ms, m.cpu.localizer_update_max_ms);
+    a.cpu.sim_time_s += m.cpu.sim_time_s;
+    a.cpu.cpu_time_s += m.cpu.cpu_time_s;
+  }
+  if (a.runs > 0) {
+    a.success_rate = static_cast<double>(a.successes) / a.runs;
+    a.mean_time_s = time_sum / a.runs;
+    a.mean_path_length_m = length_sum / a.runs;
+    a.mean_progress_m = progress_sum / a.runs;
+  }
+  a.tracking_error_m_run_mean = MeanOfSummaries(tracking_runs);
+  a.localization_error_m_run_mean = MeanOfSummaries(loc_m_runs);
+  a.localization_error_rad_run_mean = MeanOfSummaries(loc_rad_runs);
+  if (lost_runs > 0) a.lost_fraction_run_mean = lost_sum / lost_runs;
+  if (a.switch_error.count > 0) {
+    a.switch_error.mean_m = switch_sum_m / a.switch_error.count;
+    a.switch_error.mean_rad = switch_sum_rad / a.switch_error.count;
+  }
+  FinishDynamicPoints(a.dynamic_points);
+  if (a.cpu.localizer_updates > 0) {
+    a.cpu.localizer_update_mean_ms = update_ms_sum / a.cpu.localizer_updates;
+  }
+  a.cpu.real_time_factor =
+      a.cpu.cpu_time_s > 0.0 ? a.cpu.sim_time_s / a.cpu.cpu_time_s : kMetricNaN;
+  return a;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,124 @@
+#include "bench/metrics/metrics_json.hpp"
+
+#include <string>
+
+#include "io/json_writer.hpp"
+
+namespace retrace::bench {
+namespace {
+
+nlohmann::json ToJson(const CollisionStats& c) {
+  return {{"static_incidents", c.static_incidents},
+          {"pedestrian_incidents", c.pedestrian_incidents},
+          {"pedestrian_incidents_robot_driving", c.pedestrian_incidents_robot_driving},
+          {"static_events", c.static_events},
+          {"pedestrian_events", c.pedestrian_events},
+          {"min_clearance_m", io::JsonNumber(c.min_clearance_m)},
+          {"min_pedestrian_gap_m", io::JsonNumber(c.min_pedestrian_gap_m)}};
+}
+
+nlohmann::json ToJson(const DynamicPointStats& d) {
+  return {{"beams_tested", d.beams_tested},
+          {"beams_rejected", d.beams_rejected},
+          {"true_positive", d.true_positive},
+          {"false_positive", d.false_positive},
+          {"false_negative", d.false_negative},
+          {"rejected_fraction", io::JsonNumber(d.rejected_fraction)},
+          {"precision", io::JsonNumber(d.precision)},
+          {"recall", io::JsonNumber(d.recall)}};
+}
+
+nlohmann::json ToJson(const CpuStats& c) {
+  return {{"localizer_updates", c.localizer_updates},
+          {"localizer_update_mean_ms", io::JsonNumber(c.localizer_update_mean_ms)},
+          {"localizer_update_max_ms", io::JsonNumber(c.localizer_update_max_ms)},
+          {"sim_time_s", io::JsonNumber(c.sim_time_s)},
+          {"cpu_time_s", io::JsonNumber(c.cpu_time_s)},
+          {"real_time_factor", io::JsonNumber(c.real_time_factor)}};
+}
+
+nlohmann::json PooledAndRunMean(const Summary& pooled, const Summary& run_mean) {
+  return {{"pooled", ToJson(pooled)}, {"run_mean", ToJson(run_mean)}};
+}
+
+}  // namespace
+
+nlohmann::json ToJson(const Summary& s) {
+  return {{"mean", io::JsonNumber(s.mean)},
+          {"rms", io::JsonNumber(s.rms)},
+          {"p95", io::JsonNumber(s.p95)},
+          {"max", io::JsonNumber(s.max)},
+          {"count", s.count}};
+}
+
+nlohmann::json ToJson(const RunMetrics& m) {
+  nlohmann::json switches = nlohmann::json::array();
+  for (const SwitchError& e : m.switches) {
+    switches.push_back({{"time_s", io::JsonNumber(e.time_s)},
+                        {"from", e.from},
+                        {"to", e.to},
+                        {"error_m", io::JsonNumber(e.error_m)},
+                        {"error_rad", io::JsonNumber(e.error_rad)}});
+  }
+  return {{"run", m.run},
+          {"seed", m.seed},
+          {"outcome", std::string(core::EnumName(m.outcome))},
+          {"success", m.success},
+          {"samples", m.samples},
+          {"time_s", io::JsonNumber(m.time_s)},
+          {"path_length_m", io::JsonNumber(m.path_length_m)},
+          {"progress_m", io::JsonNumber(m.progress_m)},
+          {"tracking_error_m", ToJson(m.tracking_error_m)},
+          {"localization_error_m", ToJson(m.localization_error_m)},
+          {"localization_error_rad", ToJson(m.localization_error_rad)},
+          {"lost_fraction", io::JsonNumber(m.lost_fraction)},
+          {"collisions", ToJson(m.collisions)},
+          {"switch_error",
+           {{"count", m.switches.size()},
+            {"max_m", io::JsonNumber(m.switch_error_max_m)},
+            {"max_rad", io::JsonNumber(m.switch_error_max_rad)},
+            {"switches", std::move(switches)}}},
+          {"dynamic_points", ToJson(m.dynamic_points)},
+          {"cpu", ToJson(m.cpu)}};
+}
+
+nlohmann::json ToJson(const AggregateMetrics& a) {
+  nlohmann::json outcomes = nlohmann::json::object();
+  for (const auto& [outcome, name] : core::EnumTraits<Outcome>::kNames) {
+    outcomes[std::string(name)] = a.outcome_counts[static_cast<std::size_t>(outcome)];
+  }
+  const Repeatability& r = a.repeatability;
+  nlohmann::json collisions = ToJson(a.collisions);
+  collisions["runs_with_collision"] = a.runs_with_collision;
+  return {{"runs", a.runs},
+          {"successes", a.successes},
+          {"success_rate", io::JsonNumber(a.success_rate)},
+          {"outcomes", std::move(outcomes)},
+          {"taught_path_length_m", io::JsonNumber(a.taught_path_length_m)},
+          {"mean_time_s", io::JsonNumber(a.mean_time_s)},
+          {"mean_path_length_m", io::JsonNumber(a.mean_path_length_m)},
+          {"mean_progress_m", io::JsonNumber(a.mean_progress_m)},
+          {"tracking_error_m",
+           PooledAndRunMean(a.tracking_error_m_pooled, a.tracking_error_m_run_mean)},
+          {"localization_error_m",
+           PooledAndRunMean(a.localization_error_m_pooled, a.localization_error_m_run_mean)},
+          {"localization_error_rad",
+           PooledAndRunMean(a.localization_error_rad_pooled, a.localization_error_rad_run_mean)},
+          {"lost_fraction",
+           {{"pooled", io::JsonNumber(a.lost_fraction_pooled)},
+            {"run_mean", io::JsonNumber(a.lost_fraction_run_mean)}}},
+          {"repeatability_m", io::JsonNumber(r.repeatability_m)},
+          {"repeatability_max_spread_m", io::JsonNumber(r.max_spread_m)},
+          {"repeatability_stations_used", r.stations_used},
+          {"collisions", std::move(collisions)},
+          {"switch_error",
+           {{"count", a.switch_error.count},
+            {"mean_m", io::JsonNumber(a.switch_error.mean_m)},
+            {"max_m", io::JsonNumber(a.switch_error.max_m)},
+            {"mean_rad", io::JsonNumber(a.switch_error.mean_rad)},
+            {"max_rad", io::JsonNumber(a.switch_error.max_rad)}}},
+          {"dynamic_points", ToJson(a.dynamic_points)},
+          {"cpu", ToJson(a.cpu)}};
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,246 @@
+#include "bench/output/results_io.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/engine/local_truth.hpp"
+#include "bench/metrics/metrics_json.hpp"
+#include "core/errors.hpp"
+#include "io/csv_reader.hpp"
+#include "io/csv_writer.hpp"
+#include "io/json_writer.hpp"
+#include "io/tum.hpp"
+#include "nav/teach_bundle.hpp"
+
+namespace retrace::bench {
+namespace {
+
+nlohmann::json PoseJson(const core::Pose2& X) { return {X.x, X.y, X.theta}; }
+
+// snapshot.json (compact arrays; see docs/FORMATS.md).
+void WriteSnapshot(const std::filesystem::path& path, const LocalizationSnapshot& s) {
+  nlohmann::json particles = nlohmann::json::array();
+  for (std::size_t j = 0; j < s.particles.size(); ++j) {
+    particles.push_back({s.particles[j].x, s.particles[j].y, s.particles[j].theta, s.weights[j]});
+  }
+  nlohmann::json pedestrians = nlohmann::json::array();
+  for (const sim::DynamicCircle& c : s.pedestrians_W)
+    pedestrians.push_back({c.center.x(), c.center.y(), c.radius});
+  nlohmann::json j = {{"time_s", s.time},
+                      {"map", s.map_index},
+                      {"pedestrian_beams", s.pedestrian_beams},
+                      {"X_WR", PoseJson(s.X_WR)},
+                      {"X_MR_truth", PoseJson(s.X_MR_truth)},
+                      {"X_MR_estimate", PoseJson(s.X_MR_estimate)},
+                      {"X_RL", PoseJson(s.X_RL)},
+                      {"particles", std::move(particles)},
+                      {"pedestrians_W", std::move(pedestrians)},
+                      {"scan",
+                       {{"angle_min", s.scan.angle_min},
+                        {"angle_increment", s.scan.angle_increment},
+                        {"ranges", s.scan.ranges},
+                        {"use", s.beam_use},
+                        {"pedestrian", s.pedestrian}}},
+                      {"likelihood",
+                       {{"origin", {s.likelihood.origin.x(), s.likelihood.origin.y()}},
+                        {"resolution", s.likelihood.resolution},
+                        {"size", s.likelihood.size},
+                        {"theta", s.likelihood.theta},
+                        {"all_beams", s.likelihood.all_beams},
+                        {"static_beams", s.likelihood.static_beams}}}};
+  io::WriteJsonAtomic(path, j);
+}
+
+std::vector<io::StampedPose> Stamped(const std::vector<double>& time,
+                                     const std::vector<core::Pose2>& poses) {
+  std::vector<io::StampedPose> out(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) out[i] = {time[i], poses[i]};
+  return out;
+}
+
+void Unstamp(const std::vector<io::StampedPose>& in, std::vector<double>* time,
+             std::vector<core::Pose2>* poses) {
+  time->clear();
+  poses->clear();
+  for (const io::StampedPose& p : in) {
+    time->push_back(p.t);
+    poses->push_back(p.pose);
+  }
+}
+
+std::string MapFile(std::size_t k, const char* frame) {
+  return "map_" + std::to_string(k) + "_in_" + frame + ".tum";
+}
+
+}  // namespace
+
+void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach) {
+  nav::WriteTeachBundle(dir, teach.bundle);
+  const TeachTrace& trace = teach.trace;
+  io::WriteTum(dir / "gt.tum", Stamped(trace.time, trace.X_WR));
+  io::WriteTum(dir / "odom.tum", Stamped(trace.time, trace.X_OR));
+  for (std::size_t k = 0; k < trace.maps.size(); ++k) {
+    const TeachMapTrace& map = trace.maps[k];
+    io::WriteTum(dir / "reference" / MapFile(k, "map"), Stamped(map.time, map.X_MR));
+    io::WriteTum(dir / "reference" / MapFile(k, "world"), Stamped(map.time, map.X_WR));
+  }
+}
+
+ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
+  if (!std::filesystem::is_directory(dir)) {
+    throw core::IoError(dir.string() +
+                        ": no such teach folder (expected the teach/ folder of a previous run)");
+  }
+  ModeTeach teach;
+  teach.mode = mode;
+  teach.bundle = nav::ReadTeachBundle(dir);
+  TeachTrace& trace = teach.trace;
+  Unstamp(io::ReadTum(dir / "gt.tum"), &trace.time, &trace.X_WR);
+  std::vector<double> odom_time;
+  Unstamp(io::ReadTum(dir / "odom.tum"), &odom_time, &trace.X_OR);
+  if (odom_time.size() != trace.time.size() || trace.time.empty()) {
+    throw core::IoError(dir.string() +
+                        ": gt.tum and odom.tum must hold the same, non-empty, instants");
+  }
+  for (std::size_t k = 0; k < teach.bundle.maps.size(); ++k) {
+    TeachMapTrace map;
+    std::vector<double> world_time;
+    Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "map")), &map.time, &map.X_MR);
+    Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "world")), &world_time, &map.X_WR);
+    if (map.time.empty() || world_time != map.time) {
+      throw core::IoError(dir.string() + ": reference/" + MapFile(k, "map") + " and " +
+                          MapFile(k, "world") + " must hold the same, non-empty, instants");
+    }
+    trace.maps.push_back(std::move(map));
+  }
+  return teach;
+}
+
+void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,
+                    const MetricsConfig& metrics) {
+  std::vector<io::StampedPose> gt, est, odom;
+  io::CsvWriter est_map(dir / "est_map.csv", {"time", "map", "x", "y", "theta"});
+  std::optional<LocalTruth> local;
+  int local_map = -1;
+  for (const PlaybackSample& s : run.samples) {
+    if (s.map_index != local_map) {
+      local.emplace(teach.maps.at(static_cast<std::size_t>(s.map_index)), metrics.match_window,
+                    metrics.match_fallback_distance);
+      local_map = s.map_index;
+    }
+    local->InMap(s.X_WR);
+    gt.push_back({s.time, s.X_WR});
+    est.push_back({s.time, local->X_WM() * s.X_MR});
+    odom.push_back({s.time, s.X_OR});
+    est_map.AddRow({s.time, s.map_index, s.X_MR.x, s.X_MR.y, s.X_MR.theta});
+  }
+  io::WriteTum(dir / "gt.tum", gt);
+  io::WriteTum(dir / "est.tum", est);
+  io::WriteTum(dir / "odom.tum", odom);
+  est_map.Commit();
+
+  io::CsvWriter events(dir / "events.csv", {"time", "event", "detail"});
+  // Merged in time order: switches, collisions and scripted events are each already sorted.
+  struct Row {
+    double time;
+    std::string event, detail;
+  };
+  std::vector<Row> rows;
+  for (const SwitchRecord& sw : run.switches) {
+    rows.push_back({sw.time, "map_switch", std::to_string(sw.from) + "->" + std::to_string(sw.to)});
+  }
+  for (const sim::CollisionEvent& c : run.collisions) {
+    rows.push_back({c.time, "collision",
+                    c.kind == sim::CollisionKind::kStatic
+                        ? std::string("static")
+                        : "pedestrian " + std::to_string(c.pedestrian_id)});
+  }
+  for (const EventRecord& e : run.events) rows.push_back({e.time, "scripted", e.name});
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const Row& a, const Row& b) { return a.time < b.time; });
+  for (const Row& r : rows) events.AddRow({r.time, r.event, r.detail});
+  events.AddRow({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});
+  events.Commit();
+  if (run.snapshot) WriteSnapshot(dir / "snapshot.json", *run.snapshot);
+
+  // The errors along the route, per control tick, for plots (errors.png) and the user's own.
+  const RunSeries series = ComputeRunSeries(teach, run, metrics);
+  io::CsvWriter errors(dir / "errors.csv",
+                       {"time", "map", "arc_length_m", "lateral_offset_m", "tracking_error_m",
+                        "localization_error_m", "localization_error_rad"});
+  for (std::size_t i = 0; i < run.samples.size(); ++i) {
+    errors.AddRow({run.samples[i].time, run.samples[i].map_index, series.progress_m[i],
+                   series.lateral_offset_m[i], series.tracking_error_m[i],
+                   series.localization_error_m[i], series.localization_error_rad[i]});
+  }
+  errors.Commit();
+}
+
+RunTrace ReadRunFolder(const std::filesystem::path& dir, int run) {
+  const std::vector<io::StampedPose> gt = io::ReadTum(dir / "gt.tum");
+  const std::vector<io::StampedPose> odom = io::ReadTum(dir / "odom.tum");
+  const std::filesystem::path file = dir / "est_map.csv";
+  const std::vector<io::CsvRecord> records = io::ReadCsvFile(file);
+  const std::vector<std::string> header = {"time", "map", "x", "y", "theta"};
+  if (records.empty() || records.front().cells != header) {
+    throw core::IoError(file.string() + ":1: expected the header time,map,x,y,theta");
+  }
+  if (records.size() - 1 != gt.size() || gt.size() != odom.size()) {
+    throw core::IoError(dir.string() + ": est_map.csv, gt.tum and odom.tum hold " +
+                        std::to_string(records.size() - 1) + ", " + std::to_string(gt.size()) +
+                        " and " + std::to_string(odom.size()) + " samples; they must agree");
+  }
+  RunTrace trace;
+  trace.run = run;
+  for (std::size_t i = 1; i < records.size(); ++i) {
+    const io::CsvRecord& record = records[i];
+    const std::string where = file.string() + ":" + std::to_string(record.line) + ": ";
+    if (record.cells.size() != header.size()) {
+      throw core::IoError(where + "expected 5 cells, found " + std::to_string(record.cells.size()));
+    }
+    std::array<double, 5> v{};
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const std::optional<double> number = io::ParseCsvNumber(record.cells[k]);
+      if (!number || !std::isfinite(*number)) {
+        throw core::IoError(where + header[k] + " '" + record.cells[k] +
+                            "' is not a finite number");
+      }
+      v[k] = *number;
+    }
+    if (v[1] < 0 || v[1] != std::floor(v[1])) {
+      throw core::IoError(where + "map '" + record.cells[1] + "' is not a map index");
+    }
+    PlaybackSample s;
+    s.time = v[0];
+    s.map_index = static_cast<int>(v[1]);
+    s.X_MR = core::Pose2(v[2], v[3], v[4]);
+    s.X_WR = gt[i - 1].pose;
+    s.X_OR = odom[i - 1].pose;
+    trace.samples.push_back(s);
+  }
+  return trace;
+}
+
+void WriteModeMetrics(const std::filesystem::path& dir, const ModeResult& result) {
+  nlohmann::json metrics;
+  metrics["mode"] = std::string(core::EnumName(result.teach.mode));
+  metrics["aggregate"] = ToJson(result.aggregate);
+  metrics["runs"] = nlohmann::json::array();
+  for (const RunMetrics& r : result.run_metrics) metrics["runs"].push_back(ToJson(r));
+  io::WriteJsonAtomic(dir / "metrics.json", metrics);
+  WriteRepeatabilityCsv(dir / "repeatability.csv", result.aggregate.repeatability);
+}
+
+void WriteComparison(const std::filesystem::path& path, const std::vector<ModeResult>& modes) {
+  nlohmann::json comparison = nlohmann::json::object();
+  for (const ModeResult& mode : modes)
+    comparison[std::string(core::EnumName(mode.teach.mode))] = ToJson(mode.aggregate);
+  io::WriteJsonAtomic(path, comparison);
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,58 @@
+#pragma once
+// The files of a run's results folder (docs/DESIGN.md §6):
+//
+//   <mode>/teach/                 the teach bundle (maps/, paths/, switch_poses.txt, ...) plus
+//          gt.tum odom.tum        the teaching drive's ground truth and odometry (TUM, W and O)
+//          reference/map_<k>_in_map.tum, map_<k>_in_world.tum
+//                                 per partial map, the mapper's pose in M_k and the ground truth
+//                                 at the same instants: what local ground truth is made of
+//   <mode>/runs/<i>/gt.tum        ground truth X_WR at every control tick
+//                  est.tum        the estimate carried into W by the local alignment of the
+//                                 nearest teaching sample (so evo's APE against gt.tum is the
+//                                 localization error of docs/DESIGN.md §6)
+//                  est_map.csv    the raw estimate in its own map: time, map, x, y, theta
+//                  odom.tum       wheel odometry X_OR
+//                  events.csv     time, event, detail: map switches, collisions, scripted events,
+//                                 the outcome
+//                  errors.csv     per control tick: time, map, arc length along the taught path,
+//                                 signed lateral offset, tracking and localization errors
+//                  snapshot.json  see bench/engine/snapshot.hpp
+//   <mode>/metrics.json           {"mode", "aggregate", "runs"} (bench/metrics/metrics.hpp)
+//   <mode>/repeatability.csv      the lateral offsets of the runs at the stations
+//   comparison.json               the aggregates of all modes, when several ran
+//
+// TUM lines are `t x y z qx qy qz qw` (z = 0, rotation about z), readable by evo.
+
+#include <filesystem>
+#include <vector>
+
+#include "bench/engine/teach_drive.hpp"
+#include "bench/engine/trace.hpp"
+#include "bench/metrics/experiment.hpp"
+#include "bench/metrics/metrics.hpp"
+
+namespace retrace::bench {
+
+/// Writes the teach bundle and the references of one mode into `dir`.
+void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach);
+
+/// Reads a folder written by WriteTeachFolder (`retrace playback --teach DIR`). Throws
+/// core::IoError naming the folder and the missing or malformed file.
+ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode);
+
+/// Writes one run's trajectories and events into `dir`; `metrics` sets the local-truth matching.
+void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,
+                    const MetricsConfig& metrics);
+
+/// Reads back the samples of a folder written by WriteRunFolder (gt.tum, odom.tum and
+/// est_map.csv, which must hold the same instants); `run` numbers the trace. Switches,
+/// collisions and events are not read. Throws core::IoError naming the file and line.
+RunTrace ReadRunFolder(const std::filesystem::path& dir, int run);
+
+/// Writes metrics.json and repeatability.csv of one mode's played-back runs into `dir`.
+void WriteModeMetrics(const std::filesystem::path& dir, const ModeResult& result);
+
+/// Writes comparison.json: each mode's aggregate metrics by mode name.
+void WriteComparison(const std::filesystem::path& path, const std::vector<ModeResult>& modes);
+
+}  // namespace retrace::bench

@@ -1,0 +1,66 @@
+#include "bench/output/summary.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace retrace::bench {
+namespace {
+
+// A number for the table, "-" when undefined.
+std::string Cell(double v, const char* format = "%.3f") {
+  if (!std::isfinite(v)) return "-";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+}  // namespace
+
+ModeSummary SummarizeMode(MapMode mode, const AggregateMetrics& aggregate) {
+  return {mode, aggregate.runs, aggregate.successes, aggregate};
+}
+
+std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>& modes,
+                        const std::filesystem::path& out, double wall_time_s) {
+  std::string text = "scenario " + scenario.config.name + ": route " +
+                     Cell(scenario.route_length, "%.1f") + " m, " +
+                     std::to_string(scenario.config.route.switch_points.size() + 1) +
+                     " partial maps in mode partial\n";
+  char line[512];
+  std::snprintf(line, sizeof line, "%-11s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n", "mode", "success",
+                "track_rms", "track_max", "loc_rms", "loc_max", "repeat", "switch_mx", "coll_ped",
+                "rtf");
+  text += line;
+  for (const ModeSummary& m : modes) {
+    if (m.runs == 0) {
+      std::snprintf(line, sizeof line, "%-11s teach bundle only\n",
+                    std::string(core::EnumName(m.mode)).c_str());
+      text += line;
+      continue;
+    }
+    const AggregateMetrics& a = m.aggregate;
+    const std::string collisions = std::to_string(a.collisions.pedestrian_incidents) + " (" +
+                                   std::to_string(a.collisions.pedestrian_incidents_robot_driving) +
+                                   ")";
+    std::snprintf(line, sizeof line, "%-11s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n",
+                  std::string(core::EnumName(m.mode)).c_str(),
+                  (std::to_string(m.successes) + "/" + std::to_string(m.runs)).c_str(),
+                  Cell(a.tracking_error_m_pooled.rms).c_str(),
+                  Cell(a.tracking_error_m_pooled.max).c_str(),
+                  Cell(a.localization_error_m_pooled.rms).c_str(),
+                  Cell(a.localization_error_m_pooled.max).c_str(),
+                  Cell(a.repeatability.repeatability_m).c_str(), Cell(a.switch_error.max_m).c_str(),
+                  collisions.c_str(), Cell(a.cpu.real_time_factor, "%.0f").c_str());
+    text += line;
+  }
+  text +=
+      "(m; track = distance to the taught trajectory, loc = localization error in the map, repeat "
+      "= "
+      "repeatability, coll_ped = pedestrian collisions (of them, the robot driving into the "
+      "pedestrian), rtf = real-time factor per core)\n";
+  text += "results in " + out.string() + " (" + Cell(wall_time_s, "%.1f") + " s)\n";
+  return text;
+}
+
+}  // namespace retrace::bench

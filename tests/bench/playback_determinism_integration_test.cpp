@@ -1,0 +1,58 @@
+// Determinism of a playback with the whole navigation stack in the loop.
+//
+// PlaybackDeterminism.PinnedHashesOfTheSmallScenario pins hashes of the teaching drive of
+// scenarios/small.yaml (partial maps: ground truth, odometry and each map's poses) and of the
+// first 40 s of its playback run 0 (ground truth and estimate at every control tick): the
+// simulator, the mapper, the localizer, the map server, the follower and the avoidance all
+// feed into them. When a change is MEANT to alter trajectories, run this test, check that the
+// change explains the difference, and paste the new hashes printed by the failure into the
+// constants below. (tests/sim/simulator_test.cpp pins the simulator alone.)
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+
+#include "bench/engine/playback.hpp"
+#include "bench/engine/scenario.hpp"
+#include "bench/engine/teach_drive.hpp"
+#include "core/rng.hpp"
+#include "tests/support/trajectory_hash.hpp"
+
+namespace retrace::bench {
+namespace {
+
+const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+
+std::uint64_t TeachHash(const TeachTrace& trace) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  auto mix = [&h](const core::Pose2& X) {
+    const double values[] = {X.x, X.y, X.theta};
+    h = core::HashBytes(values, sizeof values, h);
+  };
+  for (std::size_t i = 0; i < trace.X_WR.size(); ++i) {
+    mix(trace.X_WR[i]);
+    mix(trace.X_OR[i]);
+  }
+  for (const TeachMapTrace& map : trace.maps) {
+    for (const core::Pose2& X : map.X_MR) mix(X);
+  }
+  return h;
+}
+
+TEST(PlaybackDeterminism, PinnedHashesOfTheSmallScenario) {
+  constexpr std::uint64_t kPinnedTeachHash = 0x0b0c7becbcab9c14ULL;
+  constexpr std::uint64_t kPinnedPlaybackHash = 0x60d8d55c0451a347ULL;
+  const Scenario scenario = LoadScenario(kSource / "scenarios/small.yaml");
+  const TeachResult teach = RunTeachDrive(scenario, {MapMode::kPartial});
+  const ModeTeach& partial = teach.modes.front();
+  const RunTrace run = RunPlayback(scenario, partial.bundle, partial.trace, 0, 40.0);
+  ASSERT_GT(run.samples.size(), 700u);  // 40 s at 20 Hz, unless the run ended early
+  EXPECT_EQ(TeachHash(partial.trace), kPinnedTeachHash)
+      << "new teach hash: 0x" << std::hex << TeachHash(partial.trace);
+  EXPECT_EQ(testing::TrajectoryHash(run), kPinnedPlaybackHash)
+      << "new playback hash: 0x" << std::hex << testing::TrajectoryHash(run);
+}
+
+}  // namespace
+}  // namespace retrace::bench

@@ -1,0 +1,131 @@
+// The localizer on long drives in the furnished room: convergence, dynamic scan point rejection
+// with walkers blocking the beams, recovery after a kidnapping (integration: seconds each).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "core/angle.hpp"
+#include "core/errors.hpp"
+#include "core/rng.hpp"
+#include "nav/localizer.hpp"
+#include "tests/nav/localizer_room.hpp"
+#include "tests/support/config_key.hpp"
+
+namespace retrace::nav {
+namespace {
+
+using namespace testing_room;
+
+TEST(Localizer, ConvergesInRoomFromHalfMetreTenDegreesWithinTenUpdates) {
+  int converged = 0;
+  double worst = 0.0, sum = 0.0, worst_heading = 0.0;
+  const int kSeeds = 20;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    Drive drive(static_cast<std::uint64_t>(seed));
+    Localizer loc(TestConfig(), TestRobot(),
+                  core::Rng(static_cast<std::uint64_t>(seed)).Split("localizer"));
+    loc.SetMap(drive.map);
+    loc.Initialize(Perturbed(drive.X_WR, static_cast<std::uint64_t>(seed)), 0.5, 0.2);
+    const RunResult r = DriveAndLocalize(loc, drive, 10, false);
+    ASSERT_EQ(r.updates, 10);
+    const bool ok = r.final_position_error < 0.15 && r.final_heading_error < core::DegToRad(3.0);
+    converged += ok ? 1 : 0;
+    worst = std::max(worst, r.final_position_error);
+    worst_heading = std::max(worst_heading, r.final_heading_error);
+    sum += r.final_position_error;
+  }
+  std::printf(
+      "[ report ] convergence within 10 updates: %d/%d seeds; final position error mean "
+      "%.3f m, max %.3f m; max heading error %.2f deg\n",
+      converged, kSeeds, sum / kSeeds, worst, core::RadToDeg(worst_heading));
+  EXPECT_GE(converged, 19);  // >= 95 %
+}
+
+TEST(Localizer, RejectionKeepsErrorLowWithThirtyPercentOfBeamsBlocked) {
+  const int kSeeds = 10;
+  double mean_on = 0.0, mean_off = 0.0;
+  int tp = 0, fp = 0, fn = 0, tested = 0;
+  int worse = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    double err[2] = {0.0, 0.0};
+    for (const bool on : {true, false}) {
+      LocalizerConfig config = TestConfig();
+      config.rejection.enabled = on;
+      Drive drive(static_cast<std::uint64_t>(100 + seed));
+      Localizer loc(config, TestRobot(),
+                    core::Rng(static_cast<std::uint64_t>(seed)).Split("localizer"));
+      loc.SetMap(drive.map);
+      loc.Initialize(drive.X_WR, 0.05, 0.02);
+      const RunResult r = DriveAndLocalize(loc, drive, 60, true, 5);
+      err[on ? 0 : 1] = r.mean_position_error;
+      if (on) {
+        tp += r.tp;
+        fp += r.fp;
+        fn += r.fn;
+        tested += r.tested;
+      }
+    }
+    mean_on += err[0] / kSeeds;
+    mean_off += err[1] / kSeeds;
+    worse += err[1] > err[0] ? 1 : 0;
+  }
+  const double precision = tp / static_cast<double>(tp + fp);
+  const double recall = tp / static_cast<double>(tp + fn);
+  std::printf(
+      "[ report ] 30 %% beams blocked: mean position error rejection ON %.3f m, OFF %.3f m "
+      "(OFF worse on %d/%d seeds); %.1f %% of tested beams blocked; mask precision %.3f recall "
+      "%.3f "
+      "(tp %d fp %d fn %d)\n",
+      mean_on, mean_off, worse, kSeeds, 100.0 * (tp + fn) / tested, precision, recall, tp, fp, fn);
+  EXPECT_LT(mean_on, 0.1);
+  EXPECT_GT(mean_off, 1.5 * mean_on);
+  EXPECT_GE(worse, 8);
+  EXPECT_GT(precision, 0.9);
+  EXPECT_GT(recall, 0.5);
+}
+
+TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
+  const int kSeeds = 10;
+  int recovered = 0, injected_any = 0, ok_without = 0;
+  double sum_err = 0.0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    for (const bool augmented : {true, false}) {
+      LocalizerConfig config = TestConfig();
+      config.augmented.enabled = augmented;
+      Drive drive(static_cast<std::uint64_t>(200 + seed));
+      Localizer loc(config, TestRobot(),
+                    core::Rng(static_cast<std::uint64_t>(seed)).Split("localizer"));
+      loc.SetMap(drive.map);
+      loc.Initialize(drive.X_WR, 0.05, 0.02);
+      DriveAndLocalize(loc, drive, 15, false);
+      // Kidnapping: the robot is carried 1.5 m sideways and turned by 20° without the
+      // localizer knowing.
+      drive.X_WR = drive.X_WR * Pose2(0.0, 1.5, core::DegToRad(20.0));
+      const RunResult r = DriveAndLocalize(loc, drive, 40, false);
+      const bool ok = r.final_position_error < 0.2 && r.final_heading_error < core::DegToRad(5.0);
+      if (augmented) {
+        recovered += ok ? 1 : 0;
+        injected_any += r.injected > 0 ? 1 : 0;
+        sum_err += r.final_position_error;
+      } else {
+        ok_without += ok ? 1 : 0;
+      }
+    }
+  }
+  std::printf(
+      "[ report ] kidnapping by 1.5 m and 20 deg: augmented MCL recovered on %d/%d seeds (mean "
+      "final "
+      "error %.3f m), injected on %d/%d; without augmentation recovered on %d/%d\n",
+      recovered, kSeeds, sum_err / kSeeds, injected_any, kSeeds, ok_without, kSeeds);
+  EXPECT_EQ(injected_any, kSeeds);
+  EXPECT_GE(recovered, 8);
+  EXPECT_GT(recovered, ok_without);
+}
+
+}  // namespace
+}  // namespace retrace::nav
