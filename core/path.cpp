@@ -9,6 +9,7 @@ namespace retrace::core {
 
 Path::Path(std::vector<Pose2> poses) {
   poses_.reserve(poses.size());
+  positions_.reserve(poses.size());
   arc_.reserve(poses.size());
   for (const Pose2& p : poses) PushBack(p);
 }
@@ -16,6 +17,7 @@ Path::Path(std::vector<Pose2> poses) {
 void Path::PushBack(const Pose2& p) {
   arc_.push_back(poses_.empty() ? 0.0 : arc_.back() + Distance(poses_.back(), p));
   poses_.push_back(p);
+  positions_.push_back(p.translation());
 }
 
 std::size_t Path::NearestIndex(const Vec2& p) const {

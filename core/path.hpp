@@ -21,6 +21,10 @@ class Path {
   const Pose2& back() const { return poses_.back(); }
 
   void PushBack(const Pose2& p);
+  /// The positions of the poses (m), and the arc length at each (m): the polyline that
+  /// core/path_projection.hpp projects onto.
+  const std::vector<Vec2>& positions() const { return positions_; }
+  const std::vector<double>& arc_lengths() const { return arc_; }
   /// Total length of the polyline through the positions (m).
   double Length() const { return arc_.empty() ? 0.0 : arc_.back(); }
   /// Arc length from the first pose to pose i (m).
@@ -32,6 +36,7 @@ class Path {
 
  private:
   std::vector<Pose2> poses_;
+  std::vector<Vec2> positions_;
   std::vector<double> arc_;
 };
 

@@ -9,7 +9,7 @@
 namespace retrace::nav {
 namespace {
 
-constexpr double kTinyLength = 1e-9;       // m, below this a path or chord has no direction
+constexpr double kTinyLength = 1e-9;          // m, below this a path or chord has no direction
 constexpr double kCurvatureSampleStep = 0.1;  // m, spacing of the curvature preview samples
 // Share of max_yaw_rate the curvature feed-forward may use; the rest is left to the PD terms.
 constexpr double kFeedForwardYawShare = 0.8;
@@ -34,7 +34,8 @@ void PathFollowerConfig::Validate() const {
   // The heading rate contains the robot's own yaw rate: a gain >= 1 on it makes the discrete
   // loop oscillate from one control step to the next.
   if (!(kd_heading >= 0.0 && kd_heading < 1.0)) {
-    throw core::ConfigError("kd_heading", "must be in [0, 1), got " + core::FormatNumber(kd_heading));
+    throw core::ConfigError("kd_heading",
+                            "must be in [0, 1), got " + core::FormatNumber(kd_heading));
   }
   core::RequireNonNegative("derivative_filter_tau", derivative_filter_tau);
   core::RequirePositive("lateral_error_clip", lateral_error_clip);
@@ -47,38 +48,13 @@ PathFollower::PathFollower(const PathFollowerConfig& config) : config_(Validated
 
 void PathFollower::SetPath(const core::Path& path) {
   path_ = path;
-  progress_ = 0.0;
+  progress_ = {};
   goal_reached_ = path_.empty();
   have_previous_ = false;
   previous_lateral_ = 0.0;
   previous_heading_ = 0.0;
   lateral_rate_ = 0.0;
   heading_rate_ = 0.0;
-}
-
-PathFollower::Projection PathFollower::Project(const core::Vec2& p_M, double s_from,
-                                               double s_to) const {
-  Projection best;
-  const std::size_t n = path_.size();
-  // First segment whose end lies at or after s_from.
-  std::size_t i = IndexAt(s_from);
-  for (; i + 1 < n && path_.ArcLength(i) <= s_to; ++i) {
-    const double s0 = path_.ArcLength(i);
-    const double len = path_.ArcLength(i + 1) - s0;
-    if (len < kTinyLength) continue;
-    const core::Vec2 a = path_[i].translation();
-    const core::Vec2 ab = path_[i + 1].translation() - a;
-    const double t = std::clamp((p_M - a).dot(ab) / (len * len), 0.0, 1.0);
-    const double s = std::clamp(s0 + t * len, s_from, s_to);
-    const core::Vec2 q = a + ((s - s0) / len) * ab;
-    const double d = (p_M - q).norm();
-    if (d < best.distance) {  // strict: ties keep the earlier point
-      best.distance = d;
-      best.s = s;
-    }
-  }
-  if (!std::isfinite(best.distance)) best.s = s_from;
-  return best;
 }
 
 double PathFollower::TangentAt(double s) const {
@@ -145,11 +121,10 @@ FollowerOutput PathFollower::Compute(const core::Pose2& X_MR, double dt) {
 
   // Monotonic progress inside the search window, starting from the first path pose.
   if (length > kTinyLength && !goal_reached_) {
-    const Projection proj =
-        Project(p_M, progress_, std::min(length, progress_ + config_.progress_window));
-    progress_ = std::max(progress_, proj.s);
+    progress_.Advance(path_.positions(), path_.arc_lengths(), p_M,
+                      std::min(length, progress_.value() + config_.progress_window));
   }
-  const double s = progress_;
+  const double s = progress_.value();
   const double remaining = std::max(0.0, length - s);
   const core::Vec2 end_M = path_.back().translation();
   const double distance_to_end = (p_M - end_M).norm();

@@ -30,6 +30,7 @@
 
 #include "core/config.hpp"
 #include "core/path.hpp"
+#include "core/path_projection.hpp"
 #include "core/pose2.hpp"
 #include "core/twist.hpp"
 
@@ -119,11 +120,6 @@ class PathFollower {
   FollowerOutput Compute(const core::Pose2& X_MR, double dt);
 
  private:
-  struct Projection {
-    double s = 0.0;  // arc length of the closest point (m)
-    double distance = std::numeric_limits<double>::infinity();
-  };
-  Projection Project(const core::Vec2& p_M, double s_from, double s_to) const;
   double TangentAt(double s) const;
   double CurvatureAt(double s) const;
   double SpeedLimitAhead(double s) const;
@@ -131,7 +127,7 @@ class PathFollower {
 
   PathFollowerConfig config_;
   core::Path path_;
-  double progress_ = 0.0;  // s* of the last step (m), never decreases
+  core::ForwardProgress progress_;  // s* of the last step (m)
   bool goal_reached_ = false;
   bool have_previous_ = false;
   double previous_lateral_ = 0.0;

@@ -43,8 +43,8 @@ void TeacherConfig::Validate() const {
   core::RequirePositive("max_yaw_rate", max_yaw_rate);
   core::RequireNonNegative("wobble_amplitude", wobble_amplitude);
   if (wobble_amplitude * kWobbleBound > lookahead) {
-    throw core::ConfigError("wobble_amplitude",
-                            "must be <= lookahead / 3, got " + core::FormatNumber(wobble_amplitude));
+    throw core::ConfigError("wobble_amplitude", "must be <= lookahead / 3, got " +
+                                                    core::FormatNumber(wobble_amplitude));
   }
   core::RequirePositive("wobble_time_constant", wobble_time_constant);
   core::RequirePositive("goal_tolerance", goal_tolerance);
@@ -114,32 +114,6 @@ double Teacher::TurnNear(double s) const {
   return sum;
 }
 
-void Teacher::AdvanceProgress(const core::Vec2& p_WR, double limit) {
-  // Closest point of the route within a window ahead of the current progress; ties go to the
-  // earlier point. Searching only forward and only a short way ahead keeps the progress
-  // monotone and stops it from jumping to a later part of the route that passes nearby.
-  double best_s = progress_;
-  std::size_t best_segment = segment_;
-  double best_d2 = (PointAt(progress_, nullptr) - p_WR).squaredNorm();
-  for (std::size_t i = segment_; i + 1 < route_.size() && arc_[i] <= limit; ++i) {
-    const core::Vec2 a = route_[i];
-    const core::Vec2 ab = route_[i + 1] - a;
-    const double len = arc_[i + 1] - arc_[i];
-    const double t0 = i == segment_ ? std::max(0.0, (progress_ - arc_[i]) / len) : 0.0;
-    const double t1 = std::min(1.0, (limit - arc_[i]) / len);
-    if (t1 < t0) break;
-    const double t = std::clamp((p_WR - a).dot(ab) / (len * len), t0, t1);
-    const double d2 = (a + t * ab - p_WR).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best_s = std::max(progress_, arc_[i] + t * len);  // rounding must not move it back
-      best_segment = i;
-    }
-  }
-  progress_ = best_s;
-  segment_ = best_segment;
-}
-
 core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
   RETRACE_CHECK(dt > 0.0 && std::isfinite(dt));
   if (done_) return {};
@@ -149,11 +123,10 @@ core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
 
   // Progress, never beyond the next stop point (a sharp vertex or the end): the teacher
   // passes a stop point only by reaching it, then follows the next leg.
-  AdvanceProgress(p_WR, std::min(progress_ + L, arc_[next_stop_]));
+  progress_.Advance(route_, arc_, p_WR, std::min(progress_.value() + L, arc_[next_stop_]));
   if (next_stop_ + 1 < route_.size() && (p_WR - route_[next_stop_]).norm() <= tol) {
-    progress_ = arc_[next_stop_];
-    segment_ = next_stop_;
-    last_stop_arc_ = progress_;
+    progress_.MoveTo(arc_[next_stop_]);
+    last_stop_arc_ = progress_.value();
     next_stop_ = NextStopAfter(next_stop_);
   }
   const double s_stop = arc_[next_stop_];
@@ -161,7 +134,8 @@ core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
 
   // The end: close to the last point with the progress near the end (a loop route ends where
   // it starts, so closeness alone is not enough).
-  if (next_stop_ + 1 == route_.size() && RouteLength() - progress_ <= L + tol && d_stop <= tol) {
+  if (next_stop_ + 1 == route_.size() && RouteLength() - progress_.value() <= L + tol &&
+      d_stop <= tol) {
     done_ = true;
     v_ = 0.0;
     return {};
@@ -178,12 +152,12 @@ core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
   // The look-ahead shrinks with speed (to half at half the cruising speed): slower in a turn
   // means tighter on the route, as with a human driver.
   const double L_pursuit = L * std::clamp(v_ / config_.speed, 0.5, 1.0);
-  const double s_target = std::min(progress_ + L_pursuit, s_stop);
+  const double s_target = std::min(progress_.value() + L_pursuit, s_stop);
   std::size_t target_segment = 0;
   const core::Vec2 on_route = PointAt(s_target, &target_segment);
   const core::Vec2 dir = (route_[target_segment + 1] - route_[target_segment]).normalized();
   const double fade =
-      std::clamp(std::min(s_stop - s_target, progress_ - last_stop_arc_) / L, 0.0, 1.0);
+      std::clamp(std::min(s_stop - s_target, progress_.value() - last_stop_arc_) / L, 0.0, 1.0);
   const core::Vec2 target_W = on_route + fade * wobble_ * core::Vec2(-dir.y(), dir.x());
   const core::Vec2 q = X_WR.Inverse() * target_W;  // target in R
   const double alpha = std::atan2(q.y(), q.x());
@@ -199,9 +173,9 @@ core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
 
   // Speed: cruise, slower for the route's heading changes near the progress point, braking
   // for the next stop point, accelerating at most at max_accel.
-  const double slow = std::clamp(TurnNear(progress_) / kFullSlowTurn, 0.0, 1.0);
+  const double slow = std::clamp(TurnNear(progress_.value()) / kFullSlowTurn, 0.0, 1.0);
   double v = config_.speed - (config_.speed - config_.min_turn_speed) * slow;
-  const double to_stop = std::max(d_stop, s_stop - progress_) - 0.5 * tol;
+  const double to_stop = std::max(d_stop, s_stop - progress_.value()) - 0.5 * tol;
   v = std::min(v,
                std::max(kCreepSpeed, std::sqrt(2.0 * config_.max_accel * std::max(0.0, to_stop))));
   v = std::min(v, v_ + config_.max_accel * dt);

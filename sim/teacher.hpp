@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/path_projection.hpp"
 #include "core/pose2.hpp"
 #include "core/rng.hpp"
 #include "core/twist.hpp"
@@ -79,15 +80,13 @@ class Teacher {
   /// Arc length of the route (m).
   double RouteLength() const { return arc_.back(); }
   /// Arc length along the route reached so far (m), non-decreasing.
-  double Progress() const { return progress_; }
+  double Progress() const { return progress_.value(); }
   /// The current lateral wobble offset (m, positive to the left of the route).
   double wobble() const { return wobble_; }
 
   const std::vector<core::Vec2>& route() const { return route_; }
 
  private:
-  /// Moves the progress to the closest route point within [progress, limit] (m).
-  void AdvanceProgress(const core::Vec2& p_WR, double limit);
   /// Index of the first sharp vertex after point i, or of the last point.
   std::size_t NextStopAfter(std::size_t i) const;
   /// Point of the route at arc length s (clamped), with its segment index.
@@ -102,10 +101,9 @@ class Teacher {
   std::vector<double> turn_;  ///< absolute heading change at each point (rad; 0 at the ends)
   TeacherConfig config_;
   core::Rng rng_;
-  std::size_t segment_ = 0;     ///< segment holding the progress point
-  std::size_t next_stop_ = 0;   ///< next point where the teacher stops (sharp vertex or end)
-  double last_stop_arc_ = 0.0;  ///< arc length of the last stop point passed (m)
-  double progress_ = 0.0;
+  std::size_t next_stop_ = 0;       ///< next point where the teacher stops (sharp vertex or end)
+  double last_stop_arc_ = 0.0;      ///< arc length of the last stop point passed (m)
+  core::ForwardProgress progress_;  ///< along the route, never beyond the next stop
   double wobble_ = 0.0;
   double v_ = 0.0;  ///< last commanded speed (m/s)
   bool turning_in_place_ = false;

@@ -6,16 +6,16 @@
 
 #include "core/angle.hpp"
 #include "core/check.hpp"
+#include "core/path_projection.hpp"
 
 namespace retrace::bench {
 
 LocalTruth::LocalTruth(const TeachMapTrace& map, double window, double fallback_distance)
     : map_(map), window_(window), fallback_distance_(fallback_distance) {
   RETRACE_CHECK(!map_.X_WR.empty() && map_.X_WR.size() == map_.X_MR.size());
-  arc_.resize(map_.X_WR.size(), 0.0);
-  for (std::size_t i = 1; i < arc_.size(); ++i) {
-    arc_[i] = arc_[i - 1] + (map_.X_WR[i].translation() - map_.X_WR[i - 1].translation()).norm();
-  }
+  positions_.reserve(map_.X_WR.size());
+  for (const core::Pose2& X : map_.X_WR) positions_.push_back(X.translation());
+  arc_ = core::CumulativeArcLength(positions_);
 }
 
 std::size_t LocalTruth::Nearest(const core::Vec2& p, std::size_t lo, std::size_t hi,
@@ -23,7 +23,7 @@ std::size_t LocalTruth::Nearest(const core::Vec2& p, std::size_t lo, std::size_t
   std::size_t best = lo;
   *d2 = std::numeric_limits<double>::infinity();
   for (std::size_t i = lo; i < hi; ++i) {
-    const double e = (map_.X_WR[i].translation() - p).squaredNorm();
+    const double e = (positions_[i] - p).squaredNorm();
     if (e < *d2) {
       *d2 = e;
       best = i;
@@ -34,12 +34,18 @@ std::size_t LocalTruth::Nearest(const core::Vec2& p, std::size_t lo, std::size_t
 
 core::Pose2 LocalTruth::InMap(const core::Pose2& X_WR) {
   const core::Vec2 p = X_WR.translation();
-  const auto lo = std::lower_bound(arc_.begin(), arc_.end(), arc_[match_] - window_);
-  const auto hi = std::upper_bound(arc_.begin(), arc_.end(), arc_[match_] + window_);
-  double d2 = 0.0;
-  std::size_t best = Nearest(p, static_cast<std::size_t>(lo - arc_.begin()),
-                             static_cast<std::size_t>(hi - arc_.begin()), &d2);
-  if (d2 > fallback_distance_ * fallback_distance_) {
+  // The teaching sample at the projection onto the segment's path near the last match: the
+  // nearer end, by arc length, of the piece of path it falls on.
+  const core::PathProjection near =
+      core::ProjectOntoPath(positions_, arc_, p, arc_[match_] - window_, arc_[match_] + window_);
+  std::size_t best = match_;
+  double d2 = std::numeric_limits<double>::infinity();
+  if (std::isfinite(near.distance)) {
+    const std::size_t i = near.segment;
+    best = near.s - arc_[i] <= arc_[i + 1] - near.s ? i : i + 1;
+    d2 = (positions_[best] - p).squaredNorm();
+  }
+  if (!(near.distance <= fallback_distance_)) {
     double global_d2 = 0.0;
     const std::size_t global = Nearest(p, 0, arc_.size(), &global_d2);
     if (global_d2 < d2) best = global;

@@ -6,10 +6,12 @@
 //
 //   X_{M_k R} = X_{M_k R_j} * inverse(X_{W R_j}) * X_{W R}            (docs/DESIGN.md §6)
 //
-// with j the nearest teaching sample of the map, tracked along the segment: searched within
-// `window` m of arc length behind and ahead of the previous match, so that a segment that
-// passes the same place twice (mode `single`) matches the right pass; only when that match is
-// farther than `fallback_distance` from the robot is the whole segment searched.
+// with j the teaching sample of the map where the robot projects onto the segment's path,
+// tracked along it: the projection (core/path_projection.hpp) is searched within `window` m of
+// arc length behind and ahead of the previous match, so that a segment that passes the same
+// place twice (mode `single`) matches the right pass, and j is the nearer end of the piece of
+// path it falls on; only when the path is farther than `fallback_distance` from the robot
+// there is the nearest sample of the whole segment taken, if it is nearer.
 
 #include <cstddef>
 #include <vector>
@@ -41,7 +43,8 @@ class LocalTruth {
   const TeachMapTrace& map_;
   double window_;
   double fallback_distance_;
-  std::vector<double> arc_;  // arc length of each sample's position along the segment
+  std::vector<core::Vec2> positions_;  // of the teaching samples (W)
+  std::vector<double> arc_;            // arc length of each sample's position along the segment
   std::size_t match_ = 0;
 };
 

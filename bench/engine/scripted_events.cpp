@@ -8,32 +8,10 @@
 namespace retrace::bench {
 
 RouteProgress::RouteProgress(const std::vector<core::Vec2>& route)
-    : route_(route), arc_(route.size(), 0.0) {
-  for (std::size_t i = 1; i < route_.size(); ++i)
-    arc_[i] = arc_[i - 1] + (route_[i] - route_[i - 1]).norm();
-}
+    : route_(route), arc_(core::CumulativeArcLength(route)) {}
 
 double RouteProgress::Update(const core::Vec2& p_W) {
-  const double limit = progress_ + kWindow;
-  double best_s = progress_;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < route_.size(); ++i) {
-    if (arc_[i + 1] < progress_) continue;
-    if (arc_[i] > limit) break;
-    const core::Vec2 a = route_[i], d = route_[i + 1] - route_[i];
-    const double len = arc_[i + 1] - arc_[i];
-    double t = std::clamp((p_W - a).dot(d) / (len * len), 0.0, 1.0);
-    double s = arc_[i] + t * len;
-    s = std::clamp(s, progress_, limit);  // stay inside the window
-    const core::Vec2 q = a + d * ((s - arc_[i]) / len);
-    const double d2 = (p_W - q).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best_s = s;
-    }
-  }
-  progress_ = std::max(progress_, best_s);
-  return progress_;
+  return progress_.Advance(route_, arc_, p_W, progress_.value() + kWindow);
 }
 
 ScriptedEvents::ScriptedEvents(const std::vector<EventConfig>& events, EventPhase phase) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bench/engine/scenario.hpp"
+#include "core/path_projection.hpp"
 #include "core/pose2.hpp"
 #include "sim/simulator.hpp"
 
@@ -17,15 +18,16 @@ namespace retrace::bench {
 class RouteProgress {
  public:
   explicit RouteProgress(const std::vector<core::Vec2>& route);
+  /// Moves the progress forward to the route point nearest p_W within kWindow ahead.
   double Update(const core::Vec2& p_W);
-  double progress() const { return progress_; }
+  double progress() const { return progress_.value(); }
 
   static constexpr double kWindow = 5.0;  ///< m searched ahead of the last progress
 
  private:
   std::vector<core::Vec2> route_;
   std::vector<double> arc_;
-  double progress_ = 0.0;
+  core::ForwardProgress progress_;
 };
 
 class ScriptedEvents {

@@ -9,6 +9,7 @@
 #include "core/check.hpp"
 #include "core/config.hpp"
 #include "core/errors.hpp"
+#include "core/path_projection.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -19,12 +20,7 @@ using core::Vec2;
 // count as a revisit; closer parts are simply the road just driven, bent by a turn.
 constexpr double kRevisitLagFactor = 3.0;
 
-std::vector<double> CumulativeArcLength(const std::vector<Vec2>& route) {
-  std::vector<double> cum(route.size(), 0.0);
-  for (std::size_t i = 1; i < route.size(); ++i)
-    cum[i] = cum[i - 1] + (route[i] - route[i - 1]).norm();
-  return cum;
-}
+using core::CumulativeArcLength;
 
 Vec2 PointAt(const std::vector<Vec2>& route, const std::vector<double>& cum, double s) {
   const auto it = std::upper_bound(cum.begin(), cum.end(), s);
@@ -34,29 +30,6 @@ Vec2 PointAt(const std::vector<Vec2>& route, const std::vector<double>& cum, dou
   const double len = cum[i + 1] - cum[i];
   const double t = len > 0.0 ? (s - cum[i]) / len : 0.0;
   return route[i] + t * (route[i + 1] - route[i]);
-}
-
-// Distance from p to the route's stretch [s_from, s_to]; *s_closest gets the arc length of the
-// closest point.
-double DistanceToStretch(const std::vector<Vec2>& route, const std::vector<double>& cum,
-                         const Vec2& p, double s_from, double s_to, double* s_closest) {
-  double best = std::numeric_limits<double>::infinity();
-  *s_closest = s_from;
-  for (std::size_t i = 0; i + 1 < route.size(); ++i) {
-    const double len = cum[i + 1] - cum[i];
-    if (cum[i + 1] < s_from || cum[i] > s_to || len <= 0.0) continue;
-    // The piece of segment i inside the window, as a parameter range along it.
-    const double t0 = std::max(0.0, (s_from - cum[i]) / len);
-    const double t1 = std::min(1.0, (s_to - cum[i]) / len);
-    const Vec2 d = route[i + 1] - route[i];
-    const double t = std::clamp((p - route[i]).dot(d) / (len * len), t0, t1);
-    const double dist = (route[i] + t * d - p).norm();
-    if (dist < best) {
-      best = dist;
-      *s_closest = cum[i] + t * len;
-    }
-  }
-  return best;
 }
 
 struct Revisit {
@@ -82,10 +55,9 @@ std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::v
     const bool last = s >= s_end;
     if (last) s = s_end;
     if (s - lag > s_start) {
-      double s_earlier = 0.0;
-      const double d =
-          DistanceToStretch(route, cum, PointAt(route, cum, s), s_start, s - lag, &s_earlier);
-      if (d < revisit_radius) return Revisit{s, previous, s_earlier};
+      const core::PathProjection earlier =
+          core::ProjectOntoPath(route, cum, PointAt(route, cum, s), s_start, s - lag);
+      if (earlier.distance < revisit_radius) return Revisit{s, previous, earlier.s};
     }
     if (last) return std::nullopt;
     previous = s;
@@ -108,16 +80,6 @@ double RouteLength(const std::vector<Vec2>& route) {
   double length = 0.0;
   for (std::size_t i = 1; i < route.size(); ++i) length += (route[i] - route[i - 1]).norm();
   return length;
-}
-
-double ProjectOntoRoute(const std::vector<Vec2>& route, const Vec2& p, double s_from, double s_to) {
-  RETRACE_CHECK(route.size() >= 2);
-  const std::vector<double> cum = CumulativeArcLength(route);
-  const double lo = std::clamp(std::min(s_from, s_to), 0.0, cum.back());
-  const double hi = std::clamp(std::max(s_from, s_to), 0.0, cum.back());
-  double s = lo;
-  DistanceToStretch(route, cum, p, lo, hi, &s);
-  return s;
 }
 
 std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,

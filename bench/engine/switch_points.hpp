@@ -16,11 +16,6 @@ namespace retrace::bench {
 /// Total length (m) of the route polyline; 0 for fewer than 2 points.
 double RouteLength(const std::vector<core::Vec2>& route);
 
-/// Arc length (m) of the point of the route closest to p (W), searched only within the arc
-/// length window [s_from, s_to] (clamped to the route). Requires at least 2 route points.
-double ProjectOntoRoute(const std::vector<core::Vec2>& route, const core::Vec2& p, double s_from,
-                        double s_to);
-
 /// Checks that no partial map revisits its own area: a point of map k's stretch of route that
 /// comes within `revisit_radius` (m) of an earlier part of the same stretch lying more than
 /// 3·revisit_radius of arc length behind it means the switch to map k+1 comes too late.

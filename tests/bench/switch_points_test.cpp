@@ -53,14 +53,6 @@ TEST(RouteLength, SumsTheSegments) {
   EXPECT_DOUBLE_EQ(RouteLength({{1, 1}}), 0.0);
 }
 
-TEST(ProjectOntoRoute, FindsTheClosestPointInsideTheWindowOnly) {
-  const auto route = DoubleSquare();
-  EXPECT_NEAR(ProjectOntoRoute(route, {1, -1}, 0, 100), 1.0, 1e-9);
-  EXPECT_NEAR(ProjectOntoRoute(route, {1, -1}, 100, 300), 161.0, 1e-9);
-  // A window past the end is clamped to the route.
-  EXPECT_NEAR(ProjectOntoRoute(route, {0, 0}, 290, 1000), 300.0, 1e-9);
-}
-
 TEST(CheckSwitchPoints, WarnsWhenAMapRevisitsItsOwnPath) {
   const auto warnings = CheckSwitchPoints(DoubleSquare(), {}, 3.0);
   ASSERT_EQ(warnings.size(), 1u);

@@ -14,6 +14,7 @@
 #include "bench/engine/metrics_config.hpp"
 #include "bench/metrics/metrics.hpp"
 #include "core/check.hpp"
+#include "core/path_projection.hpp"
 #include "core/pose2.hpp"
 
 namespace retrace::bench::internal {
@@ -146,14 +147,6 @@ class NearestGrid {
   std::vector<std::size_t> items_;
 };
 
-inline std::vector<double> CumulativeArc(const std::vector<Vec2>& points) {
-  std::vector<double> arc(points.size(), 0.0);
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    arc[i] = arc[i - 1] + (points[i] - points[i - 1]).norm();
-  }
-  return arc;
-}
-
 struct Projection {
   double distance = kInf;  // m, to the closest point of the path
   double s = 0.0;          // m, arc length of the foot point (beyond the ends: extended)
@@ -170,7 +163,7 @@ class TaughtPath {
         points_.push_back(p);
       }
     }
-    arc_ = CumulativeArc(points_);
+    arc_ = core::CumulativeArcLength(points_);
     std::vector<Vec2> a, b;
     for (std::size_t i = 0; i < segments(); ++i) {
       a.push_back(points_[i]);
@@ -193,32 +186,11 @@ class TaughtPath {
     return i == kNone ? Projection{} : Finish(i, p);
   }
 
-  // Projection onto the segments that overlap [s_lo, s_hi] of arc length.
-  Projection ProjectWindow(const Vec2& p, double s_lo, double s_hi) const {
-    if (empty()) return {};
-    const auto it = std::upper_bound(arc_.begin(), arc_.end(), s_lo);
-    std::size_t i = it == arc_.begin() ? 0 : static_cast<std::size_t>(it - arc_.begin()) - 1;
-    i = std::min(i, segments() - 1);
-    std::size_t best = i;
-    double best_d2 = kInf;
-    for (; i < segments() && arc_[i] <= s_hi; ++i) {
-      const double d2 = Dist2(i, p);
-      if (d2 < best_d2) {
-        best_d2 = d2;
-        best = i;
-      }
-    }
-    return Finish(best, p);
-  }
+  // The points and arc lengths of the polyline (duplicates dropped).
+  const std::vector<Vec2>& points() const { return points_; }
+  const std::vector<double>& arc() const { return arc_; }
 
- private:
-  // Segment i runs from point i to point i + 1; a one-point path has one zero-length segment.
-  std::size_t segments() const { return points_.size() <= 1 ? points_.size() : points_.size() - 1; }
-  std::size_t End(std::size_t i) const { return std::min(i + 1, points_.size() - 1); }
-  double Dist2(std::size_t i, const Vec2& p) const {
-    return SegmentDistance2(p, points_[i], points_[End(i)]);
-  }
-
+  // The projection onto segment i (extended beyond the ends), with its signed lateral offset.
   Projection Finish(std::size_t i, const Vec2& p) const {
     const Vec2& a = points_[i];
     const Vec2 d = points_[End(i)] - a;
@@ -247,22 +219,33 @@ class TaughtPath {
     return out;
   }
 
+ private:
+  // Segment i runs from point i to point i + 1; a one-point path has one zero-length segment.
+  std::size_t segments() const { return points_.size() <= 1 ? points_.size() : points_.size() - 1; }
+  std::size_t End(std::size_t i) const { return std::min(i + 1, points_.size() - 1); }
+  double Dist2(std::size_t i, const Vec2& p) const {
+    return SegmentDistance2(p, points_[i], points_[End(i)]);
+  }
+
   std::vector<Vec2> points_;
   std::vector<double> arc_;
   NearestGrid grid_;
 };
 
-// Monotone progress along the taught path: windowed around the previous match, global only
-// when the window's best is far.
+// Progress along the taught path: the projection (core/path_projection.hpp) within a window
+// around the previous match, the whole path only when the window's best is far.
 class PathTracker {
  public:
   PathTracker(const TaughtPath& path, const MetricsConfig& config) : path_(path), config_(config) {}
 
   Projection Track(const Vec2& p) {
     const double centre = std::clamp(s_prev_, 0.0, path_.length());
-    Projection best =
-        path_.ProjectWindow(p, centre - config_.match_window, centre + config_.match_window);
-    if (best.distance > config_.match_fallback_distance) {
+    const core::PathProjection near =
+        core::ProjectOntoPath(path_.points(), path_.arc(), p, centre - config_.match_window,
+                              centre + config_.match_window);
+    Projection best;
+    if (std::isfinite(near.distance)) best = path_.Finish(near.segment, p);
+    if (!(near.distance <= config_.match_fallback_distance)) {
       const Projection global = path_.ProjectGlobal(p);
       if (global.distance < best.distance) best = global;
     }
