@@ -125,11 +125,11 @@ BeamModel::Terms BeamModel::SumTerms(double z, double short_decay, std::span<con
     s.exponent[i] = -0.5 * a * a;
     s.p_hit[i] = 0.0;
     s.hit_side[num_hit] = static_cast<std::uint32_t>(i);
-    num_hit += in_range & (a * a < 1490.0) ? 1 : 0;
+    num_hit += (in_range & (a * a < 1490.0)) ? 1 : 0;
     // eq. (8): p_short on the short side, z <= z* (and z* > 0).
     s.p_short[i] = 0.0;
     s.short_side[num_short] = static_cast<std::uint32_t>(i);
-    num_short += (zs > 0.0) & (z <= zs) ? 1 : 0;
+    num_short += ((zs > 0.0) & (z <= zs)) ? 1 : 0;
   }
   const double gauss_scale = std::sqrt(2.0 * std::numbers::pi) * sigma;
   for (std::size_t k = 0; k < num_hit; ++k) {

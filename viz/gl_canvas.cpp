@@ -18,7 +18,16 @@
 #include "viz/internal/polyline.hpp"
 #include "viz/render_error.hpp"
 
+// GCC says __SANITIZE_ADDRESS__, Clang __has_feature(address_sanitizer).
 #if defined(__SANITIZE_ADDRESS__)
+#define RETRACE_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RETRACE_ADDRESS_SANITIZER 1
+#endif
+#endif
+
+#if defined(RETRACE_ADDRESS_SANITIZER)
 // Mesa's OSMesa keeps a few hundred bytes per process that it never frees (its buffer list),
 // which LeakSanitizer reports at exit. Every program that renders links this file, so the
 // suppression lives here rather than in each test and in the command-line program. Defined

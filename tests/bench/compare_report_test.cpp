@@ -15,8 +15,6 @@
 namespace retrace::bench {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // FlatMetrics of one mode on one seed as the study reads them: every source key, the values
 // shifted by `offset` so that modes and seeds differ.
 std::map<std::string, double> Flat(double offset, int runs, int successes) {

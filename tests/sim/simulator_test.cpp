@@ -80,7 +80,13 @@ TEST(SimulatorDeterminism, SameSeedGivesIdenticalHashAndOtherSeedsDiffer) {
 }
 
 TEST(SimulatorDeterminism, PinnedHashOfSixtySeconds) {
+  // Bit-identical for the same binary; GCC (the Release build) and Clang (the sanitizer build)
+  // generate different floating-point code, so each has its own pin.
+#if defined(__clang__)
+  constexpr std::uint64_t kPinnedHash = 0x40b37191c78f9b38ULL;
+#else
   constexpr std::uint64_t kPinnedHash = 0x7ad531699853e4d4ULL;
+#endif
   const RunSummary a = Simulate(11, 60.0);
   EXPECT_EQ(a.hash, kPinnedHash) << "new hash: 0x" << std::hex << a.hash
                                  << " (see the header of this file before updating it)";
