@@ -45,7 +45,8 @@ struct EpisodeCallbacks {
 /// Runs the jobs on `threads` threads (>= 1) and returns each job's teaching duration (s,
 /// simulated). Progress: a "teach" phase of the drives (when any job teaches), then a
 /// "playback" phase of all runs. Throws core::WorldError when a teaching drive cannot finish
-/// its route or the world refuses a run's start; the first error by job order wins.
+/// its route or the world refuses a run's start; the first error in the order the
+/// work was started (longest first) wins, whatever the number of threads.
 std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, ProgressSink* progress,
                                 const EpisodeCallbacks& callbacks);
 
