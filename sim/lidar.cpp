@@ -12,7 +12,7 @@
 namespace retrace::sim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNoReturn = std::numeric_limits<double>::infinity();
 constexpr int kMaxBeams = 1 << 20;
 
 void RequireProbability(std::string_view key, double p) { core::RequireInRange(key, p, 0.0, 1.0); }
@@ -178,12 +178,12 @@ LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle>
   if (obstacle_parts_.empty()) {
     caster_.CastFan(origin, dirs, limit, wall);
   } else {
-    std::vector<double> added(n, kInf);
+    std::vector<double> added(n, kNoReturn);
     for (const Obstacle& o : obstacle_parts_) {
       for_covered_beams(o.bound.center, o.bound.radius, [&](int lo, int hi) {
         for (int i = lo; i <= hi; ++i) {
           const auto k = static_cast<std::size_t>(i);
-          double t = kInf;
+          double t = kNoReturn;
           if (o.edges.empty()) {
             t = RayCircleHit(origin, dirs[k], o.circle);
           } else {
@@ -205,7 +205,7 @@ LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle>
   const bool noisy = noise.sigma0 > 0.0 || noise.sigma1 > 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     BeamTruth& truth = out.truth[i];
-    double t = kInf;
+    double t = kNoReturn;
     if (wall[i] <= limit[i]) {
       t = wall[i];
       truth.pedestrian_id = -1;
@@ -234,7 +234,7 @@ LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle>
         continue;
       }
     }
-    if (t == kInf) {
+    if (t == kNoReturn) {
       reading = std::numeric_limits<float>::infinity();
       continue;
     }

@@ -31,7 +31,11 @@ constexpr double kMinEdgeLength = 1e-6;
 b2Vec2 ToB2(const core::Vec2& p) { return {static_cast<float>(p.x()), static_cast<float>(p.y())}; }
 core::Vec2 FromB2(const b2Vec2& p) { return {static_cast<double>(p.x), static_cast<double>(p.y)}; }
 
-// Records every contact that begins between the robot and anything else.
+}  // namespace
+
+// Records every contact that begins between the robot and anything else. Not in the anonymous
+// namespace: PhysicsWorld::Impl holds one, and a class with external linkage should not have a
+// member of an internal type.
 class RobotContactListener final : public b2ContactListener {
  public:
   void BeginContact(b2Contact* contact) override {
@@ -66,8 +70,6 @@ class RobotContactListener final : public b2ContactListener {
   double time = 0.0;
   std::vector<CollisionEvent> events;
 };
-
-}  // namespace
 
 void PhysicsConfig::Validate() const {
   if (!(time_step > 0.0 && time_step <= 0.1)) {

@@ -25,6 +25,7 @@
 #include "tests/bench/campus_routes.hpp"
 #include "tests/support/config_key.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -34,7 +35,7 @@ using namespace testing_routes;
 using core::Vec2;
 using ::testing::HasSubstr;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 const std::vector<std::uint64_t> kSeeds{1, 2, 3, 4};
 
 double DistanceToRoute(const std::vector<Vec2>& route, const Vec2& p) {

@@ -21,13 +21,14 @@
 #include "io/tum.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/trajectory_hash.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
 
 using testing::TrajectoryHash;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 Scenario Small(std::vector<std::string> sets = {}) {
   std::vector<io::ConfigOverride> overrides;

@@ -19,11 +19,12 @@
 #include "bench/engine/teach_drive.hpp"
 #include "core/rng.hpp"
 #include "tests/support/trajectory_hash.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 std::uint64_t TeachHash(const TeachTrace& trace) {
   std::uint64_t h = 0xcbf29ce484222325ULL;

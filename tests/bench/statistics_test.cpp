@@ -1,4 +1,5 @@
 #include "bench/metrics/statistics.hpp"
+#include "tests/support/special_values.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +10,7 @@
 namespace retrace::bench {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using retrace::testing::kNaN;
 
 TEST(Statistics, MeanAndSampleStandardDeviationLeaveOutNonFiniteValues) {
   EXPECT_DOUBLE_EQ(Mean({1.0, 2.0, kNaN, 6.0}), 3.0);

@@ -13,6 +13,8 @@
 #include "bench/suite/suite_spec.hpp"
 #include "core/errors.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/source_dir.hpp"
+#include "tests/support/special_values.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -20,8 +22,8 @@ namespace {
 using ::testing::HasSubstr;
 using SuiteBaselineTest = retrace::testing::TempDirTest;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using retrace::testing::kSource;
+using retrace::testing::kNaN;
 
 SuiteSpec Spec(const retrace::testing::TempDir& tmp, const std::string& seeds = "[1, 2]") {
   const std::string small =

@@ -13,6 +13,7 @@
 #include "bench/suite/suite_spec.hpp"
 #include "core/errors.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 using ::testing::HasSubstr;
 using SuiteRunnerTest = retrace::testing::TempDirTest;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 constexpr const char* kOneLap =
     "{route.points: [[1, 1], [9, 1], [9, 5], [1, 5]], route.switch_points: [10]}";

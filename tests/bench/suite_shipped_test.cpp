@@ -10,11 +10,12 @@
 #include "bench/suite/suite_report.hpp"
 #include "bench/suite/suite_runner.hpp"
 #include "bench/suite/suite_spec.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 std::vector<std::filesystem::path> ShippedSuites() {
   std::vector<std::filesystem::path> files;

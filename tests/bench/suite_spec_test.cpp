@@ -12,6 +12,7 @@
 
 #include "core/errors.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -19,7 +20,7 @@ namespace {
 using ::testing::HasSubstr;
 using SuiteSpecTest = retrace::testing::TempDirTest;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 // The small scenario as a path relative to the suite's folder, as suites write it.
 std::string SmallFrom(const std::filesystem::path& dir) {

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 const std::filesystem::path kFixture = kSource / "tests/data/sweep_small.yaml";
 
 using SweepPlanTest = retrace::testing::TempDirTest;

@@ -22,7 +22,7 @@ using ::testing::HasSubstr;
 using SweepResultsTest = retrace::testing::TempDirTest;
 
 const SweepTableSchema kSchema = ResultsSchema({"a.b", "mount"}, {"success_rate", "err"});
-const std::string kHeader = "case,combo,repeat,seed,a.b,mount,success_rate,err\n";
+const std::string kResultsHeader = "case,combo,repeat,seed,a.b,mount,success_rate,err\n";
 
 std::vector<io::CsvCell> Row(std::size_t id, double err) {
   return {id, id / 2, id % 2, 10 + id % 2, "x", "[1, 2]", 1.0, err};
@@ -63,7 +63,7 @@ TEST_F(SweepResultsTest, AppendedRowsReadBackInFileOrder) {
     appender.Append(Row(5, 0.5));
     appender.Append(Row(2, 0.25));
   }
-  EXPECT_EQ(tmp_.Read("results.csv"), kHeader + Line(5, 0.5) + Line(2, 0.25));
+  EXPECT_EQ(tmp_.Read("results.csv"), kResultsHeader + Line(5, 0.5) + Line(2, 0.25));
   const SweepTable table = ReadSweepTable(file, kSchema, PartialRow::kReject);
   ASSERT_EQ(table.rows.size(), 2u);
   EXPECT_EQ(table.rows[0].case_id, 5u);
@@ -85,7 +85,7 @@ class SweepPartialRow : public retrace::testing::TempDirTest,
                         public ::testing::WithParamInterface<std::string> {};
 
 TEST_P(SweepPartialRow, IsDroppedOnResumeAndTheNextAppendFollowsTheLastGoodRow) {
-  const std::string good = kHeader + Line(0, 0.5) + Line(3, 0.75);
+  const std::string good = kResultsHeader + Line(0, 0.5) + Line(3, 0.75);
   const auto file = tmp_.Write("results.csv", good + GetParam());
   const SweepTable table = ReadSweepTable(file, kSchema, PartialRow::kDrop);
   ASSERT_EQ(table.rows.size(), 2u);
@@ -109,7 +109,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "\n"));                          // an empty line
 
 TEST_F(SweepResultsTest, ABadRowBeforeTheLastIsAnError) {
-  const auto file = tmp_.Write("results.csv", kHeader + Line(0, 0.5) + "garbage\n" + Line(3, 0.75));
+  const auto file = tmp_.Write("results.csv", kResultsHeader + Line(0, 0.5) + "garbage\n" + Line(3, 0.75));
   try {
     ReadSweepTable(file, kSchema, PartialRow::kDrop);
     FAIL();
@@ -119,7 +119,7 @@ TEST_F(SweepResultsTest, ABadRowBeforeTheLastIsAnError) {
 }
 
 TEST_F(SweepResultsTest, ACaseGivenTwiceIsAnError) {
-  const auto file = tmp_.Write("results.csv", kHeader + Line(4, 0.5) + Line(4, 0.5));
+  const auto file = tmp_.Write("results.csv", kResultsHeader + Line(4, 0.5) + Line(4, 0.5));
   EXPECT_THROW(ReadSweepTable(file, kSchema, PartialRow::kDrop), core::IoError);
 }
 
@@ -135,21 +135,21 @@ TEST_F(SweepResultsTest, AnotherHeaderIsAnError) {
 }
 
 TEST_F(SweepResultsTest, AHalfWrittenHeaderStartsTheTableAfresh) {
-  const auto file = tmp_.Write("results.csv", kHeader.substr(0, 10));
+  const auto file = tmp_.Write("results.csv", kResultsHeader.substr(0, 10));
   const SweepTable table = ReadSweepTable(file, kSchema, PartialRow::kDrop);
   EXPECT_EQ(table.complete_size, 0u);
   {
     SweepTableAppender appender(file, kSchema, table.complete_size);
     appender.Append(Row(0, 0.5));
   }
-  EXPECT_EQ(tmp_.Read("results.csv"), kHeader + Line(0, 0.5));
+  EXPECT_EQ(tmp_.Read("results.csv"), kResultsHeader + Line(0, 0.5));
 }
 
 TEST_F(SweepResultsTest, SortedRewriteOrdersByCaseId) {
   const auto file =
-      tmp_.Write("results.csv", kHeader + Line(7, 0.5) + Line(2, 0.25) + Line(10, 1.0));
+      tmp_.Write("results.csv", kResultsHeader + Line(7, 0.5) + Line(2, 0.25) + Line(10, 1.0));
   WriteSortedSweepTable(file, kSchema, ReadSweepTable(file, kSchema, PartialRow::kReject).rows);
-  EXPECT_EQ(tmp_.Read("results.csv"), kHeader + Line(2, 0.25) + Line(7, 0.5) + Line(10, 1.0));
+  EXPECT_EQ(tmp_.Read("results.csv"), kResultsHeader + Line(2, 0.25) + Line(7, 0.5) + Line(10, 1.0));
 }
 
 TEST(SweepSummary, AveragesTheFiniteValuesOfEachCombination) {

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "io/route_file.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 using core::Vec2;
 using ::testing::HasSubstr;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 // A 40 m square driven twice from (0, 0), counter-clockwise, stopping at (0, 20) on the way
 // down its west side: 300 m. The second lap revisits the first.

@@ -2,6 +2,7 @@
 // improvements, the direction of "worse", undefined (NaN) values and timing metrics.
 
 #include "bench/suite/tolerance.hpp"
+#include "tests/support/special_values.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +11,7 @@
 namespace retrace::bench {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using retrace::testing::kNaN;
 
 Tolerance Abs(double abs) {
   Tolerance t;

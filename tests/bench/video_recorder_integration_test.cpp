@@ -14,13 +14,14 @@
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/trajectory_hash.hpp"
 #include "viz/video.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {
 
 using testing::TrajectoryHash;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 // Counts the ticks a recorder saw and checks what it is shown, around a real recorder.
 class CountingObserver final : public PlaybackObserver {

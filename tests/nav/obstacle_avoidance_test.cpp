@@ -16,6 +16,7 @@
 #include "nav/path_follower.hpp"
 #include "tests/support/config_key.hpp"
 #include "tests/support/fake_scan.hpp"
+#include "tests/support/special_values.hpp"
 
 namespace retrace::nav {
 namespace {
@@ -25,7 +26,7 @@ using core::Vec2;
 using retrace::testing::kValid;
 using retrace::testing::ValidationErrorKey;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using retrace::testing::kInf;
 constexpr double kDt = 0.05;  // s, control period
 
 using testing::Segment;

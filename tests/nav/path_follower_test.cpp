@@ -19,7 +19,7 @@ using core::Vec2;
 using retrace::testing::kValid;
 using retrace::testing::ValidationErrorKey;
 
-constexpr double kDt = 0.05;  // s, the default 20 Hz control period
+constexpr double kPeriod = 0.05;  // s, the default 20 Hz control period
 
 // Poses along a polyline through `points`, resampled every `step` m, headings along it.
 core::Path Polyline(const std::vector<Vec2>& points, double step = 0.5) {
@@ -65,11 +65,11 @@ struct Step {
 // Simulates a kinematic unicycle that executes each command exactly for one period.
 std::vector<Step> Drive(PathFollower& follower, Pose2 pose, double max_time) {
   std::vector<Step> log;
-  for (double t = 0.0; t < max_time; t += kDt) {
-    const FollowerOutput out = follower.Compute(pose, kDt);
+  for (double t = 0.0; t < max_time; t += kPeriod) {
+    const FollowerOutput out = follower.Compute(pose, kPeriod);
     log.push_back({pose, out});
     if (out.goal_reached) break;
-    pose = core::IntegrateOdometry(pose, {out.command.v * kDt, out.command.omega * kDt});
+    pose = core::IntegrateOdometry(pose, {out.command.v * kPeriod, out.command.omega * kPeriod});
   }
   return log;
 }
@@ -103,7 +103,7 @@ TEST(PathFollower, ConvergesOntoStraightPathFromLateralAndHeadingOffset) {
 TEST(PathFollower, ReportsSignedErrors) {
   PathFollower follower({});
   follower.SetPath(Straight(10.0));
-  const FollowerOutput out = follower.Compute(Pose2(1.0, 0.3, 0.2), kDt);
+  const FollowerOutput out = follower.Compute(Pose2(1.0, 0.3, 0.2), kPeriod);
   EXPECT_NEAR(out.lateral_error, 0.3, 1e-9);   // left of the path
   EXPECT_NEAR(out.heading_error, -0.2, 1e-9);  // must turn right
   EXPECT_LT(out.command.omega, 0.0);
@@ -192,7 +192,7 @@ TEST(PathFollower, StopsAtTheEndOfThePathWithinTolerance) {
     }
   }
   // Once reached, the command stays zero.
-  const FollowerOutput after = follower.Compute(final_pose, kDt);
+  const FollowerOutput after = follower.Compute(final_pose, kPeriod);
   EXPECT_TRUE(after.goal_reached);
   EXPECT_EQ(after.command, core::Twist{});
   RecordProperty("final_gap_to_goal", std::to_string(gap));
@@ -291,7 +291,7 @@ TEST(PathFollower, DoesNotReportGoalWhenNearTheEndPositionEarly) {
   std::vector<Vec2> pts = ArcPoints(2.0, 2.0 * core::kPi - 0.025, {0, 0}, 0, true, 0.25);
   PathFollower follower({});
   follower.SetPath(Polyline(pts, 0.25));
-  const FollowerOutput first = follower.Compute(Pose2(0.0, 0.0, 0.0), kDt);
+  const FollowerOutput first = follower.Compute(Pose2(0.0, 0.0, 0.0), kPeriod);
   EXPECT_FALSE(first.goal_reached);
   EXPECT_GT(first.command.v, 0.0);
 }
@@ -299,7 +299,7 @@ TEST(PathFollower, DoesNotReportGoalWhenNearTheEndPositionEarly) {
 TEST(PathFollower, EmptyPathIsReached) {
   PathFollower follower({});
   follower.SetPath(core::Path{});
-  const FollowerOutput out = follower.Compute(Pose2(), kDt);
+  const FollowerOutput out = follower.Compute(Pose2(), kPeriod);
   EXPECT_TRUE(out.goal_reached);
   EXPECT_EQ(out.command, core::Twist{});
 }

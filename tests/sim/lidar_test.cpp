@@ -12,16 +12,17 @@
 #include "core/errors.hpp"
 #include "io/config_yaml.hpp"
 #include "tests/support/config_key.hpp"
+#include "tests/support/special_values.hpp"
 
 namespace retrace::sim {
 namespace {
 
 using retrace::testing::ValidationErrorKey;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using retrace::testing::kInf;
 const std::vector<std::uint64_t> kSeeds = {11, 12, 13};
 
-LidarConfig NoiseFree() {
+LidarConfig NoiseFreeLidar() {
   LidarConfig config;
   config.noise.sigma0 = 0.0;
   config.noise.sigma1 = 0.0;
@@ -102,7 +103,7 @@ TEST(LidarConfig, ReadsFromYamlAndRejectsUnknownKeys) {
 }
 
 TEST(Lidar, ScanMetadataFollowsTheConfig) {
-  const Lidar lidar(NoiseFree(), BoxRoom(-5, -5, 5, 5));
+  const Lidar lidar(NoiseFreeLidar(), BoxRoom(-5, -5, 5, 5));
   core::Rng rng(1);
   const LidarReading r = lidar.Scan(core::Pose2(), {}, 12.5, rng);
   ASSERT_EQ(r.scan.size(), 1081u);
@@ -118,7 +119,7 @@ TEST(Lidar, ScanMetadataFollowsTheConfig) {
 
 TEST(Lidar, RangesMatchABoxRoomAtManyAngles) {
   const double x0 = -4.0, y0 = -3.0, x1 = 6.0, y1 = 5.0;
-  const Lidar lidar(NoiseFree(), BoxRoom(x0, y0, x1, y1));
+  const Lidar lidar(NoiseFreeLidar(), BoxRoom(x0, y0, x1, y1));
   core::Rng rng(1);
   for (const core::Pose2& X_WR :
        {core::Pose2(0, 0, 0), core::Pose2(1.0, 0.5, 0.3), core::Pose2(-3.5, 4.2, -2.9)}) {
@@ -136,7 +137,7 @@ TEST(Lidar, RangesMatchABoxRoomAtManyAngles) {
 
 TEST(Lidar, HonoursTheMountPose) {
   const double x0 = -4.0, y0 = -3.0, x1 = 6.0, y1 = 5.0;
-  LidarConfig config = NoiseFree();
+  LidarConfig config = NoiseFreeLidar();
   config.mount = core::Pose2(0.3, -0.1, core::kPi / 2.0);
   const Lidar lidar(config, BoxRoom(x0, y0, x1, y1));
   core::Rng rng(1);
@@ -157,7 +158,7 @@ TEST(Lidar, HonoursTheMountPose) {
 TEST(Lidar, ReadsInfinityWithoutAReturn) {
   core::Rng rng(1);
   {  // open space
-    const Lidar lidar(NoiseFree(), StaticGeometry{});
+    const Lidar lidar(NoiseFreeLidar(), StaticGeometry{});
     const LidarReading r = lidar.Scan(core::Pose2(), {}, 0.0, rng);
     for (std::size_t i = 0; i < r.scan.size(); ++i) {
       ASSERT_TRUE(r.scan.NoReturn(i));
@@ -166,7 +167,7 @@ TEST(Lidar, ReadsInfinityWithoutAReturn) {
     }
   }
   {  // a room larger than range_max: only the beams towards the near wall return
-    const Lidar lidar(NoiseFree(), BoxRoom(-40.0, -40.0, 20.0, 40.0));
+    const Lidar lidar(NoiseFreeLidar(), BoxRoom(-40.0, -40.0, 20.0, 40.0));
     const LidarReading r = lidar.Scan(core::Pose2(), {}, 0.0, rng);
     int returns = 0;
     for (std::size_t i = 0; i < r.scan.size(); ++i) {
@@ -184,7 +185,7 @@ TEST(Lidar, ReadsInfinityWithoutAReturn) {
 }
 
 TEST(Lidar, ReadsNegativeInfinityWhenTooClose) {
-  const Lidar lidar(NoiseFree(), BoxRoom(-0.03, -5.0, 5.0, 5.0));
+  const Lidar lidar(NoiseFreeLidar(), BoxRoom(-0.03, -5.0, 5.0, 5.0));
   core::Rng rng(1);
   // Facing -x: the wall is 3 cm behind the sensor's range_min.
   const LidarReading r = lidar.Scan(core::Pose2(0, 0, core::kPi), {}, 0.0, rng);
@@ -196,7 +197,7 @@ TEST(Lidar, ReadsNegativeInfinityWhenTooClose) {
 }
 
 TEST(Lidar, LabelsPedestrianHitsAndLetsThemOccludeWalls) {
-  const Lidar lidar(NoiseFree(), BoxRoom(-10, -10, 10, 10));
+  const Lidar lidar(NoiseFreeLidar(), BoxRoom(-10, -10, 10, 10));
   core::Rng rng(1);
   const std::vector<DynamicCircle> people = {
       {{5.0, 0.0}, 0.3, 7},    // in front
@@ -226,7 +227,7 @@ TEST(Lidar, LabelsPedestrianHitsAndLetsThemOccludeWalls) {
   EXPECT_EQ(seen7, 2 * 13 + 1);  // asin(0.06) = 3.44 deg
 
   // With a full circle of beams, the one behind is seen by the first and last beams.
-  LidarConfig full = NoiseFree();
+  LidarConfig full = NoiseFreeLidar();
   full.fov_deg = 360.0;
   full.beams = 1441;
   const Lidar round(full, BoxRoom(-10, -10, 10, 10));
@@ -239,7 +240,7 @@ TEST(Lidar, LabelsPedestrianHitsAndLetsThemOccludeWalls) {
 TEST(Lidar, PedestrianCullingAgreesWithTestingEveryBeam) {
   core::Rng rng(5);
   for (const double fov : {270.0, 360.0, 90.0}) {
-    LidarConfig config = NoiseFree();
+    LidarConfig config = NoiseFreeLidar();
     config.fov_deg = fov;
     config.beams = 721;
     const Lidar lidar(config, BoxRoom(-18, -18, 18, 18));
@@ -273,7 +274,7 @@ TEST(Lidar, PedestrianCullingAgreesWithTestingEveryBeam) {
 }
 
 TEST(Lidar, SeesTheBoundaryOfAPedestrianAroundTheSensor) {
-  const Lidar lidar(NoiseFree(), BoxRoom(-10, -10, 10, 10));
+  const Lidar lidar(NoiseFreeLidar(), BoxRoom(-10, -10, 10, 10));
   core::Rng rng(1);
   const std::vector<DynamicCircle> people = {{{0.1, 0.0}, 0.3, 3}};
   const LidarReading r = lidar.Scan(core::Pose2(), people, 0.0, rng);
@@ -285,7 +286,7 @@ TEST(Lidar, SeesTheBoundaryOfAPedestrianAroundTheSensor) {
 }
 
 TEST(Lidar, RangeNoiseHasTheConfiguredMeanAndDeviation) {
-  LidarConfig config = NoiseFree();
+  LidarConfig config = NoiseFreeLidar();
   config.noise.sigma0 = 0.01;
   config.noise.sigma1 = 0.001;
   for (const double radius : {2.0, 20.0}) {
@@ -314,7 +315,7 @@ TEST(Lidar, RangeNoiseHasTheConfiguredMeanAndDeviation) {
 }
 
 TEST(Lidar, DropoutAndShortReturnRatesMatchTheirProbabilities) {
-  LidarConfig config = NoiseFree();
+  LidarConfig config = NoiseFreeLidar();
   config.noise.dropout_probability = 0.1;
   config.noise.short_probability = 0.05;
   const double radius = 10.0;
@@ -356,7 +357,7 @@ TEST(Lidar, DropoutAndShortReturnRatesMatchTheirProbabilities) {
 }
 
 TEST(Lidar, SpuriousReturnsAppearInOpenSpaceToo) {
-  LidarConfig config = NoiseFree();
+  LidarConfig config = NoiseFreeLidar();
   config.noise.short_probability = 0.2;
   const Lidar lidar(config, StaticGeometry{});
   core::Rng rng(3);

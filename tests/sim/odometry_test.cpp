@@ -90,19 +90,19 @@ Stats Summarize(const std::vector<double>& xs) {
   return s;
 }
 
-constexpr int kSeeds = 200;
+constexpr int kDriveSeeds = 200;
 constexpr double kSpeed = 0.8;       // m/s
 constexpr double kStraight = 100.0;  // m
 
 core::Twist StraightAhead(double) { return {kSpeed, 0.0}; }
 
-// Final poses of kSeeds straight 100 m runs.
+// Final poses of kDriveSeeds straight 100 m runs.
 struct Ensemble {
   std::vector<double> x, y, theta;
 };
 Ensemble StraightRuns(const OdometryConfig& config, double rate_hz) {
   Ensemble e;
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < kDriveSeeds; ++seed) {
     const RunResult r = Drive(config, 1000 + seed, rate_hz, kStraight / kSpeed, StraightAhead);
     e.x.push_back(r.X_OR.x);
     e.y.push_back(r.X_OR.y);
@@ -221,7 +221,7 @@ TEST(Odometry, StraightRunDriftMatchesModelOverSeeds) {
   const Ensemble e = StraightRuns(c, 50.0);
   const StraightPrediction p = PredictStraight(c, kStraight);
   const Stats th = Summarize(e.theta), x = Summarize(e.x), y = Summarize(e.y);
-  const double n_sqrt = std::sqrt(static_cast<double>(kSeeds));
+  const double n_sqrt = std::sqrt(static_cast<double>(kDriveSeeds));
   // Means within 4 standard errors; standard deviations within 20 % (the standard error of a
   // standard deviation over 200 samples is 5 %).
   EXPECT_NEAR(th.mean, p.mean_theta, 4.0 * p.std_theta / n_sqrt);
@@ -233,7 +233,7 @@ TEST(Odometry, StraightRunDriftMatchesModelOverSeeds) {
   std::printf(
       "[ info     ] straight 100 m, %d seeds: heading %.4f ± %.4f rad (predicted %.4f ± %.4f), "
       "x %.3f ± %.3f m (%.3f ± %.3f), y %.3f ± %.3f m (%.3f ± %.3f)\n",
-      kSeeds, th.mean, th.std, p.mean_theta, p.std_theta, x.mean, x.std, p.mean_x, p.std_x, y.mean,
+      kDriveSeeds, th.mean, th.std, p.mean_theta, p.std_theta, x.mean, x.std, p.mean_x, p.std_x, y.mean,
       y.std, p.mean_y, p.std_y);
 }
 
@@ -257,21 +257,21 @@ TEST(Odometry, DriftDoesNotDependOnTheRate) {
   // About ten turns on the spot at 1 rad/s (a whole number of steps at both rates).
   const double turned = 63.0;
   std::vector<double> spin_fast, spin_slow;
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < kDriveSeeds; ++seed) {
     const auto spin = [](double) { return core::Twist{0.0, 1.0}; };
     spin_fast.push_back(Drive(c, 5000 + seed, 50.0, turned, spin).theta_unwrapped);
     spin_slow.push_back(Drive(c, 5000 + seed, 10.0, turned, spin).theta_unwrapped);
   }
   const double measured_turn = (1.0 + c.scale_error) * turned;
   const double expected_std = std::sqrt(c.alpha1 * measured_turn);
-  const double n_sqrt = std::sqrt(static_cast<double>(kSeeds));
+  const double n_sqrt = std::sqrt(static_cast<double>(kDriveSeeds));
   for (const auto* s : {&spin_fast, &spin_slow}) {
     EXPECT_NEAR(Summarize(*s).mean, measured_turn, 4.0 * expected_std / n_sqrt);
     EXPECT_NEAR(Summarize(*s).std / expected_std, 1.0, 0.2);
   }
 }
 
-// RMS over kSeeds runs (seeds first_seed, first_seed + 1, ...) of the odometry's final position
+// RMS over kDriveSeeds runs (seeds first_seed, first_seed + 1, ...) of the odometry's final position
 // error (% of `distance`) and heading error (deg).
 struct DriftRms {
   double position_percent = 0.0;
@@ -280,7 +280,7 @@ struct DriftRms {
 DriftRms RmsDrift(const OdometryConfig& c, std::uint64_t first_seed, double distance,
                   const std::function<core::Twist(double)>& command) {
   double sum_pos2 = 0.0, sum_th2 = 0.0;
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < kDriveSeeds; ++seed) {
     const RunResult r =
         Drive(c, first_seed + static_cast<std::uint64_t>(seed), 50.0, distance / kSpeed, command);
     const double e_pos = std::hypot(r.X_OR.x - r.X_OR_true.x, r.X_OR.y - r.X_OR_true.y);
@@ -288,8 +288,8 @@ DriftRms RmsDrift(const OdometryConfig& c, std::uint64_t first_seed, double dist
     sum_pos2 += e_pos * e_pos;
     sum_th2 += e_th * e_th;
   }
-  return {100.0 * std::sqrt(sum_pos2 / kSeeds) / distance,
-          core::RadToDeg(std::sqrt(sum_th2 / kSeeds))};
+  return {100.0 * std::sqrt(sum_pos2 / kDriveSeeds) / distance,
+          core::RadToDeg(std::sqrt(sum_th2 / kDriveSeeds))};
 }
 
 TEST(Odometry, DefaultsDriftLikeARealRobot) {
@@ -317,7 +317,7 @@ TEST(Odometry, DefaultsDriftLikeARealRobot) {
   std::printf(
       "[ info     ] defaults, RMS over %d seeds: straight 100 m: position %.2f %%, heading %.2f "
       "deg; %.0f m square loop: position %.2f %% of the loop, heading %.2f deg\n",
-      kSeeds, straight.position_percent, straight.heading_deg, lap, looped.position_percent,
+      kDriveSeeds, straight.position_percent, straight.heading_deg, lap, looped.position_percent,
       looped.heading_deg);
 }
 

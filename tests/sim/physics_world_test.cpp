@@ -6,13 +6,12 @@
 
 #include "core/errors.hpp"
 #include "sim/static_geometry.hpp"
+#include "tests/sim/add_box.hpp"
 
 namespace retrace::sim {
 namespace {
 
-void AddBox(StaticGeometry& g, double x0, double y0, double x1, double y1) {
-  g.AddPolygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
-}
+using test_geometry::AddBox;
 
 constexpr double kRadius = 0.3;
 

@@ -8,11 +8,12 @@
 
 #include "core/angle.hpp"
 #include "core/rng.hpp"
+#include "tests/support/special_values.hpp"
 
 namespace retrace::sim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using retrace::testing::kInf;
 
 Vec2 Dir(double angle) { return {std::cos(angle), std::sin(angle)}; }
 

@@ -8,15 +8,14 @@
 #include "core/errors.hpp"
 #include "sim/physics_world.hpp"
 #include "tests/support/config_key.hpp"
+#include "tests/sim/add_box.hpp"
 
 namespace retrace::sim {
 namespace {
 
 using retrace::testing::ValidationErrorKey;
 
-void AddBox(StaticGeometry& g, double x0, double y0, double x1, double y1) {
-  g.AddPolygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
-}
+using test_geometry::AddBox;
 
 StaticGeometry FarAwayWall() {
   StaticGeometry g;

@@ -7,14 +7,13 @@
 #include "sim/pedestrians.hpp"
 #include "sim/static_geometry.hpp"
 #include "tests/support/pedestrian_group.hpp"
+#include "tests/sim/add_box.hpp"
 
 namespace retrace::sim::testing_floor {
 
 using retrace::testing::Group;
 
-inline void AddBox(StaticGeometry& g, double x0, double y0, double x1, double y1) {
-  g.AddPolygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
-}
+using test_geometry::AddBox;
 
 // 24 m x 14 m: two rooms at the bottom, a 2 m corridor across the middle and a hall on top
 // with a pillar and a table; 1.2 m doors.

@@ -6,11 +6,12 @@
 #include "core/errors.hpp"
 #include "io/route_file.hpp"
 #include "sim/world_file.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::sim {
 namespace {
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 TEST(RouteCheck, ShippedOfficeRouteIsDrivable) {
   const World world = LoadWorld(kSource / "worlds/office.yaml");

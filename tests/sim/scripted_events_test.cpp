@@ -20,12 +20,14 @@
 #include "sim/walk_planner.hpp"
 #include "sim/world_file.hpp"
 #include "tests/support/pedestrian_group.hpp"
+#include "tests/support/source_dir.hpp"
+#include "tests/support/special_values.hpp"
 
 namespace retrace::sim {
 namespace {
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using retrace::testing::kSource;
+using retrace::testing::kInf;
 
 // A 20 m x 10 m room (inner faces at 0.1 and 19.9 / 9.9) and nothing else.
 World EmptyRoom() {

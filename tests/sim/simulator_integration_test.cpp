@@ -10,11 +10,12 @@
 #include "io/route_file.hpp"
 #include "sim/simulator.hpp"
 #include "sim/teacher.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::sim {
 namespace {
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 TEST(Simulator, TeacherDrivesTheOfficeLoopToTheEndWithoutTouchingAWall) {
   const World world = LoadWorld(kSource / "worlds/office.yaml");

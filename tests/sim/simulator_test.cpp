@@ -16,11 +16,12 @@
 #include "core/rng.hpp"
 #include "io/route_file.hpp"
 #include "sim/teacher.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::sim {
 namespace {
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 struct RunSummary {
   std::uint64_t hash = 0xcbf29ce484222325ULL;

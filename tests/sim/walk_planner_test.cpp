@@ -6,13 +6,12 @@
 
 #include "core/errors.hpp"
 #include "sim/geometry_index.hpp"
+#include "tests/sim/add_box.hpp"
 
 namespace retrace::sim {
 namespace {
 
-void AddBox(StaticGeometry& g, double x0, double y0, double x1, double y1) {
-  g.AddPolygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
-}
+using test_geometry::AddBox;
 
 // A 10 m x 6 m room split at x = 5 by a wall with a door of `door` m at y in [1, 1 + door].
 StaticGeometry RoomWithDoor(double door) {

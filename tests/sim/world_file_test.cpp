@@ -10,6 +10,7 @@
 #include "sim/pedestrians.hpp"
 #include "sim/physics_world.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/source_dir.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-const std::filesystem::path kSource = RETRACE_SOURCE_DIR;
+using retrace::testing::kSource;
 
 class WorldFileTest : public ::testing::Test {
  protected:

@@ -313,7 +313,8 @@ TEST_F(SweepFigureTest, RandomSamplesBecomeAScatterOfEveryCase) {
 TEST_F(SweepFigureTest, ManyParametersWidenTheFigure) {
   SweepFigureData d;
   d.metrics = {"m"};
-  for (int p = 0; p < 6; ++p) d.parameters.push_back("p" + std::to_string(p));
+  // Not "p" + std::to_string(p): GCC 12 at -O3 warns about it (-Wrestrict, GCC bug 105651).
+  for (int p = 0; p < 6; ++p) d.parameters.push_back(std::string("p").append(std::to_string(p)));
   for (int i = 0; i < 3; ++i) {
     SweepCombination c;
     for (int p = 0; p < 6; ++p) c.values.push_back(std::to_string(i + p));

@@ -8,17 +8,6 @@
 #include "viz/internal/cv_image.hpp"
 
 namespace retrace::viz::internal {
-namespace {
-
-constexpr int kShift = 4;  // OpenCV sub-pixel bits: 1/16 px
-constexpr double kOne = 1 << kShift;
-
-cv::Point Fixed(const cv::Point2d& p) {
-  return {static_cast<int>(std::lround(p.x * kOne)), static_cast<int>(std::lround(p.y * kOne))};
-}
-
-}  // namespace
-
 cv::Point2d Chart::Px(double x, double y) const {
   const Vec2 s = box.Size();
   return {plot.x + (x - box.min.x()) / s.x() * plot.width,
@@ -59,7 +48,7 @@ void DrawChartLine(cv::Mat& img, const Chart& chart, const std::vector<double>& 
   std::vector<cv::Point> run;
   const cv::Scalar col = ToScalar(color);
   auto flush = [&] {
-    if (run.size() >= 2) cv::polylines(img, run, false, col, thickness, cv::LINE_AA, kShift);
+    if (run.size() >= 2) cv::polylines(img, run, false, col, thickness, cv::LINE_AA, kSubPixelBits);
     run.clear();
   };
   for (std::size_t i = 0; i < n; ++i) {
@@ -68,7 +57,7 @@ void DrawChartLine(cv::Mat& img, const Chart& chart, const std::vector<double>& 
       continue;
     }
     const double y = std::clamp(ys[i], chart.box.min.y(), chart.box.max.y());
-    const cv::Point q = Fixed(chart.Px(xs[i], y));
+    const cv::Point q = SubPixel(chart.Px(xs[i], y));
     // Consecutive samples in the same sixteenth of a pixel add nothing.
     if (!run.empty() && run.back() == q) continue;
     run.push_back(q);

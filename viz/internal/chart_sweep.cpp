@@ -12,12 +12,6 @@
 namespace retrace::viz::internal {
 namespace {
 
-constexpr int kShift = 4;  // OpenCV sub-pixel bits: 1/16 px, as chart.cpp
-constexpr double kOne = 1 << kShift;
-
-cv::Point Fixed(double x, double y) {
-  return {static_cast<int>(std::lround(x * kOne)), static_cast<int>(std::lround(y * kOne))};
-}
 
 // A sweep grid rarely has more values per parameter; beyond this the values are probably
 // sampled at random and round-number ticks read better than a tick per value.
@@ -163,20 +157,20 @@ void DrawRangeBar(cv::Mat& img, const Chart& chart, double x, double dx, double 
   const cv::Point2d b = chart.Px(x, hi);
   const double px = a.x + dx;
   const cv::Scalar col = ToScalar(color);
-  cv::line(img, Fixed(px, a.y), Fixed(px, b.y), col, 2, cv::LINE_AA, kShift);
+  cv::line(img, SubPixel(px, a.y), SubPixel(px, b.y), col, 2, cv::LINE_AA, kSubPixelBits);
   for (double y : {a.y, b.y})
-    cv::line(img, Fixed(px - 5, y), Fixed(px + 5, y), col, 2, cv::LINE_AA, kShift);
+    cv::line(img, SubPixel(px - 5, y), SubPixel(px + 5, y), col, 2, cv::LINE_AA, kSubPixelBits);
 }
 
 void DrawPointMarker(cv::Mat& img, const Chart& chart, double x, double dx, double y, Rgba color,
                      int radius) {
   if (!std::isfinite(x) || !std::isfinite(y)) return;
   const cv::Point2d c = chart.Px(x, y);
-  const cv::Point q = Fixed(c.x + dx, c.y);
-  cv::circle(img, q, radius * static_cast<int>(kOne), ToScalar(color), cv::FILLED, cv::LINE_AA,
-             kShift);
-  cv::circle(img, q, radius * static_cast<int>(kOne), ToScalar(palette::kText), 1, cv::LINE_AA,
-             kShift);
+  const cv::Point q = SubPixel(c.x + dx, c.y);
+  cv::circle(img, q, radius * (1 << kSubPixelBits), ToScalar(color), cv::FILLED, cv::LINE_AA,
+             kSubPixelBits);
+  cv::circle(img, q, radius * (1 << kSubPixelBits), ToScalar(palette::kText), 1, cv::LINE_AA,
+             kSubPixelBits);
 }
 
 void DrawShiftedLine(cv::Mat& img, const Chart& chart, const std::vector<double>& xs,
@@ -184,7 +178,7 @@ void DrawShiftedLine(cv::Mat& img, const Chart& chart, const std::vector<double>
   std::vector<cv::Point> run;
   auto flush = [&] {
     if (run.size() >= 2)
-      cv::polylines(img, run, false, ToScalar(color), thickness, cv::LINE_AA, kShift);
+      cv::polylines(img, run, false, ToScalar(color), thickness, cv::LINE_AA, kSubPixelBits);
     run.clear();
   };
   for (std::size_t i = 0; i < std::min(xs.size(), ys.size()); ++i) {
@@ -193,7 +187,7 @@ void DrawShiftedLine(cv::Mat& img, const Chart& chart, const std::vector<double>
       continue;
     }
     const cv::Point2d c = chart.Px(xs[i], ys[i]);
-    run.push_back(Fixed(c.x + dx, c.y));
+    run.push_back(SubPixel(c.x + dx, c.y));
   }
   flush();
 }
