@@ -24,7 +24,11 @@ scripts/install_deps.sh
 scripts/check_includes.sh
 
 stage "Release build"
-scripts/build.sh build -DRETRACE_WERROR=ON
+# A unity build (CMake batches of 8 files per translation unit): the heavy headers (GoogleTest,
+# CLI11, Eigen, nlohmann-json, yaml-cpp) are parsed once per batch, 336 s instead of 555 s on 2
+# cores. The sanitizer build below stays file by file, so each file is still checked to compile
+# on its own.
+scripts/build.sh build -DRETRACE_WERROR=ON -DCMAKE_UNITY_BUILD=ON
 
 stage "Release tests (unit, integration, system)"
 ctest --test-dir build --output-on-failure -j "$jobs"
