@@ -9,7 +9,7 @@
 namespace retrace::sim {
 namespace {
 
-constexpr double kNoHit = std::numeric_limits<double>::infinity();
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Ray origin + t * dir against segment a + s * d, s in [0, 1]. Cramer's rule on
 // t * dir - s * d = a - origin; the range checks compare numerators against the denominator's
@@ -23,11 +23,11 @@ inline double SegmentHit(double ox, double oy, double ux, double uy, double ax, 
   const double nt = wx * dy - wy * dx;
   const double ns = wx * uy - wy * ux;
   if (denom > 0.0) {
-    if (nt < 0.0 || ns < 0.0 || ns > denom) return kNoHit;
+    if (nt < 0.0 || ns < 0.0 || ns > denom) return kInf;
   } else if (denom < 0.0) {
-    if (nt > 0.0 || ns > 0.0 || ns < denom) return kNoHit;
+    if (nt > 0.0 || ns > 0.0 || ns < denom) return kInf;
   } else {
-    return kNoHit;  // parallel or collinear: a grazing ray
+    return kInf;  // parallel or collinear: a grazing ray
   }
   return nt / denom + 0.0;  // + 0.0 turns a -0.0 into +0.0
 }
@@ -42,9 +42,9 @@ inline double CircleHit(double ox, double oy, double ux, double uy, double uu, d
   const double b = wx * ux + wy * uy;
   const double cc = wx * wx + wy * wy - r2;
   if (cc > 0.0) {  // outside
-    if (b <= 0.0) return kNoHit;
+    if (b <= 0.0) return kInf;
     const double disc = b * b - uu * cc;
-    if (disc < 0.0) return kNoHit;
+    if (disc < 0.0) return kInf;
     return cc / (b + std::sqrt(disc));
   }
   if (cc == 0.0) return 0.0;  // on the boundary
@@ -221,7 +221,7 @@ void RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
 }
 
 double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) const {
-  if (!(max_t >= 0.0) || nx_ == 0) return kNoHit;
+  if (!(max_t >= 0.0) || nx_ == 0) return kInf;
   const double ox = origin.x(), oy = origin.y();
   const double ux = dir.x(), uy = dir.y();
 
@@ -235,7 +235,7 @@ double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) co
     t0 = std::max(t0, std::min(ta, tb));
     t1 = std::min(t1, std::max(ta, tb));
   } else if (ox < grid_min_.x() || ox > grid_max_.x()) {
-    return kNoHit;
+    return kInf;
   }
   if (uy != 0.0) {
     inv_uy = 1.0 / uy;
@@ -244,9 +244,9 @@ double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) co
     t0 = std::max(t0, std::min(ta, tb));
     t1 = std::min(t1, std::max(ta, tb));
   } else if (oy < grid_min_.y() || oy > grid_max_.y()) {
-    return kNoHit;
+    return kInf;
   }
-  if (t0 > t1) return kNoHit;
+  if (t0 > t1) return kInf;
 
   // Amanatides-Woo walk from the entry cell.
   const double h = cell_size_;
@@ -256,7 +256,7 @@ double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) co
   int iy =
       std::clamp(static_cast<int>(std::floor((ey - grid_min_.y()) * inv_cell_size_)), 0, ny_ - 1);
   int step_x = 0, step_y = 0;
-  double tx = kNoHit, ty = kNoHit, dtx = kNoHit, dty = kNoHit;
+  double tx = kInf, ty = kInf, dtx = kInf, dty = kInf;
   if (ux > 0.0) {
     step_x = 1;
     tx = (grid_min_.x() + (ix + 1) * h - ox) * inv_ux;
@@ -279,7 +279,7 @@ double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) co
   const double uu = ux * ux + uy * uy;
   const CellRange* cells = cells_.data();
   const Item* items = items_.data();
-  double best = kNoHit;
+  double best = kInf;
   for (;;) {
     const std::size_t c =
         static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix);
@@ -308,7 +308,7 @@ double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) co
       ty += dty;
     }
   }
-  return best <= max_t ? best : kNoHit;
+  return best <= max_t ? best : kInf;
 }
 
 }  // namespace retrace::sim

@@ -24,8 +24,8 @@
 #include "sim/world_file.hpp"
 #include "tests/bench/campus_routes.hpp"
 #include "tests/support/config_key.hpp"
-#include "tests/support/temp_dir.hpp"
 #include "tests/support/source_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
 namespace {

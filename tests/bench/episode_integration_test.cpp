@@ -19,9 +19,9 @@
 #include "core/rng.hpp"
 #include "io/json_writer.hpp"
 #include "io/tum.hpp"
+#include "tests/support/source_dir.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/trajectory_hash.hpp"
-#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {

@@ -18,8 +18,8 @@
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "core/rng.hpp"
-#include "tests/support/trajectory_hash.hpp"
 #include "tests/support/source_dir.hpp"
+#include "tests/support/trajectory_hash.hpp"
 
 namespace retrace::bench {
 namespace {

@@ -12,9 +12,9 @@
 #include "bench/suite/suite_report.hpp"
 #include "bench/suite/suite_spec.hpp"
 #include "core/errors.hpp"
-#include "tests/support/temp_dir.hpp"
 #include "tests/support/source_dir.hpp"
 #include "tests/support/special_values.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
 namespace {

@@ -12,8 +12,8 @@
 #include "bench/suite/suite_runner.hpp"
 #include "bench/suite/suite_spec.hpp"
 #include "core/errors.hpp"
-#include "tests/support/temp_dir.hpp"
 #include "tests/support/source_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "core/errors.hpp"
-#include "tests/support/temp_dir.hpp"
 #include "tests/support/source_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
 namespace {

@@ -11,10 +11,10 @@
 #include "bench/engine/teach_drive.hpp"
 #include "bench/output/video_recorder.hpp"
 #include "core/rng.hpp"
+#include "tests/support/source_dir.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/trajectory_hash.hpp"
 #include "viz/video.hpp"
-#include "tests/support/source_dir.hpp"
 
 namespace retrace::bench {
 namespace {

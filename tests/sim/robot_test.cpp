@@ -7,8 +7,8 @@
 
 #include "core/errors.hpp"
 #include "sim/physics_world.hpp"
-#include "tests/support/config_key.hpp"
 #include "tests/sim/add_box.hpp"
+#include "tests/support/config_key.hpp"
 
 namespace retrace::sim {
 namespace {

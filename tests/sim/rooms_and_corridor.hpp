@@ -6,8 +6,8 @@
 
 #include "sim/pedestrians.hpp"
 #include "sim/static_geometry.hpp"
-#include "tests/support/pedestrian_group.hpp"
 #include "tests/sim/add_box.hpp"
+#include "tests/support/pedestrian_group.hpp"
 
 namespace retrace::sim::testing_floor {
 

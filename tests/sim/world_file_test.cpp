@@ -9,8 +9,8 @@
 #include "core/rng.hpp"
 #include "sim/pedestrians.hpp"
 #include "sim/physics_world.hpp"
-#include "tests/support/temp_dir.hpp"
 #include "tests/support/source_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace retrace::sim {
 namespace {
