@@ -1,6 +1,7 @@
 #include "bench/cli/bench_command.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -66,12 +67,34 @@ std::optional<Baseline> PriorBaseline(const BenchOptions& options, const SuiteSp
   return old;
 }
 
+// The baseline's metrics and timings of the entries and modes `selected` runs: the others are
+// not "no longer computed", only not run this time.
+Baseline Restricted(Baseline baseline, const SuiteSpec& selected) {
+  std::vector<std::string> prefixes;
+  for (const SuiteEntry& entry : selected.entries) {
+    for (MapMode mode : entry.modes)
+      prefixes.push_back(entry.name + "." + std::string(core::EnumName(mode)) + ".");
+  }
+  for (auto* table : {&baseline.metrics, &baseline.timing}) {
+    std::erase_if(*table, [&](const auto& metric) {
+      return std::none_of(prefixes.begin(), prefixes.end(), [&](const std::string& prefix) {
+        return metric.first.starts_with(prefix);
+      });
+    });
+  }
+  return baseline;
+}
+
 std::string VerdictLine(const SuiteSpec& spec, const SuiteReport& report,
                         const SuiteResults& results, const std::filesystem::path& baseline_file,
                         const Baseline* baseline, bool updated, const std::filesystem::path& out,
-                        double wall_time_s) {
+                        double wall_time_s, const std::vector<std::string>& only) {
+  std::string selection;
+  for (const std::string& o : only) selection += (selection.empty() ? " (--only " : ", ") + o;
+  if (!selection.empty()) selection += ")";
   const std::string work =
-      std::to_string(spec.entries.size()) + (spec.entries.size() == 1 ? " entry, " : " entries, ") +
+      std::to_string(spec.entries.size()) + (spec.entries.size() == 1 ? " entry" : " entries") +
+      selection + ", " +
       std::to_string(results.teaching_drives) + " teaching drives, " +
       std::to_string(results.playback_runs) + " playback runs, " + Seconds(wall_time_s);
   std::string line = "suite " + spec.name + ": ";
@@ -119,6 +142,8 @@ void AddBenchOptions(CLI::App* command, BenchOptions* options) {
   command->add_option("--out", options->out, "Report folder (default: results/bench/<suite name>)");
   command->add_option("--set", options->overrides,
                       "Override a scenario key in every entry: a.b.c=value (repeatable)");
+  command->add_option("--only", options->only,
+                      "Run and judge only these entries or modes: <entry>[.<mode>] (repeatable)");
 }
 
 int RunBenchCommand(const BenchOptions& options) {
@@ -133,15 +158,22 @@ int RunBenchCommand(const BenchOptions& options) {
         true);
   }
 
+  if (options.update_baseline && !options.only.empty()) {
+    throw core::ConfigError("", "--only cannot be combined with --update-baseline: a baseline "
+                                "covers the whole suite", true);
+  }
+
   // Everything that can be wrong with the input is found here, before anything runs.
-  const SuiteSpec spec = LoadSuiteSpec(options.suite);
+  const SuiteSpec whole = LoadSuiteSpec(options.suite);
   const std::filesystem::path baseline_file =
       options.baseline.empty()
-          ? std::filesystem::path("results") / "baselines" / (spec.name + ".json")
+          ? std::filesystem::path("results") / "baselines" / (whole.name + ".json")
           : options.baseline;
   const std::filesystem::path out =
-      options.out.empty() ? std::filesystem::path("results") / "bench" / spec.name : options.out;
-  const std::optional<Baseline> baseline = PriorBaseline(options, spec, baseline_file);
+      options.out.empty() ? std::filesystem::path("results") / "bench" / whole.name : options.out;
+  std::optional<Baseline> baseline = PriorBaseline(options, whole, baseline_file);
+  const SuiteSpec spec = options.only.empty() ? whole : SelectRuns(whole, options.only);
+  if (baseline && !options.only.empty()) baseline = Restricted(std::move(*baseline), spec);
   const int jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
   const SuiteScenarios scenarios = LoadSuiteScenarios(spec, overrides, jobs);
   for (std::size_t e = 0; e < spec.entries.size(); ++e) {
@@ -172,13 +204,14 @@ int RunBenchCommand(const BenchOptions& options) {
   context.wall_time_s = wall_time;
   context.jobs = jobs;
   context.overrides = options.overrides;
+  context.only = options.only;
   io::WriteJsonAtomic(out / "report.json", ReportJson(report, context, spec, results));
   io::WriteFileAtomic(out / "report.md", ReportMarkdown(report, context));
   if (options.update_baseline) WriteBaseline(baseline_file, MakeBaseline(spec, results));
 
   std::cout << ReportTable(report)
             << VerdictLine(spec, report, results, baseline_file, compared, options.update_baseline,
-                           out, wall_time)
+                           out, wall_time, options.only)
             << "\n";
   return !options.update_baseline && report.failures > 0 ? 1 : 0;
 }

@@ -3,7 +3,7 @@
 // gated metric with the committed baseline (bench/suite/baseline.hpp) under its tolerance
 // (bench/suite/tolerance.hpp), prints the table and a one-line verdict, and writes report.json and
 // report.md. `--update-baseline` records the results as the new baseline instead of judging
-// them.
+// them. `--only <entry>[.<mode>]` runs and judges a part of the suite against the same baseline.
 
 #include <filesystem>
 #include <string>
@@ -22,6 +22,7 @@ struct BenchOptions {
   int jobs = 0;                        ///< worker threads; 0: one per core
   std::filesystem::path out;           ///< report folder; empty: results/bench/<suite name>
   std::vector<std::string> overrides;  ///< --set, applied to every entry after its own `set`
+  std::vector<std::string> only;       ///< --only <entry>[.<mode>]; empty: the whole suite
 };
 
 /// Adds the options of `retrace bench` to a CLI11 subcommand.

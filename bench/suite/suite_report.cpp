@@ -167,6 +167,7 @@ std::string ReportMarkdown(const SuiteReport& report, const ReportContext& conte
   md += "- now: git " + context.git_revision + ", " + context.date + ", " +
         std::to_string(context.jobs) + " jobs, " + Number(context.wall_time_s) + " s\n";
   for (const std::string& o : context.overrides) md += "- `--set " + o + "`\n";
+  for (const std::string& o : context.only) md += "- `--only " + o + "`\n";
   md +=
       "\n| metric | baseline | now | delta | seed sd | verdict | tolerance "
       "|\n|---|---:|---:|---:|---:|---|---|\n";
@@ -221,6 +222,7 @@ nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& contex
           {"wall_time_s", context.wall_time_s},
           {"jobs", context.jobs},
           {"set", context.overrides},
+          {"only", context.only},
           {"verdict", !report.compared      ? "recorded"
                       : report.failures > 0 ? "FAIL"
                                             : "pass"},

@@ -54,6 +54,7 @@ struct ReportContext {
   double wall_time_s = 0.0;
   int jobs = 0;
   std::vector<std::string> overrides;  ///< --set of the command line
+  std::vector<std::string> only;       ///< --only of the command line (empty: the whole suite)
 };
 
 std::string ReportMarkdown(const SuiteReport& report, const ReportContext& context);

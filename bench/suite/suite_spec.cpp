@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <optional>
 #include <set>
 
 #include "bench/metrics/flat_metrics.hpp"
 #include "bench/suite/metric_pattern.hpp"
+#include "core/config.hpp"
+#include "core/errors.hpp"
 #include "core/rng.hpp"
 #include "io/config_yaml.hpp"
 #include "io/read_file.hpp"
@@ -244,6 +247,49 @@ std::vector<std::string> SuiteMetricNames(const SuiteSpec& spec) {
     }
   }
   return names;
+}
+
+SuiteSpec SelectRuns(const SuiteSpec& spec, const std::vector<std::string>& selectors) {
+  std::vector<std::set<MapMode>> chosen(spec.entries.size());
+  for (const std::string& selector : selectors) {
+    const std::size_t dot = selector.find('.');
+    const std::string entry_name = selector.substr(0, dot);
+    const auto entry = std::find_if(spec.entries.begin(), spec.entries.end(),
+                                    [&](const SuiteEntry& e) { return e.name == entry_name; });
+    if (entry == spec.entries.end()) {
+      std::string names;
+      for (const SuiteEntry& e : spec.entries) names += (names.empty() ? "" : ", ") + e.name;
+      throw core::ConfigError("", "--only " + selector + ": suite '" + spec.name +
+                                      "' has no entry '" + entry_name + "' (entries: " + names +
+                                      ")",
+                              true);
+    }
+    std::set<MapMode>& modes = chosen[static_cast<std::size_t>(entry - spec.entries.begin())];
+    if (dot == std::string::npos) {
+      modes.insert(entry->modes.begin(), entry->modes.end());
+      continue;
+    }
+    const std::string mode_name = selector.substr(dot + 1);
+    const std::optional<MapMode> mode = core::ParseEnum<MapMode>(mode_name);
+    if (!mode || std::find(entry->modes.begin(), entry->modes.end(), *mode) == entry->modes.end()) {
+      std::string names;
+      for (MapMode m : entry->modes) names += (names.empty() ? "" : ", ") + std::string(core::EnumName(m));
+      throw core::ConfigError("", "--only " + selector + ": entry '" + entry->name +
+                                      "' does not run mode '" + mode_name + "' (its modes: " +
+                                      names + ")",
+                              true);
+    }
+    modes.insert(*mode);
+  }
+  SuiteSpec selected = spec;
+  selected.entries.clear();
+  for (std::size_t e = 0; e < spec.entries.size(); ++e) {
+    if (chosen[e].empty()) continue;
+    SuiteEntry entry = spec.entries[e];
+    std::erase_if(entry.modes, [&](MapMode m) { return !chosen[e].contains(m); });
+    selected.entries.push_back(std::move(entry));
+  }
+  return selected;
 }
 
 SuiteSpec LoadSuiteSpec(const std::filesystem::path& file) {

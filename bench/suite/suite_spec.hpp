@@ -74,6 +74,12 @@ SuiteSpec LoadSuiteSpec(const std::filesystem::path& file);
 /// order) and FlatMetrics name.
 std::vector<std::string> SuiteMetricNames(const SuiteSpec& spec);
 
+/// The part of a suite that `retrace bench --only` runs. Each selector is "<entry>" (all its
+/// modes) or "<entry>.<mode>"; the entries and modes keep the suite's order. Throws
+/// core::ConfigError when a selector names no entry of the suite or a mode its entry does not
+/// run (the message lists what there is).
+SuiteSpec SelectRuns(const SuiteSpec& spec, const std::vector<std::string>& selectors);
+
 /// The FlatMetrics names (bench/metrics/flat_metrics.hpp) every mode of an entry has.
 const std::vector<std::string>& AggregateMetricNames();
 

@@ -182,9 +182,12 @@ std::string ReadFile(const std::filesystem::path& path) {
 
 TEST(Episode, ParallelRunsGiveTheSameFilesAsASerialRun) {
   const retrace::testing::TempDir tmp;
-  ASSERT_EQ(RunRunCommand(SmallRun("all", tmp.path() / "serial", 1), RunPhases::kAll, "serial"), 0);
-  ASSERT_EQ(RunRunCommand(SmallRun("all", tmp.path() / "parallel", 3), RunPhases::kAll, "parallel"),
-            0);
+  RunOptions serial_run = SmallRun("all", tmp.path() / "serial", 1);
+  RunOptions parallel_run = SmallRun("all", tmp.path() / "parallel", 3);
+  // The figures are rendered after the runs and are not what is compared.
+  serial_run.figures = parallel_run.figures = false;
+  ASSERT_EQ(RunRunCommand(serial_run, RunPhases::kAll, "serial"), 0);
+  ASSERT_EQ(RunRunCommand(parallel_run, RunPhases::kAll, "parallel"), 0);
   for (const char* mode : {"partial", "single", "consistent"}) {
     for (const char* file :
          {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {

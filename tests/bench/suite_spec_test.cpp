@@ -126,6 +126,44 @@ TEST_F(SuiteSpecTest, MetricNamesAreEntryModeAndAggregateMetric) {
   EXPECT_EQ(names.back().rfind("small.single.", 0), 0u);
 }
 
+TEST_F(SuiteSpecTest, OnlySelectsEntriesAndModesInTheSuitesOrder) {
+  const std::string small = SmallFrom(tmp_.path());
+  const SuiteSpec spec = LoadSuiteSpec(tmp_.Write(
+      "s.yaml", "name: t\nentries:\n  - scenario: " + small +
+                    "\n    modes: [partial, single, consistent]\n    seeds: [1]\n  - scenario: " +
+                    small + "\n    name: other\n    modes: [partial, single]\n    seeds: [2]\n"
+                    "metrics:\n  \"*.*.success_rate\": {abs: 0}\n"));
+
+  // Selectors in any order: the suite's order stays, a repeated selector counts once.
+  const SuiteSpec some = SelectRuns(spec, {"small.consistent", "other", "small.partial", "other"});
+  ASSERT_EQ(some.entries.size(), 2u);
+  EXPECT_EQ(some.entries[0].name, "small");
+  EXPECT_EQ(some.entries[0].modes, (std::vector<MapMode>{MapMode::kPartial, MapMode::kConsistent}));
+  EXPECT_EQ(some.entries[0].seeds, spec.entries[0].seeds);
+  EXPECT_EQ(some.entries[1].modes, spec.entries[1].modes);
+  EXPECT_EQ(some.rules.size(), spec.rules.size());
+
+  const SuiteSpec one = SelectRuns(spec, {"other.single"});
+  ASSERT_EQ(one.entries.size(), 1u);
+  EXPECT_EQ(one.entries[0].name, "other");
+  EXPECT_EQ(one.entries[0].modes, std::vector<MapMode>{MapMode::kSingle});
+  EXPECT_EQ(SuiteMetricNames(one).front().rfind("other.single.", 0), 0u);
+
+  auto error = [&](const std::string& selector) {
+    try {
+      SelectRuns(spec, {selector});
+    } catch (const core::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(error("office"), HasSubstr("no entry 'office' (entries: small, other)"));
+  EXPECT_THAT(error("other.consistent"),
+              HasSubstr("does not run mode 'consistent' (its modes: partial, single)"));
+  EXPECT_THAT(error("small.parital"), HasSubstr("does not run mode 'parital'"));
+  EXPECT_THAT(error(""), HasSubstr("no entry ''"));
+}
+
 TEST_F(SuiteSpecTest, ErrorsNameTheFileLineAndKey) {
   const std::string small = SmallFrom(tmp_.path());
   const std::string file = (tmp_.path() / "suite.yaml").string();

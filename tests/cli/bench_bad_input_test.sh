@@ -67,6 +67,9 @@ expect_bad set-seed "--set seed=3: cannot set seed: a suite entry's \`seeds\` an
 expect_bad set-syntax "--set expects key.path=value" t.yaml "${base[@]}" --set particles
 expect_bad suite-set-unknown-key "bad_set.yaml:3: entry 'small': " bad_set.yaml --update-baseline --baseline "$tmp/new.json" --out "$tmp/out"
 expect_bad set-with-update "--set cannot be combined with --update-baseline" t.yaml --update-baseline --baseline "$tmp/new.json" --set seed=3
+expect_bad only-unknown-entry "--only office: suite 't' has no entry 'office' (entries: small)" t.yaml "${base[@]}" --only office
+expect_bad only-unknown-mode "--only small.single: entry 'small' does not run mode 'single' (its modes: partial)" t.yaml "${base[@]}" --only small.single
+expect_bad only-with-update "--only cannot be combined with --update-baseline" t.yaml --update-baseline --baseline "$tmp/new.json" --only small
 expect_bad update-other-suite "t.json is the baseline of suite 't'; --update-baseline does not overwrite another suite's baseline" u.yaml --update-baseline "${base[@]}"
 expect_bad malformed-suite "malformed.yaml:3: invalid YAML" malformed.yaml "${base[@]}"
 expect_bad missing-suite "missing.yaml: cannot open file" missing.yaml "${base[@]}"

@@ -1,5 +1,5 @@
 // Generated campuses keep the whole corridor along random, self-crossing and revisiting routes
-// free, with the default and a three times denser furnishing (integration: 24 worlds).
+// free, with the default and a three times denser furnishing (system tier: 24 worlds).
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
-// Ten simulated minutes of a crowd on the rooms-and-corridor floor (integration).
+// Ten simulated minutes of a crowd on the rooms-and-corridor floor (system tier: long, so it runs
+// in the optimized build only; tests/sim/pedestrians_test.cpp covers the same code in short runs).
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
