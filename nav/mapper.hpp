@@ -82,6 +82,10 @@ class Mapper {
   /// meet it.
   void Integrate(const core::LaserScan& scan, const core::Pose2& X_MR);
 
+  /// Whether OnScan would integrate a scan now (the first scan, or keyframe_distance moved or
+  /// keyframe_angle_deg turned since the last keyframe).
+  bool KeyframeDue() const;
+
   const core::OccupancyGrid& grid() const { return grid_; }
   /// Keyframe poses X_MR (in M), in the order they were taken.
   const core::Path& path() const { return path_; }
@@ -91,7 +95,6 @@ class Mapper {
   const MapperConfig& config() const { return config_; }
 
  private:
-  bool KeyframeDue() const;
   void ProposeUpdate(core::CellIndex c, float delta, bool end_cell);
 
   MapperConfig config_;

@@ -10,13 +10,23 @@
 //   X_{M_k R} = inverse(X_{O M_k}) * X_OR,
 // and map k's switch pose X_{M_k S} is X_{M_k R} at the switch; then
 // X_{M_{k+1} R} = inverse(X_{M_k S}) * X_{M_k R} (paper eq. 1) holds by construction.
+//
+// With a scan matcher (the `scan_matched` map mode) each keyframe's scan is first aligned with
+// the map being built (nav/scan_matcher.hpp, which keeps the map's surface points next to its
+// grid) and the map takes the corrected pose; between
+// keyframes the pose is the last corrected keyframe pose moved by the odometry since:
+//   X_{M_k R} = X_{M_k K} * inverse(X_{O K}) * X_OR.
+// A refused match keeps the odometry prediction for that keyframe. The switch pose and eq. (1)
+// then hold for the corrected poses.
 
+#include <array>
 #include <optional>
 #include <vector>
 
 #include "core/laser_scan.hpp"
 #include "core/pose2.hpp"
 #include "nav/mapper.hpp"
+#include "nav/scan_matcher.hpp"
 #include "nav/teach_bundle.hpp"
 
 namespace retrace::nav {
@@ -24,9 +34,10 @@ namespace retrace::nav {
 /// Builds the partial maps of one teaching drive.
 class TeachRecorder {
  public:
-  /// Starts map 0 for the robot `robot`. Throws core::ConfigError for an invalid mapper config
-  /// or geometry.
-  TeachRecorder(const MapperConfig& config, const RobotGeometry& robot);
+  /// Starts map 0 for the robot `robot`; with `matcher`, keyframe poses are corrected by scan
+  /// matching. Throws core::ConfigError for an invalid mapper or matcher config or geometry.
+  TeachRecorder(const MapperConfig& config, const RobotGeometry& robot,
+                const std::optional<ScanMatcherConfig>& matcher = std::nullopt);
 
   /// The robot's pose X_OR (m, rad) in the pose source's frame O, at each odometry tick.
   void OnPose(const core::Pose2& X_OR);
@@ -53,6 +64,9 @@ class TeachRecorder {
   const Mapper& mapper() const { return mapper_; }
   /// The maps closed so far.
   const std::vector<PartialMap>& closed_maps() const { return closed_; }
+  /// How many keyframe matches ended with each verdict, indexed by MatchVerdict (all zero
+  /// without a matcher).
+  const std::array<int, 5>& match_counts() const { return match_counts_; }
 
  private:
   MapperConfig config_;
@@ -60,6 +74,10 @@ class TeachRecorder {
   Mapper mapper_;
   std::optional<core::Pose2> X_OM_;  // origin of the current map in O, once known
   std::optional<core::Pose2> X_OR_;  // latest source pose
+  std::optional<ScanMatcher> matcher_;
+  core::Pose2 X_MK_;                 // with a matcher: the last corrected keyframe pose in M ...
+  std::optional<core::Pose2> X_OK_;  // ... and the source pose at that keyframe
+  std::array<int, 5> match_counts_{};
   std::vector<PartialMap> closed_;
   bool finished_ = false;
 };

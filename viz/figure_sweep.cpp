@@ -49,7 +49,7 @@ std::string Join(const std::vector<std::string>& parts, const std::string& sep) 
 }
 
 bool IsModeName(const std::string& s) {
-  return s == "partial" || s == "single" || s == "consistent";
+  return s == "partial" || s == "single" || s == "consistent" || s == "scan_matched";
 }
 
 // "tracking_error_m.pooled.rms" -> "tracking error pooled rms (m)": words for the y axis, the

@@ -83,21 +83,23 @@ inline constexpr Rgba MapColor(int k) {
   return palette::kMaps[static_cast<std::size_t>(k < 0 ? 0 : k) % palette::kMaps.size()];
 }
 
-/// Colour of a map mode: `partial` blue, `single` vermillion, `consistent` green; any other
-/// name gets a colour from its position `index` among the modes shown.
+/// Colour of a map mode: `partial` blue, `single` vermillion, `consistent` green,
+/// `scan_matched` reddish purple; any other name gets a colour from its position `index` among
+/// the modes shown.
 inline constexpr Rgba ModeColor(std::string_view mode, int index) {
   if (mode == "partial") return {0, 114, 178};
   if (mode == "single") return {213, 94, 0};
   if (mode == "consistent") return {0, 158, 115};
-  constexpr std::array<Rgba, 4> kOthers{
-      {{204, 121, 167}, {86, 180, 233}, {230, 159, 0}, {90, 90, 90}}};
+  if (mode == "scan_matched") return {204, 121, 167};
+  constexpr std::array<Rgba, 3> kOthers{{{86, 180, 233}, {230, 159, 0}, {90, 90, 90}}};
   return kOthers[static_cast<std::size_t>(index < 0 ? 0 : index) % kOthers.size()];
 }
 
 /// The maps a mode navigates in, for titles: "partial maps", "one odometry map", "a consistent
-/// map"; any other name: "<name> maps".
+/// map", "scan-matched partial maps"; any other name: "<name> maps".
 inline std::string ModeMaps(std::string_view mode) {
   if (mode == "partial") return "partial maps";
+  if (mode == "scan_matched") return "scan-matched partial maps";
   if (mode == "single") return "one odometry map";
   if (mode == "consistent") return "a consistent map";
   return std::string(mode) + " maps";

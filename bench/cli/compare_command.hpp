@@ -18,7 +18,7 @@ namespace retrace::bench {
 
 struct CompareOptions {
   std::filesystem::path scenario;
-  std::vector<std::string> modes = {"partial", "single", "consistent"};
+  std::vector<std::string> modes = {"all"};
   std::string reference = "consistent";
   int seeds = 5;               ///< scenario seeds seed, seed + 1, ...; >= 2
   std::optional<int> repeats;  ///< playback runs per mode and seed; none: the scenario's

@@ -14,7 +14,9 @@ std::vector<MapMode> ParseModeList(const std::vector<std::string>& names, std::s
                                        " (comma-separated), or all");
   }
   if (names == std::vector<std::string>{"all"}) {
-    return {MapMode::kPartial, MapMode::kSingle, MapMode::kConsistent};
+    std::vector<MapMode> all;
+    for (const auto& [mode, name] : core::EnumTraits<MapMode>::kNames) all.push_back(mode);
+    return all;
   }
   std::vector<MapMode> modes;
   for (const std::string& name : names) {

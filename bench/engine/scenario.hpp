@@ -24,6 +24,7 @@
 #include "nav/obstacle_avoidance.hpp"
 #include "nav/path_follower.hpp"
 #include "nav/robot_geometry.hpp"
+#include "nav/scan_matcher.hpp"
 #include "sim/simulator.hpp"
 #include "sim/teacher.hpp"
 #include "sim/world_file.hpp"
@@ -191,11 +192,13 @@ struct NavConfig {
   nav::LocalizerConfig localizer;
   nav::PathFollowerConfig follower;
   nav::ObstacleAvoidanceConfig avoidance;
+  nav::ScanMatcherConfig scan_matcher;  ///< the scan_matched mode's keyframe correction
 
   template <class V>
   void Reflect(V& v) {
     v("control_rate_hz", control_rate_hz);
     v("mapper", mapper);
+    v("scan_matcher", scan_matcher);
     v("localizer", localizer);
     v("follower", follower);
     v("avoidance", avoidance);

@@ -40,8 +40,11 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
 
   std::vector<ModeRecorder> recorders;
   recorders.reserve(modes.size());
-  for (MapMode mode : modes)
-    recorders.push_back({mode, nav::TeachRecorder(config.nav.mapper, scenario.robot)});
+  for (MapMode mode : modes) {
+    std::optional<nav::ScanMatcherConfig> matcher;
+    if (mode == MapMode::kScanMatched) matcher = config.nav.scan_matcher;
+    recorders.push_back({mode, nav::TeachRecorder(config.nav.mapper, scenario.robot, matcher)});
+  }
 
   TeachResult result;
   TeachTrace trace;
@@ -68,7 +71,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
       command = teacher.Command(X_WR, stepper.control_dt());
       // The operator's switch signal, given as the teacher's progress passes a switch point.
       for (ModeRecorder& r : recorders) {
-        if (r.mode != MapMode::kPartial) continue;
+        if (r.mode != MapMode::kPartial && r.mode != MapMode::kScanMatched) continue;
         while (r.next_switch < switch_points.size() &&
                teacher.Progress() >= switch_points[r.next_switch]) {
           r.recorder.CloseMap();
@@ -103,6 +106,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   for (ModeRecorder& r : recorders) {
     ModeTeach m;
     m.mode = r.mode;
+    m.match_counts = r.recorder.match_counts();
     m.bundle = r.recorder.Finish();
     m.trace = trace;
     m.trace.maps = std::move(r.maps);

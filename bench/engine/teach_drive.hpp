@@ -5,7 +5,10 @@
 //   partial     odometry poses, a new map at every switch point (the paper's method)
 //   single      odometry poses, one map
 //   consistent  ground-truth poses relative to the start, one map (a perfect SLAM's map)
+//   scan_matched  odometry poses corrected by scan-to-map matching at every keyframe, a new
+//               map at every switch point (the paper's §5.4 remedy)
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,8 @@ struct ModeTeach {
   MapMode mode = MapMode::kPartial;
   nav::TeachBundle bundle;
   TeachTrace trace;  ///< the drive's ground truth, with this mode's per-map references
+  /// scan_matched: keyframe matches by verdict (nav::MatchVerdict order); zero otherwise
+  std::array<int, 5> match_counts{};
 };
 
 struct TeachResult {

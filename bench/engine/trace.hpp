@@ -22,6 +22,9 @@ enum class MapMode {
   kPartial,     ///< odometry maps, a new one at every switch point (the paper's method)
   kSingle,      ///< one odometry map of the whole route
   kConsistent,  ///< one map from ground-truth poses (what a perfect SLAM would give)
+  /// partial maps as kPartial, but each keyframe's odometry pose corrected by matching its scan
+  /// against the map being built (nav/scan_matcher.hpp): the paper's §5.4 remedy
+  kScanMatched,
 };
 
 /// One partial map's reference: for every odometry tick of its segment of the teaching drive,
@@ -102,10 +105,11 @@ struct RunTrace {
 
 template <>
 struct retrace::core::EnumTraits<retrace::bench::MapMode> {
-  static constexpr std::array<std::pair<retrace::bench::MapMode, std::string_view>, 3> kNames{
+  static constexpr std::array<std::pair<retrace::bench::MapMode, std::string_view>, 4> kNames{
       {{retrace::bench::MapMode::kPartial, "partial"},
        {retrace::bench::MapMode::kSingle, "single"},
-       {retrace::bench::MapMode::kConsistent, "consistent"}}};
+       {retrace::bench::MapMode::kConsistent, "consistent"},
+       {retrace::bench::MapMode::kScanMatched, "scan_matched"}}};
 };
 
 template <>

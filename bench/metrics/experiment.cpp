@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bench/engine/scheduler.hpp"
+#include "bench/metrics/map_quality.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -33,10 +34,8 @@ std::vector<Experiment> Run(std::vector<EpisodeJob> jobs, const ExperimentOption
   callbacks.mode_done = [&](std::size_t j, std::size_t m, ModeTeach&& teach) {
     ModeResult& mode = experiments[j].modes[m];
     mode.teach = std::move(teach);
-    if (repeats > 0) {
-      mode.aggregate =
-          Aggregate(mode.teach.trace, mode.runs, mode.run_metrics, scenarios[j]->config.metrics);
-    }
+    if (repeats > 0)
+      mode.aggregate = AggregateMode(*scenarios[j], mode.teach, mode.runs, mode.run_metrics);
   };
   callbacks.observe = options.observe;
   const std::vector<double> durations =
@@ -48,6 +47,17 @@ std::vector<Experiment> Run(std::vector<EpisodeJob> jobs, const ExperimentOption
 }
 
 }  // namespace
+
+AggregateMetrics AggregateMode(const Scenario& scenario, const ModeTeach& teach,
+                               const std::vector<RunTrace>& runs,
+                               const std::vector<RunMetrics>& run_metrics) {
+  AggregateMetrics aggregate = Aggregate(teach.trace, runs, run_metrics, scenario.config.metrics);
+  aggregate.map_quality =
+      ComputeMapQuality(teach, scenario.teach_world.geometry,
+                        scenario.config.nav.localizer.likelihood_field.occupied_threshold);
+  aggregate.match_counts = teach.match_counts;
+  return aggregate;
+}
 
 Experiment RunPlaybacks(const Scenario& scenario, std::vector<ModeTeach> teaches,
                         double teach_duration_s, const ExperimentOptions& options) {

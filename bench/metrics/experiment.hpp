@@ -37,6 +37,13 @@ struct ExperimentOptions {
   std::function<std::unique_ptr<PlaybackObserver>(const ModeTeach& teach, int run)> observe;
 };
 
+/// The metrics of one mode: Aggregate over its runs, plus the quality of its taught maps
+/// against the scenario's teach world and its scan-matching counts. Every path from runs to a
+/// mode's numbers (experiments, suites) goes through here.
+AggregateMetrics AggregateMode(const Scenario& scenario, const ModeTeach& teach,
+                               const std::vector<RunTrace>& runs,
+                               const std::vector<RunMetrics>& run_metrics);
+
 /// Teaches the scenario's route for `modes` with one drive, then plays back. Results do not
 /// depend on options.jobs. Throws core::WorldError for a route the teacher cannot drive.
 Experiment RunExperiment(const Scenario& scenario, const std::vector<MapMode>& modes,

@@ -109,6 +109,7 @@
 
 #include "bench/engine/metrics_config.hpp"
 #include "bench/engine/trace.hpp"
+#include "bench/metrics/map_quality.hpp"
 
 namespace retrace::bench {
 
@@ -242,6 +243,10 @@ struct AggregateMetrics {
   SwitchErrorStats switch_error;
   DynamicPointStats dynamic_points;  ///< totals, ratios of the totals
   CpuStats cpu;                      ///< totals, factor of the totals, updates pooled
+  // Of the taught maps, the same for every run of the mode: set by the experiment
+  // (bench/metrics/experiment.hpp), not by Aggregate.
+  MapQualityStats map_quality;
+  std::array<int, 5> match_counts{};  ///< scan_matched: keyframe matches by nav::MatchVerdict
 };
 
 /// Per-sample tracking, progress, lateral and localization errors of one run.

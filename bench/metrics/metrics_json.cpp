@@ -1,8 +1,10 @@
 #include "bench/metrics/metrics_json.hpp"
 
+#include <array>
 #include <string>
 
 #include "io/json_writer.hpp"
+#include "nav/scan_matcher.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -35,6 +37,36 @@ nlohmann::json ToJson(const CpuStats& c) {
           {"sim_time_s", io::JsonNumber(c.sim_time_s)},
           {"cpu_time_s", io::JsonNumber(c.cpu_time_s)},
           {"real_time_factor", io::JsonNumber(c.real_time_factor)}};
+}
+
+nlohmann::json ToJson(const MapQualityStats& q) {
+  nlohmann::json per_map = nlohmann::json::array();
+  for (const MapQuality& m : q.maps) {
+    per_map.push_back(
+        {{"distortion_m", m.distortion_m},
+         {"agreement", m.occupied_cells > 0 ? io::JsonNumber(static_cast<double>(m.agreeing_cells) /
+                                                             m.occupied_cells)
+                                            : nlohmann::json(nullptr)},
+         {"occupied_cells", m.occupied_cells}});
+  }
+  return {{"distortion_m", {{"rms", q.distortion_rms_m}, {"max", q.distortion_max_m}}},
+          {"agreement", io::JsonNumber(q.agreement)},
+          {"per_map", std::move(per_map)}};
+}
+
+// Keyframe matches of the scan_matched mode by verdict, and how many fell back to odometry
+// (refused: every verdict but matched; the map's first keyframe is always "empty_map").
+nlohmann::json MatchCountsJson(const std::array<int, 5>& counts) {
+  nlohmann::json j = nlohmann::json::object();
+  int total = 0;
+  for (const auto& [verdict, name] : core::EnumTraits<nav::MatchVerdict>::kNames) {
+    const int n = counts[static_cast<std::size_t>(verdict)];
+    j[std::string(name)] = n;
+    total += n;
+  }
+  j["keyframes"] = total;
+  j["refused"] = total - counts[static_cast<std::size_t>(nav::MatchVerdict::kMatched)];
+  return j;
 }
 
 nlohmann::json PooledAndRunMean(const Summary& pooled, const Summary& run_mean) {
@@ -118,6 +150,9 @@ nlohmann::json ToJson(const AggregateMetrics& a) {
             {"mean_rad", io::JsonNumber(a.switch_error.mean_rad)},
             {"max_rad", io::JsonNumber(a.switch_error.max_rad)}}},
           {"dynamic_points", ToJson(a.dynamic_points)},
+          {"maps", a.map_quality.maps.size()},
+          {"map_quality", ToJson(a.map_quality)},
+          {"scan_matching", MatchCountsJson(a.match_counts)},
           {"cpu", ToJson(a.cpu)}};
 }
 

@@ -186,10 +186,10 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
   std::vector<std::filesystem::path> written;
   std::vector<std::pair<std::string, ModeTeach>> teaches;
   viz::ComparisonFigureData comparison;
-  for (const char* mode_name : {"partial", "single", "consistent"}) {
+  for (const auto& [mode, name] : core::EnumTraits<MapMode>::kNames) {
+    const std::string mode_name(name);
     const std::filesystem::path dir = out / mode_name;
     if (!std::filesystem::is_directory(dir / "teach")) continue;
-    const MapMode mode = *core::ParseEnum<MapMode>(mode_name);
     ModeTeach teach = ReadTeachFolder(dir / "teach", mode);
     const RunSetup setup = ReadRunSetup(dir);
     const viz::WorldShapes shapes = WorldShapesOf(setup.world.geometry);

@@ -6,6 +6,7 @@
 
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scheduler.hpp"
+#include "bench/metrics/experiment.hpp"
 #include "bench/metrics/flat_metrics.hpp"
 #include "bench/metrics/metrics.hpp"
 #include "core/errors.hpp"
@@ -131,9 +132,8 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
   };
   callbacks.mode_done = [&](std::size_t u, std::size_t m, ModeTeach&& teach) {
     Slot& slot = slots[u][m];
-    slot.aggregate =
-        FlatMetrics(Aggregate(teach.trace, slot.runs, slot.run_metrics,
-                              scenarios.scenarios[units[u].entry][units[u].seed].config.metrics));
+    slot.aggregate = FlatMetrics(AggregateMode(scenarios.scenarios[units[u].entry][units[u].seed],
+                                               teach, slot.runs, slot.run_metrics));
     slot.runs = {};
     slot.run_metrics = {};
   };

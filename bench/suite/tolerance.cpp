@@ -13,7 +13,7 @@ namespace {
 // The metrics where more is better: success, progress, detection quality, speed of the
 // simulation, distance kept from things. Everything else is an error, a count of bad events or
 // a cost, where less is better.
-constexpr std::array<std::string_view, 10> kHigherIsBetter = {"success_rate",
+constexpr std::array<std::string_view, 12> kHigherIsBetter = {"success_rate",
                                                               "successes",
                                                               "success",
                                                               "mean_progress_m",
@@ -22,7 +22,9 @@ constexpr std::array<std::string_view, 10> kHigherIsBetter = {"success_rate",
                                                               "real_time_factor",
                                                               "min_clearance_m",
                                                               "min_pedestrian_gap_m",
-                                                              "repeatability_stations_used"};
+                                                              "repeatability_stations_used",
+                                                              "agreement",
+                                                              "matched"};
 
 // Four significant digits: enough to see a change in a table, short enough to read.
 std::string Short(double v) {

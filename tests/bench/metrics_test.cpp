@@ -579,12 +579,33 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   EXPECT_TRUE(r["cpu"]["real_time_factor"].is_null());
 
   const nlohmann::json a = ToJson(Aggregate(teach, runs, metrics, config));
-  ExpectKeys(a, {"runs", "successes", "success_rate", "outcomes", "taught_path_length_m",
-                 "mean_time_s", "mean_path_length_m", "mean_progress_m", "tracking_error_m",
-                 "localization_error_m", "localization_error_rad", "lost_fraction",
-                 "repeatability_m", "repeatability_max_spread_m", "repeatability_stations_used",
-                 "collisions", "switch_error", "dynamic_points", "cpu"});
+  ExpectKeys(a, {"runs",
+                 "successes",
+                 "success_rate",
+                 "outcomes",
+                 "taught_path_length_m",
+                 "mean_time_s",
+                 "mean_path_length_m",
+                 "mean_progress_m",
+                 "tracking_error_m",
+                 "localization_error_m",
+                 "localization_error_rad",
+                 "lost_fraction",
+                 "repeatability_m",
+                 "repeatability_max_spread_m",
+                 "repeatability_stations_used",
+                 "collisions",
+                 "switch_error",
+                 "dynamic_points",
+                 "maps",
+                 "map_quality",
+                 "scan_matching",
+                 "cpu"});
   ExpectKeys(a["outcomes"], {"success", "timeout", "collision", "lost"});
+  ExpectKeys(a["map_quality"], {"distortion_m", "agreement", "per_map"});
+  ExpectKeys(a["map_quality"]["distortion_m"], {"rms", "max"});
+  ExpectKeys(a["scan_matching"], {"matched", "empty_map", "few_points", "degenerate", "poor_fit",
+                                  "keyframes", "refused"});
   ExpectKeys(a["tracking_error_m"], {"pooled", "run_mean"});
   ExpectKeys(a["tracking_error_m"]["pooled"], {"mean", "rms", "p95", "max", "count"});
   ExpectKeys(a["lost_fraction"], {"pooled", "run_mean"});

@@ -9,6 +9,7 @@
 
 #include "core/angle.hpp"
 #include "core/twist.hpp"
+#include "tests/support/fake_scan.hpp"
 
 namespace retrace::nav {
 namespace {
@@ -134,6 +135,80 @@ TEST(TeachRecorder, ScansBeforeTheFirstPoseAreIgnored) {
   recorder.OnPose(Pose2(5.0, 5.0, 1.0));
   EXPECT_EQ(recorder.pose(), Pose2::Identity());
   EXPECT_TRUE(recorder.OnScan(WallScan(Pose2(5.0, 5.0, 1.0))));
+}
+
+// A room 16 m × 10 m with two pillars: every direction is constrained everywhere.
+std::vector<testing::Segment> RoomWithPillars() {
+  std::vector<testing::Segment> faces;
+  auto ring = [&](std::vector<core::Vec2> v) {
+    for (std::size_t i = 0; i < v.size(); ++i) faces.push_back({v[i], v[(i + 1) % v.size()]});
+  };
+  ring({{-8.03, -5.07}, {8.04, -5.07}, {8.04, 5.03}, {-8.03, 5.03}});
+  ring({{-3.07, -0.93}, {-1.96, -0.93}, {-1.96, 0.96}, {-3.07, 0.96}});
+  ring({{2.04, 1.53}, {3.03, 1.53}, {3.03, 2.47}, {2.04, 2.47}});
+  return faces;
+}
+
+TEST(TeachRecorder, ScanMatchingCorrectsDriftingOdometryAndKeepsEquationOne) {
+  // Truth drives a loop round the first pillar; odometry sees every step 3 % long and turning
+  // 0.4 degrees more (a wheel-radius and a track-width error), so its pose drifts away.
+  const std::vector<testing::Segment> faces = RoomWithPillars();
+  TeachRecorder plain(MapperConfig{}, RobotGeometry{});
+  TeachRecorder matched(MapperConfig{}, RobotGeometry{}, ScanMatcherConfig{});
+  Pose2 X_WR(-5.0, -3.0, 0.0);
+  Pose2 X_OR = Pose2::Identity();
+  const Pose2 X_WO = X_WR;  // odometry starts at the truth
+  std::vector<Pose2> truth;
+  std::vector<Pose2> plain_poses;
+  std::vector<Pose2> matched_poses;
+  for (int t = 0; t < 1400; ++t) {
+    for (TeachRecorder* r : {&plain, &matched}) {
+      r->OnPose(X_OR);
+      r->OnScan(testing::FakeScan(testing::ScanSpec{}, X_WR,
+                                  [&](const core::Vec2& o, const core::Vec2& d) {
+                                    return testing::NearestSegment(o, d, faces);
+                                  }));
+    }
+    truth.push_back(X_WR);
+    plain_poses.push_back(plain.pose());
+    matched_poses.push_back(matched.pose());
+    if (t == 900) {
+      plain.CloseMap();
+      matched.CloseMap();
+    }
+    // A rounded rectangle: straight, then a quarter turn, four times over.
+    const double omega = (t % 350) < 250 ? 0.0 : core::kPi / 2.0 / 100.0;
+    const double step = (t % 350) < 250 ? 0.02 : 0.01;
+    X_WR = core::IntegrateOdometry(X_WR, {step, omega});
+    X_OR = core::IntegrateOdometry(X_OR, {1.03 * step, omega + core::DegToRad(0.4) / 100.0});
+  }
+  // Map 0's poses against the truth, both from the start: the matched ones stay within a few
+  // centimetres, odometry's drift by two decimetres.
+  double plain_worst = 0.0;
+  double matched_worst = 0.0;
+  for (int t = 0; t <= 900; ++t) {
+    const Pose2 X_MR_true = X_WO.Inverse() * truth[static_cast<std::size_t>(t)];
+    plain_worst =
+        std::max(plain_worst, core::Distance(plain_poses[static_cast<std::size_t>(t)], X_MR_true));
+    matched_worst = std::max(matched_worst,
+                             core::Distance(matched_poses[static_cast<std::size_t>(t)], X_MR_true));
+  }
+  EXPECT_GT(plain_worst, 0.2);
+  EXPECT_LT(matched_worst, 0.05);
+  const auto& counts = matched.match_counts();
+  EXPECT_EQ(counts[static_cast<std::size_t>(MatchVerdict::kEmptyMap)],
+            2);  // each map's first keyframe
+  EXPECT_GT(counts[static_cast<std::size_t>(MatchVerdict::kMatched)], 30);
+  EXPECT_EQ(plain.match_counts(), (std::array<int, 5>{}));
+
+  // Map 1 starts at the identity, and its origin is map 0's switch pose (eq. 1).
+  const TeachBundle bundle = matched.Finish();
+  ASSERT_EQ(bundle.maps.size(), 2u);
+  ExpectPoseNear(bundle.maps[0].X_MS, matched_poses[900]);
+  EXPECT_EQ(bundle.maps[1].path.front(), Pose2::Identity());
+  const Pose2 X_M0R = bundle.maps[0].X_MS * matched_poses.back();  // map 1's last pose in map 0
+  const Pose2 X_M0R_true = X_WO.Inverse() * truth.back();
+  EXPECT_LT(core::Distance(X_M0R, X_M0R_true), 0.1);
 }
 
 }  // namespace
