@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "core/angle.hpp"
@@ -145,22 +146,35 @@ ScanMatch ScanMatcher::Match(const core::LaserScan& scan, const core::Pose2& X_M
   KeepPoints(scan, &points_R_);
   result.points = static_cast<int>(points_R_.size());
 
+  // Pairs are found again only when an end point may have moved by more than a tenth of a voxel
+  // since they were found: the last steps of the fit move by less, and keep their pairs.
   Eigen::Matrix3d H;
   Eigen::Vector3d b;
   int paired = 0;
   int inliers = 0;
+  pairings_.resize(points_R_.size());
+  paired_.resize(points_R_.size());
+  std::optional<core::Pose2> paired_at;
   auto linearize = [&](const core::Pose2& X) {
+    const bool repair =
+        !paired_at ||
+        (core::Vec2(X.x, X.y) - core::Vec2(paired_at->x, paired_at->y)).norm() +
+                config_.match_range * std::abs(core::AngleDiff(X.theta, paired_at->theta)) >
+            0.1 * config_.voxel_size;
+    if (repair) paired_at = X;
     H.setZero();
     b.setZero();
     paired = 0;
     inliers = 0;
     const double c = std::cos(X.theta);
     const double s = std::sin(X.theta);
-    Pairing pairing;
-    for (const core::Vec2& p_R : points_R_) {
+    for (std::size_t i = 0; i < points_R_.size(); ++i) {
+      const core::Vec2& p_R = points_R_[i];
       const core::Vec2 r(c * p_R.x() - s * p_R.y(), s * p_R.x() + c * p_R.y());
       const core::Vec2 p(X.x + r.x(), X.y + r.y());
-      if (!Pair(p, &pairing)) continue;
+      if (repair) paired_[i] = Pair(p, &pairings_[i]);
+      if (!paired_[i]) continue;
+      const Pairing& pairing = pairings_[i];
       ++paired;
       const core::Vec2 e = p - pairing.q;
       const core::Vec2 dr(-r.y(), r.x());  // d(R p_R)/dθ
@@ -194,7 +208,7 @@ ScanMatch ScanMatcher::Match(const core::LaserScan& scan, const core::Pose2& X_M
     const Eigen::Vector3d delta = -A.ldlt().solve(b);
     if (!delta.allFinite()) break;
     X = core::Pose2(X.x + delta.x(), X.y + delta.y(), X.theta + delta.z());
-    if (delta.head<2>().norm() < 1e-5 && std::abs(delta.z()) < 1e-6) break;
+    if (delta.head<2>().norm() < 1e-4 && std::abs(delta.z()) < 1e-5) break;
   }
   linearize(X);
   result.paired = paired;

@@ -137,6 +137,8 @@ class ScanMatcher {
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>
       search_cells_;                      ///< coarse key -> voxels
   std::vector<core::Vec2> points_R_;      ///< scratch: the scan being matched, robot frame
+  std::vector<Pairing> pairings_;         ///< scratch: their pairs ...
+  std::vector<std::uint8_t> paired_;      ///< ... where they have one
   mutable std::vector<core::Vec2> near_;  ///< scratch: candidate map points of one pairing
 };
 

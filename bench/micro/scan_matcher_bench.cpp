@@ -1,0 +1,114 @@
+// The teaching drive's scan matcher (nav/scan_matcher.hpp) per keyframe: matching a full
+// 1081-beam scan (270°, 30 m, 2 cm range noise) against a map of the 20 keyframes before it,
+// then adding it to the map, on the procedurally generated campus of the likelihood benchmark.
+// The keyframes walk 0.5 m apart through free space; the prediction is 3 cm and 0.3° off.
+//
+//   ./retrace_micro_bench --benchmark_filter=ScanMatcher --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only=true
+//
+// The budget (issue 14): 2 ms per keyframe on one core.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "bench/micro/campus_map.hpp"
+#include "core/angle.hpp"
+#include "core/laser_scan.hpp"
+#include "core/pose2.hpp"
+#include "core/rng.hpp"
+#include "nav/grid_ray_caster.hpp"
+#include "nav/likelihood_field.hpp"
+#include "nav/scan_matcher.hpp"
+
+namespace {
+
+using retrace::core::Pose2;
+
+constexpr int kKeyframes = 21;  // 20 in the map, the last one matched
+
+struct Fixture {
+  std::vector<Pose2> poses;
+  std::vector<retrace::core::LaserScan> scans;
+  Pose2 predicted;
+
+  Fixture() {
+    const retrace::core::OccupancyGrid map = retrace::bench_micro::CampusMap();
+    const retrace::nav::LikelihoodField field(map, {}, 30.0);
+    const retrace::nav::GridRayCaster caster(field);
+    retrace::core::Rng rng(11);
+    Pose2 X = retrace::bench_micro::FreeCampusPose(map, field, rng);
+    auto scan_at = [&](const Pose2& p) {
+      retrace::core::LaserScan scan;
+      scan.angle_min = -retrace::core::DegToRad(135.0);
+      scan.angle_increment = retrace::core::DegToRad(0.25);
+      scan.range_min = 0.05;
+      scan.range_max = 30.0;
+      for (int i = 0; i < 1081; ++i) {
+        const double a = p.theta + scan.Angle(static_cast<std::size_t>(i));
+        const double r = caster.Cast(p.x, p.y, std::cos(a), std::sin(a), 30.0);
+        scan.ranges.push_back(std::isinf(r) ? static_cast<float>(r)
+                                            : static_cast<float>(r + 0.02 * rng.Normal()));
+      }
+      return scan;
+    };
+    while (static_cast<int>(poses.size()) < kKeyframes) {
+      // Straight on while there is room ahead, else turn.
+      const double ahead = caster.Cast(X.x, X.y, std::cos(X.theta), std::sin(X.theta), 30.0);
+      if (ahead < 2.0) {
+        X = Pose2(X.x, X.y, X.theta + 0.6);
+        continue;
+      }
+      poses.push_back(X);
+      scans.push_back(scan_at(X));
+      X = X * Pose2(0.5, 0.0, 0.05);
+    }
+    const Pose2& last = poses.back();
+    predicted = Pose2(last.x + 0.03, last.y - 0.02, last.theta + retrace::core::DegToRad(0.3));
+  }
+};
+
+const Fixture& GetFixture() {
+  static const Fixture f;
+  return f;
+}
+
+retrace::nav::ScanMatcher MatcherWithMap(const Fixture& f) {
+  retrace::nav::ScanMatcher matcher({}, {});
+  for (int k = 0; k + 1 < kKeyframes; ++k)
+    matcher.AddScan(f.scans[static_cast<std::size_t>(k)], f.poses[static_cast<std::size_t>(k)]);
+  return matcher;
+}
+
+// Match + AddScan of one keyframe: what the teach recorder does per keyframe.
+void BM_ScanMatcherKeyframe(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  const retrace::nav::ScanMatcher base = MatcherWithMap(f);
+  double error_m = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    retrace::nav::ScanMatcher matcher = base;
+    state.ResumeTiming();
+    const retrace::nav::ScanMatch m = matcher.Match(f.scans.back(), f.predicted);
+    matcher.AddScan(f.scans.back(), m.X_MR);
+    error_m = retrace::core::Distance(m.X_MR, f.poses.back());
+    benchmark::DoNotOptimize(m);
+  }
+  state.counters["error_mm"] = 1000.0 * error_m;
+  state.counters["map_points"] = static_cast<double>(base.size());
+}
+BENCHMARK(BM_ScanMatcherKeyframe)->Unit(benchmark::kMillisecond);
+
+// Match alone.
+void BM_ScanMatcherMatch(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  retrace::nav::ScanMatcher matcher = MatcherWithMap(f);
+  for (auto _ : state) {
+    const retrace::nav::ScanMatch m = matcher.Match(f.scans.back(), f.predicted);
+    benchmark::DoNotOptimize(m);
+  }
+}
+BENCHMARK(BM_ScanMatcherMatch)->Unit(benchmark::kMillisecond);
+
+}  // namespace
