@@ -36,7 +36,9 @@ template <class E>
 struct EnumTraits;
 
 template <class E>
-concept NamedEnum = std::is_enum_v<E> && requires { EnumTraits<E>::kNames; };
+concept NamedEnum = std::is_enum_v<E> && requires {
+  EnumTraits<E>::kNames;
+};
 
 template <NamedEnum E>
 std::string_view EnumName(E value) {
@@ -64,6 +66,18 @@ std::string EnumNameList() {
   return out;
 }
 
+/// A config value that may instead be the word `auto`, for the program to decide (e.g.
+/// `route.switch_points: auto`). Files hold either `auto` or a T.
+template <class T>
+struct AutoOr {
+  bool automatic = false;
+  T value{};
+};
+template <class T>
+struct IsAutoOr : std::false_type {};
+template <class T>
+struct IsAutoOr<AutoOr<T>> : std::true_type {};
+
 /// A visitor that does nothing; used to detect reflectable structs.
 struct NullVisitor {
   template <class T>
@@ -71,10 +85,14 @@ struct NullVisitor {
 };
 
 template <class T>
-concept Reflectable = std::is_class_v<T> && requires(T& t, NullVisitor& v) { t.Reflect(v); };
+concept Reflectable = std::is_class_v<T> && requires(T& t, NullVisitor& v) {
+  t.Reflect(v);
+};
 
 template <class T>
-concept Validatable = requires(const T& t) { t.Validate(); };
+concept Validatable = requires(const T& t) {
+  t.Validate();
+};
 
 /// Shortest decimal text that reads back as the same double ("0.1", "-1", "2.5e-05").
 inline std::string FormatNumber(double v) {
@@ -99,8 +117,8 @@ inline void RequireNonNegative(std::string_view key, double v) {
 }
 inline void RequireInRange(std::string_view key, double v, double lo, double hi) {
   if (!(v >= lo && v <= hi)) {
-    throw ConfigError(std::string(key), "must be in [" + FormatNumber(lo) + ", " + FormatNumber(hi) +
-                                            "], got " + FormatNumber(v));
+    throw ConfigError(std::string(key), "must be in [" + FormatNumber(lo) + ", " +
+                                            FormatNumber(hi) + "], got " + FormatNumber(v));
   }
 }
 inline void RequireIntInRange(std::string_view key, long long v, long long lo, long long hi) {

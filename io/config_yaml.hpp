@@ -136,6 +136,20 @@ void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
   } else if constexpr (IsDoubleArray<T>::value) {
     const auto v = ReadNumbers(node, ctx, out.size());
     std::copy(v.begin(), v.end(), out.begin());
+  } else if constexpr (core::IsAutoOr<T>::value) {
+    if (node.IsScalar() && node.Scalar() == "auto") {
+      out.automatic = true;
+      out.value = {};
+      return;
+    }
+    if (node.IsSequence()) {
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        if (node[i].IsScalar() && node[i].Scalar() == "auto")
+          Fail(node, ctx, "`auto` stands alone: give either `auto` or a list, not both");
+      }
+    }
+    out.automatic = false;
+    Read(node, out.value, ctx);
   } else if constexpr (IsOptional<T>::value) {
     typename T::value_type value{};
     if (out) value = *out;
@@ -197,6 +211,12 @@ void Write(YAML::Emitter& out, const T& value) {
     Emit(out, static_cast<double>(value));
   } else if constexpr (std::is_same_v<T, std::string>) {
     out << value;
+  } else if constexpr (core::IsAutoOr<T>::value) {
+    if (value.automatic) {
+      out << std::string("auto");
+    } else {
+      Write(out, value.value);
+    }
   } else if constexpr (core::NamedEnum<T>) {
     out << std::string(core::EnumName(value));
   } else if constexpr (std::is_same_v<T, core::Vec2>) {

@@ -144,16 +144,14 @@ bool Mapper::OnScan(const core::LaserScan& scan) {
 
 void Mapper::ProposeUpdate(core::CellIndex c, float delta, bool end_cell) {
   const std::size_t i = grid_.Index(c);
-  if (stamp_[i] != scan_id_) {
-    stamp_[i] = scan_id_;
-    sum_[i] = 0.0f;
-    count_[i] = 0;
-    end_cell_[i] = 0;
+  Proposal& p = proposals_[i];
+  if (p.stamp != scan_id_) {
+    p = {scan_id_, 0.0f, 0, 0};
     touched_.push_back(i);
   }
-  sum_[i] += delta;
-  ++count_[i];
-  end_cell_[i] |= end_cell ? 1 : 0;
+  p.sum += delta;
+  ++p.count;
+  p.end_cell |= end_cell ? 1 : 0;
 }
 
 void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
@@ -176,12 +174,14 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
   grid_.GrowToInclude(lo, kGrowMargin);
   grid_.GrowToInclude(hi, kGrowMargin);
   const std::size_t cells = grid_.log_odds().size();
-  if (stamp_.size() != cells || scan_id_ == std::numeric_limits<std::uint32_t>::max()) {
-    stamp_.assign(cells, 0);
-    sum_.assign(cells, 0.0f);
-    count_.assign(cells, 0);
-    end_cell_.assign(cells, 0);
+  // A grown grid shifts every cell's index, but entries stamped by an earlier scan are stale
+  // wherever they land, so the scratch only needs to be long enough; it is cleared only when
+  // the stamp would wrap.
+  if (scan_id_ == std::numeric_limits<std::uint32_t>::max()) {
+    proposals_.assign(cells, Proposal{});
     scan_id_ = 0;
+  } else if (proposals_.size() < cells) {
+    proposals_.resize(cells);
   }
   ++scan_id_;
   touched_.clear();
@@ -216,7 +216,8 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
   // first seen in this scan included).
   const std::vector<float>& before = grid_.log_odds();
   const auto blocks = [&](std::size_t cell) {
-    return before[cell] > 0.0f || (stamp_[cell] == scan_id_ && end_cell_[cell] != 0);
+    const Proposal& p = proposals_[cell];
+    return before[cell] > 0.0f || (p.stamp == scan_id_ && p.end_cell != 0);
   };
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const BeamPlan& plan = plans[i];
@@ -238,7 +239,8 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
     // One update per cell and scan: the beams of one scan that meet a cell are not independent
     // measurements of it. A cell holding an end point takes the hit (hits win over beams that
     // graze it); any other cell takes the mean of its beams' inverse-model values.
-    const float delta = end_cell_[i] != 0 ? hit : sum_[i] / static_cast<float>(count_[i]);
+    const Proposal& p = proposals_[i];
+    const float delta = p.end_cell != 0 ? hit : p.sum / static_cast<float>(p.count);
     log_odds[i] = std::clamp(log_odds[i] + delta, l_min, l_max);  // eq. (4)
   }
   stats.cells_updated = touched_.size();

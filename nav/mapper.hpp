@@ -105,10 +105,13 @@ class Mapper {
   MapperStats stats_;
   // Per-scan scratch, valid for cells whose stamp is scan_id_: the sum and number of the
   // beams' log-odds updates, and whether a beam ended in the cell.
-  std::vector<float> sum_;
-  std::vector<std::uint32_t> count_;
-  std::vector<std::uint8_t> end_cell_;
-  std::vector<std::uint32_t> stamp_;
+  struct Proposal {
+    std::uint32_t stamp = 0;  ///< scan_id_ of the scan the other fields belong to
+    float sum = 0.0f;
+    std::uint32_t count = 0;
+    std::uint32_t end_cell = 0;
+  };
+  std::vector<Proposal> proposals_;  ///< one per cell: its four fields in one cache line
   std::vector<std::size_t> touched_;
   std::uint32_t scan_id_ = 0;
 };

@@ -49,7 +49,7 @@ void AddCompareOptions(CLI::App* command, CompareOptions* options) {
   command->add_option("scenario", options->scenario, "Scenario file (YAML)")->required();
   command->add_option("--modes", options->modes, "Map modes to compare, comma-separated, or all")
       ->delimiter(',')
-      ->default_str("partial,single,consistent");
+      ->default_str("all");
   command->add_option("--reference", options->reference, "The mode the others are compared against")
       ->default_str("consistent");
   command->add_option("--seeds", options->seeds, "Scenario seeds (seed, seed + 1, ...), at least 2")

@@ -47,15 +47,17 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
         ->add_option("--teach", options->teach_dir, "The teach/ folder of an earlier run or teach")
         ->required();
     command
-        ->add_option("--mode", options->modes,
-                     "Map mode the teach folder was built in (partial|single|consistent)")
+        ->add_option(
+            "--mode", options->modes,
+            "Map mode the teach folder was built in (partial|single|consistent|scan_matched)")
         ->delimiter(',')
         ->default_val("partial");
   } else {
     command
-        ->add_option("--mode", options->modes,
-                     "Map modes: partial|single|consistent, comma-separated, or all (default: "
-                     "the scenario's modes)")
+        ->add_option(
+            "--mode", options->modes,
+            "Map modes: partial|single|consistent|scan_matched, comma-separated, or all (default: "
+            "the scenario's modes)")
         ->delimiter(',');
   }
   if (phases != RunPhases::kTeachOnly) {

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "bench/engine/switch_points.hpp"
+#include "bench/engine/switch_visibility.hpp"
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "io/config_yaml.hpp"
@@ -59,12 +60,15 @@ void RouteConfig::Validate() const {
     throw core::ConfigError(file.empty() ? "points" : "file",
                             "give the route either as `file` or as inline `points`, not both");
   }
-  for (std::size_t i = 0; i < switch_points.size(); ++i) {
-    core::RequirePositive("switch_points", switch_points[i]);
-    if (i > 0 && !(switch_points[i] > switch_points[i - 1])) {
+  core::RequireNonNegative("switch_window", switch_window);
+  core::RequireNonNegative("min_switch_constraint", min_switch_constraint);
+  const std::vector<double>& points_at = switch_points.value;
+  for (std::size_t i = 0; i < points_at.size(); ++i) {
+    core::RequirePositive("switch_points", points_at[i]);
+    if (i > 0 && !(points_at[i] > points_at[i - 1])) {
       throw core::ConfigError("switch_points", "must be strictly increasing, got " +
-                                                   core::FormatNumber(switch_points[i - 1]) +
-                                                   " then " + core::FormatNumber(switch_points[i]));
+                                                   core::FormatNumber(points_at[i - 1]) + " then " +
+                                                   core::FormatNumber(points_at[i]));
     }
   }
   core::RequirePositive("revisit_radius", revisit_radius);
@@ -180,8 +184,34 @@ Scenario LoadScenario(const std::filesystem::path& file,
   scenario.X_W_start =
       core::Pose2(scenario.route[0].x(), scenario.route[0].y(), std::atan2(d.y(), d.x()));
   try {
+    if (config.route.switch_points.automatic) {
+      // Resolved once, here: the effective config (and the manifest) holds the points chosen.
+      config.route.switch_points = {
+          false, SuggestSwitchPoints(scenario.route, config.route.revisit_radius)};
+      scenario.switch_points_auto = true;
+    }
+    std::vector<double>& switch_points = config.route.switch_points.value;
+    // Checked first: JudgeSwitchPlaces needs points inside the route.
     scenario.warnings =
-        CheckSwitchPoints(scenario.route, config.route.switch_points, config.route.revisit_radius);
+        CheckSwitchPoints(scenario.route, switch_points, config.route.revisit_radius);
+    if (config.route.min_switch_constraint > 0.0 && !switch_points.empty()) {
+      // Automatic points move back to the best place of their window (switching earlier never
+      // makes a map revisit itself); hand-picked ones stay and are warned about.
+      std::vector<SwitchPlace> places =
+          JudgeSwitchPlaces(scenario, switch_points, config.route.switch_window);
+      if (scenario.switch_points_auto) {
+        for (std::size_t k = 0; k < places.size(); ++k) {
+          switch_points[k] = places[k].best_s;
+          places[k] = {places[k].best_s, places[k].best_constraint, places[k].best_s,
+                       places[k].best_constraint};
+        }
+      }
+      if (scenario.switch_points_auto)
+        scenario.warnings =
+            CheckSwitchPoints(scenario.route, switch_points, config.route.revisit_radius);
+      for (std::string& w : SwitchPlaceWarnings(places, config.route.min_switch_constraint))
+        scenario.warnings.push_back(std::move(w));
+    }
     for (std::size_t i = 0; i < config.events.size(); ++i) {
       const EventConfig& event = config.events[i];
       if (event.at_route_s && *event.at_route_s > scenario.route_length) {

@@ -37,11 +37,21 @@ struct RouteConfig {
   std::string file;                ///< route file (x y per line, or AutoNavi x y z qx qy qz qw)
   std::vector<core::Vec2> points;  ///< inline waypoints (W, m), when `file` is empty
   /// Arc lengths (m) along the route at which map k+1 starts; strictly increasing, inside the
-  /// route. Empty: one partial map.
-  std::vector<double> switch_points;
+  /// route. Empty: one partial map. `auto`: chosen from the route's geometry when the scenario
+  /// is loaded (SuggestSwitchPoints, bench/engine/switch_points.hpp): each map ends just before
+  /// the route comes back within revisit_radius of where that map has already been.
+  core::AutoOr<std::vector<double>> switch_points;
   /// m: a map's segment that comes back within this distance of where it already drove is
   /// reported as a revisit (its switch point comes too late).
   double revisit_radius = 3.0;
+  /// m: a switch point's place is compared with the places up to this far before it
+  /// (bench/engine/switch_visibility.hpp); `auto` points move to the best of them.
+  double switch_window = 10.0;
+  /// How well a scan at a switch point must constrain the pose (≈ end points constraining the
+  /// weakest direction); below it the scenario gets a warning naming a better place nearby.
+  /// The default is where the scan matcher calls a scan degenerate (nav.scan_matcher
+  /// .min_constraint): a corridor along its axis or an open field. 0: no check.
+  double min_switch_constraint = 12.0;
 
   template <class V>
   void Reflect(V& v) {
@@ -49,6 +59,8 @@ struct RouteConfig {
     v("points", points);
     v("switch_points", switch_points);
     v("revisit_radius", revisit_radius);
+    v("switch_window", switch_window);
+    v("min_switch_constraint", min_switch_constraint);
   }
   void Validate() const;
 };
@@ -255,6 +267,8 @@ struct Scenario {
   sim::World playback_world;
   std::vector<std::string> warnings;
   std::string playback_blocked;  ///< why the route is not drivable in the playback world, if so
+  /// route.switch_points was `auto`: config.route.switch_points now holds the points chosen.
+  bool switch_points_auto = false;
 };
 
 /// The robot's geometry for the navigation stack: sim.robot.radius, sim.lidar.mount and

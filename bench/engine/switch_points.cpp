@@ -64,8 +64,6 @@ std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::v
   }
 }
 
-std::string Metres(double v) { return core::FormatNumber(std::round(v * 10.0) / 10.0) + " m"; }
-
 void RequireUsable(const std::vector<Vec2>& route, double revisit_radius) {
   if (route.size() < 2) {
     throw core::ConfigError("route",
@@ -75,6 +73,10 @@ void RequireUsable(const std::vector<Vec2>& route, double revisit_radius) {
 }
 
 }  // namespace
+
+std::string ArcLengthText(double s) {
+  return core::FormatNumber(std::round(s * 10.0) / 10.0) + " m";
+}
 
 double RouteLength(const std::vector<Vec2>& route) {
   double length = 0.0;
@@ -95,7 +97,7 @@ std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
     if (!(s > 0.0) || !(s < length)) {
       throw core::ConfigError("route.switch_points",
                               which + " must lie inside the route, between 0 and its length " +
-                                  Metres(length) + " (exclusive)");
+                                  ArcLengthText(length) + " (exclusive)");
     }
     if (i > 0 && !(s > switch_points[i - 1])) {
       throw core::ConfigError("route.switch_points",
@@ -112,11 +114,11 @@ std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
     const auto revisit = FirstRevisit(route, cum, s_start, s_end, revisit_radius);
     if (!revisit) continue;
     std::ostringstream msg;
-    msg << "partial map " << k << " (route " << Metres(s_start) << " to " << Metres(s_end)
-        << ") revisits its own path from " << Metres(revisit->s) << " on (within "
-        << core::FormatNumber(revisit_radius) << " m of where it was at "
-        << Metres(revisit->s_earlier) << "): the switch is too late; start the next map before "
-        << Metres(revisit->s);
+    msg << "partial map " << k << " (route " << ArcLengthText(s_start) << " to "
+        << ArcLengthText(s_end) << ") revisits its own path from " << ArcLengthText(revisit->s)
+        << " on (within " << core::FormatNumber(revisit_radius) << " m of where it was at "
+        << ArcLengthText(revisit->s_earlier)
+        << "): the switch is too late; start the next map before " << ArcLengthText(revisit->s);
     warnings.push_back(msg.str());
   }
   return warnings;

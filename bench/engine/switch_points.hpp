@@ -13,6 +13,9 @@
 
 namespace retrace::bench {
 
+/// "123.4 m": an arc length rounded to 0.1 m, for messages.
+std::string ArcLengthText(double s);
+
 /// Total length (m) of the route polyline; 0 for fewer than 2 points.
 double RouteLength(const std::vector<core::Vec2>& route);
 

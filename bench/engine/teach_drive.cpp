@@ -51,7 +51,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   const core::Pose2 X_RW_start = simulator.RobotPose().Inverse();
   Stepper stepper(simulator, config.nav.control_rate_hz, progress);
   const double timeout = TeachTimeout(scenario);
-  const std::vector<double>& switch_points = config.route.switch_points;
+  const std::vector<double>& switch_points = config.route.switch_points.value;
   core::Twist command;
 
   for (;;) {

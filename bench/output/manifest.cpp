@@ -30,6 +30,8 @@ std::string ManifestYaml(const Scenario& scenario, const ManifestInfo& info) {
   out << YAML::EndMap;
   out << YAML::Key << "wall_time_s" << YAML::Value << info.wall_time_s;
   out << YAML::Key << "warnings" << YAML::Value << scenario.warnings;
+  // route.switch_points: auto, resolved at load: config below holds the points it chose.
+  out << YAML::Key << "switch_points_auto" << YAML::Value << scenario.switch_points_auto;
   out << YAML::Key << "config" << YAML::Value << YAML::Load(io::ConfigToYaml(scenario.config));
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";

@@ -23,18 +23,25 @@ ModeSummary SummarizeMode(MapMode mode, const AggregateMetrics& aggregate) {
 
 std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>& modes,
                         const std::filesystem::path& out, double wall_time_s) {
+  const std::vector<double>& switch_points = scenario.config.route.switch_points.value;
   std::string text = "scenario " + scenario.config.name + ": route " +
                      Cell(scenario.route_length, "%.1f") + " m, " +
-                     std::to_string(scenario.config.route.switch_points.size() + 1) +
-                     " partial maps in mode partial\n";
+                     std::to_string(switch_points.size() + 1) + " partial maps";
+  if (scenario.switch_points_auto) {
+    text += " (switch points auto:";
+    for (std::size_t i = 0; i < switch_points.size(); ++i)
+      text += (i ? ", " : " ") + Cell(switch_points[i], "%.1f");
+    text += switch_points.empty() ? " none needed)" : " m)";
+  }
+  text += "\n";
   char line[512];
-  std::snprintf(line, sizeof line, "%-11s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n", "mode", "success",
+  std::snprintf(line, sizeof line, "%-12s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n", "mode", "success",
                 "track_rms", "track_max", "loc_rms", "loc_max", "repeat", "switch_mx", "coll_ped",
                 "rtf");
   text += line;
   for (const ModeSummary& m : modes) {
     if (m.runs == 0) {
-      std::snprintf(line, sizeof line, "%-11s teach bundle only\n",
+      std::snprintf(line, sizeof line, "%-12s teach bundle only\n",
                     std::string(core::EnumName(m.mode)).c_str());
       text += line;
       continue;
@@ -43,7 +50,7 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
     const std::string collisions = std::to_string(a.collisions.pedestrian_incidents) + " (" +
                                    std::to_string(a.collisions.pedestrian_incidents_robot_driving) +
                                    ")";
-    std::snprintf(line, sizeof line, "%-11s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n",
+    std::snprintf(line, sizeof line, "%-12s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n",
                   std::string(core::EnumName(m.mode)).c_str(),
                   (std::to_string(m.successes) + "/" + std::to_string(m.runs)).c_str(),
                   Cell(a.tracking_error_m_pooled.rms).c_str(),

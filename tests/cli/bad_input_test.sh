@@ -87,6 +87,8 @@ expect_bad run-switch-decreasing "must be strictly increasing" run "$tmp/decreas
 expect_bad run-bad-mode "unknown value 'slam'" run "$tmp/bad_mode.yaml" "${out[@]}"
 expect_bad run-missing-world "nowhere.yaml: cannot open file" run "$tmp/missing_world.yaml" "${out[@]}"
 expect_bad run-bad-mode-flag "unknown mode 'slam'" run "$src/scenarios/small.yaml" --mode slam "${out[@]}"
+expect_bad run-auto-in-list "route.switch_points: \`auto\` stands alone" run "$src/scenarios/small.yaml" --set 'route.switch_points=[auto, 10]' "${out[@]}"
+expect_bad run-matcher-range "nav.scan_matcher.sigma: must be > 0" run "$src/scenarios/small.yaml" --mode scan_matched --set nav.scan_matcher.sigma=0 "${out[@]}"
 expect_bad run-bad-mode-in-list "unknown mode 'slam'" run "$src/scenarios/small.yaml" --mode partial,slam "${out[@]}"
 expect_bad run-mode-twice "mode 'partial' is given twice" run "$src/scenarios/small.yaml" --mode partial,consistent,partial "${out[@]}"
 expect_bad run-bad-set "--set nav.localizer.particles=-5" run "$src/scenarios/small.yaml" --set nav.localizer.particles=-5 "${out[@]}"
