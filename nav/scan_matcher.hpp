@@ -37,14 +37,14 @@
 namespace retrace::nav {
 
 struct ScanMatcherConfig {
-  double match_range = 20.0;  ///< m: end points farther from the LiDAR are not used
+  double match_range = 30.0;  ///< m: end points farther from the LiDAR are not used
   double voxel_size = 0.05;   ///< m: map points are averaged per voxel of this side
   double point_spacing =
       0.1;  ///< m: a scan's end points closer than this to the previous kept one are dropped
   double max_distance = 0.3;  ///< m: farther from every map point, an end point is unpaired
   double sigma = 0.03;        ///< m: Huber scale of the residuals
   int max_iterations = 15;    ///< Gauss–Newton iterations
-  int min_points = 30;        ///< paired end points needed to match at all
+  int min_points = 15;        ///< paired end points needed to match at all
   /// Of the paired end points, the share whose residual must be within 3σ after the fit.
   double min_inlier_fraction = 0.5;
   double min_constraint = 12.0;  ///< smallest eigenvalue of H's translation block (≈ end points)

@@ -91,38 +91,41 @@ const std::vector<ComparedMetric>& ComparedMetrics() {
   // Table order: does it work, how well does it follow and localize, how repeatable, what it
   // costs. Maxima are the max over a seed's runs, averaged over seeds.
   static const std::vector<ComparedMetric> kMetrics = {
-      {"success_rate", "success_rate", "", "success rate", "fraction", false, std::nullopt},
+      {"success_rate", "success_rate", "", "success rate", "fraction", false, false},
       {"tracking_error_m.pooled.rms", "tracking_error_m.pooled.rms", "", "tracking error RMS", "m",
-       false, std::nullopt},
+       false, false},
       {"tracking_error_m.pooled.max", "tracking_error_m.pooled.max", "", "tracking error max", "m",
-       false, std::nullopt},
+       false, false},
       {"localization_error_m.pooled.rms", "localization_error_m.pooled.rms", "",
-       "localization error RMS", "m", false, std::nullopt},
+       "localization error RMS", "m", false, false},
       {"localization_error_m.pooled.max", "localization_error_m.pooled.max", "",
-       "localization error max", "m", false, std::nullopt},
-      {"repeatability_m", "repeatability_m", "", "repeatability", "m", false, std::nullopt},
+       "localization error max", "m", false, false},
+      {"repeatability_m", "repeatability_m", "", "repeatability", "m", false, false},
       {"repeatability_max_spread_m", "repeatability_max_spread_m", "", "repeatability max spread",
-       "m", false, std::nullopt},
-      {"switch_error.max_m", "switch_error.max_m", "", "map-switch error max", "m", false,
-       MapMode::kPartial},
+       "m", false, false},
+      {"switch_error.max_m", "switch_error.max_m", "", "map-switch error max", "m", false, true},
+      {"map_quality.distortion_m.rms", "map_quality.distortion_m.rms", "", "map distortion RMS",
+       "m", false, false},
+      {"map_quality.agreement", "map_quality.agreement", "", "map agreement with the world",
+       "fraction", false, false},
       {"lost_fraction.pooled", "lost_fraction.pooled", "", "lost fraction", "fraction", false,
-       std::nullopt},
+       false},
       {"progress_fraction", "mean_progress_m", "taught_path_length_m", "progress",
-       "fraction of route", false, std::nullopt},
+       "fraction of route", false, false},
       {"collisions.pedestrian_incidents_per_run", "collisions.pedestrian_incidents", "runs",
-       "pedestrian collisions", "incidents per run", false, std::nullopt},
+       "pedestrian collisions", "incidents per run", false, false},
       {"collisions.pedestrian_incidents_robot_driving_per_run",
        "collisions.pedestrian_incidents_robot_driving", "runs",
-       "pedestrian collisions, robot driving into them", "incidents per run", false, std::nullopt},
+       "pedestrian collisions, robot driving into them", "incidents per run", false, false},
       {"cpu.localizer_update_mean_ms", "cpu.localizer_update_mean_ms", "", "localizer update time",
-       "ms", true, std::nullopt},
+       "ms", true, false},
   };
   return kMetrics;
 }
 
 double ComparedValue(const ComparedMetric& metric, MapMode mode,
                      const std::map<std::string, double>& flat) {
-  if (metric.only_mode && *metric.only_mode != mode) return kNaN;
+  if (metric.switching_only && !SwitchesMaps(mode)) return kNaN;
   const auto value = flat.find(metric.source);
   if (value == flat.end()) return kNaN;
   if (metric.divisor.empty()) return value->second;
@@ -164,9 +167,9 @@ Comparison Compare(ComparisonInput input) {
       }
       row.summary.push_back(MeanConfidenceInterval(row.per_seed[m], kComparisonConfidence));
     }
-    const bool reference_defined = !metric.only_mode || *metric.only_mode == input.reference;
+    const bool reference_defined = !metric.switching_only || SwitchesMaps(input.reference);
     for (std::size_t m = 0; m < n_modes; ++m) {
-      const bool defined = !metric.only_mode || *metric.only_mode == input.modes[m];
+      const bool defined = !metric.switching_only || SwitchesMaps(input.modes[m]);
       if (m == out.reference_index || !defined || !reference_defined) {
         row.vs_reference.emplace_back();
       } else {
@@ -297,7 +300,8 @@ std::string ComparisonMarkdown(const Comparison& c) {
         "apart), "
         "of the standard deviation of the runs' lateral offsets; max spread: the largest max − min "
         "there.\n";
-  md << "n/a: not defined (map-switch errors exist in mode partial only; repeatability needs two "
+  md << "n/a: not defined (map-switch errors exist in the modes that switch maps only; "
+        "repeatability needs two "
         "runs; a "
         "ratio needs a non-zero reference mean). Timing rows measure this machine under its load, "
         "not the "

@@ -26,13 +26,13 @@ inline constexpr double kComparisonConfidence = 0.95;
 /// One metric of the study, read from FlatMetrics (bench/metrics/flat_metrics.hpp) of a mode's
 /// aggregate over the runs of one seed.
 struct ComparedMetric {
-  std::string key;                   ///< name in comparison.json
-  std::string source;                ///< FlatMetrics name of the value
-  std::string divisor;               ///< FlatMetrics name the value is divided by; empty: none
-  std::string label;                 ///< row name in the table and the figure
-  std::string unit;                  ///< "m", "ms", "fraction", ...
-  bool timing = false;               ///< measures the machine, not the navigation (IsTimingMetric)
-  std::optional<MapMode> only_mode;  ///< defined for this mode only (n/a elsewhere)
+  std::string key;              ///< name in comparison.json
+  std::string source;           ///< FlatMetrics name of the value
+  std::string divisor;          ///< FlatMetrics name the value is divided by; empty: none
+  std::string label;            ///< row name in the table and the figure
+  std::string unit;             ///< "m", "ms", "fraction", ...
+  bool timing = false;          ///< measures the machine, not the navigation (IsTimingMetric)
+  bool switching_only = false;  ///< defined for modes that switch maps only (n/a elsewhere)
 };
 
 /// The study's metrics in table order.

@@ -71,7 +71,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
       command = teacher.Command(X_WR, stepper.control_dt());
       // The operator's switch signal, given as the teacher's progress passes a switch point.
       for (ModeRecorder& r : recorders) {
-        if (r.mode != MapMode::kPartial && r.mode != MapMode::kScanMatched) continue;
+        if (!SwitchesMaps(r.mode)) continue;
         while (r.next_switch < switch_points.size() &&
                teacher.Progress() >= switch_points[r.next_switch]) {
           r.recorder.CloseMap();

@@ -27,6 +27,11 @@ enum class MapMode {
   kScanMatched,
 };
 
+/// Whether a mode starts a new map at every switch point (partial, scan_matched).
+inline bool SwitchesMaps(MapMode mode) {
+  return mode == MapMode::kPartial || mode == MapMode::kScanMatched;
+}
+
 /// One partial map's reference: for every odometry tick of its segment of the teaching drive,
 /// the recorder's pose in the map and the ground truth at the same instant.
 struct TeachMapTrace {
