@@ -22,16 +22,6 @@ constexpr double kRevisitLagFactor = 3.0;
 
 using core::CumulativeArcLength;
 
-Vec2 PointAt(const std::vector<Vec2>& route, const std::vector<double>& cum, double s) {
-  const auto it = std::upper_bound(cum.begin(), cum.end(), s);
-  if (it == cum.begin()) return route.front();
-  if (it == cum.end()) return route.back();
-  const std::size_t i = static_cast<std::size_t>(it - cum.begin()) - 1;
-  const double len = cum[i + 1] - cum[i];
-  const double t = len > 0.0 ? (s - cum[i]) / len : 0.0;
-  return route[i] + t * (route[i + 1] - route[i]);
-}
-
 struct Revisit {
   double s = 0.0;          // first sample that revisits
   double s_before = 0.0;   // the sample before it (still fine)
@@ -55,8 +45,8 @@ std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::v
     const bool last = s >= s_end;
     if (last) s = s_end;
     if (s - lag > s_start) {
-      const core::PathProjection earlier =
-          core::ProjectOntoPath(route, cum, PointAt(route, cum, s), s_start, s - lag);
+      const core::PathProjection earlier = core::ProjectOntoPath(
+          route, cum, RoutePoseAt(route, cum, s).translation(), s_start, s - lag);
       if (earlier.distance < revisit_radius) return Revisit{s, previous, earlier.s};
     }
     if (last) return std::nullopt;
@@ -73,6 +63,17 @@ void RequireUsable(const std::vector<Vec2>& route, double revisit_radius) {
 }
 
 }  // namespace
+
+core::Pose2 RoutePoseAt(const std::vector<Vec2>& route, const std::vector<double>& cum, double s) {
+  std::size_t i =
+      static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), s) - cum.begin());
+  i = std::clamp<std::size_t>(i, 1, route.size() - 1) - 1;
+  const Vec2 d = route[i + 1] - route[i];
+  const double len = cum[i + 1] - cum[i];
+  const double t = len > 0.0 ? std::clamp((s - cum[i]) / len, 0.0, 1.0) : 0.0;
+  const Vec2 p = route[i] + t * d;
+  return core::Pose2(p.x(), p.y(), std::atan2(d.y(), d.x()));
+}
 
 std::string ArcLengthText(double s) {
   return core::FormatNumber(std::round(s * 10.0) / 10.0) + " m";

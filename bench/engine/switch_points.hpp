@@ -13,6 +13,11 @@
 
 namespace retrace::bench {
 
+/// The pose on the route at arc length s (clamped to the route), facing along its segment;
+/// `cum` is core::CumulativeArcLength(route) (at least 2 points).
+core::Pose2 RoutePoseAt(const std::vector<core::Vec2>& route, const std::vector<double>& cum,
+                        double s);
+
 /// "123.4 m": an arc length rounded to 0.1 m, for messages.
 std::string ArcLengthText(double s);
 

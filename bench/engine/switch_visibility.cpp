@@ -18,18 +18,6 @@ constexpr double kPointSpacing = 0.1;  // m, as the scan matcher keeps end point
 constexpr double kNeighbourGap = 0.3;  // m: neighbours farther apart lie on different surfaces
 constexpr double kStep = 0.5;          // m between the places tried before a switch point
 
-core::Pose2 RouteSample(const std::vector<core::Vec2>& route, const std::vector<double>& cum,
-                        double s) {
-  std::size_t i =
-      static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), s) - cum.begin());
-  i = std::clamp<std::size_t>(i, 1, route.size() - 1) - 1;
-  const core::Vec2 d = route[i + 1] - route[i];
-  const double len = cum[i + 1] - cum[i];
-  const double t = len > 0.0 ? std::clamp((s - cum[i]) / len, 0.0, 1.0) : 0.0;
-  const core::Vec2 p = route[i] + t * d;
-  return core::Pose2(p.x(), p.y(), std::atan2(d.y(), d.x()));
-}
-
 }  // namespace
 
 double ScanConstraint(const core::LaserScan& scan, const nav::RobotGeometry& robot) {
@@ -63,7 +51,7 @@ std::vector<SwitchPlace> JudgeSwitchPlaces(const Scenario& scenario,
   const std::vector<double> cum = core::CumulativeArcLength(scenario.route);
   auto constraint_at = [&](double s) {
     core::Rng rng(0);  // the same noise draw at every place: only the place differs
-    const core::Pose2 X_WR = RouteSample(scenario.route, cum, s);
+    const core::Pose2 X_WR = RoutePoseAt(scenario.route, cum, s);
     return ScanConstraint(lidar.Scan(X_WR, {}, 0.0, rng).scan, scenario.robot);
   };
   for (std::size_t k = 0; k < switch_points.size(); ++k) {
