@@ -66,17 +66,19 @@ std::string EnumNameList() {
   return out;
 }
 
-/// A config value that may instead be the word `auto`, for the program to decide (e.g.
-/// `route.switch_points: auto`). Files hold either `auto` or a T.
-template <class T>
-struct AutoOr {
-  bool automatic = false;
+/// A config value that may instead be one of the words of the named enum E, for the program to
+/// decide how (e.g. `route.switch_points: auto` or `online`). Files hold either a word or a T.
+template <NamedEnum E, class T>
+struct WordOr {
+  std::optional<E> word;  ///< the word given; nullopt: `value` was given
   T value{};
+
+  bool is(E w) const { return word == w; }
 };
 template <class T>
-struct IsAutoOr : std::false_type {};
-template <class T>
-struct IsAutoOr<AutoOr<T>> : std::true_type {};
+struct IsWordOr : std::false_type {};
+template <NamedEnum E, class T>
+struct IsWordOr<WordOr<E, T>> : std::true_type {};
 
 /// A visitor that does nothing; used to detect reflectable structs.
 struct NullVisitor {

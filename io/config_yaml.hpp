@@ -136,19 +136,25 @@ void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
   } else if constexpr (IsDoubleArray<T>::value) {
     const auto v = ReadNumbers(node, ctx, out.size());
     std::copy(v.begin(), v.end(), out.begin());
-  } else if constexpr (core::IsAutoOr<T>::value) {
-    if (node.IsScalar() && node.Scalar() == "auto") {
-      out.automatic = true;
-      out.value = {};
-      return;
+  } else if constexpr (core::IsWordOr<T>::value) {
+    using Word = typename decltype(out.word)::value_type;
+    if (node.IsScalar()) {
+      if (const auto word = core::ParseEnum<Word>(node.Scalar())) {
+        out.word = word;
+        out.value = {};
+        return;
+      }
     }
     if (node.IsSequence()) {
       for (std::size_t i = 0; i < node.size(); ++i) {
-        if (node[i].IsScalar() && node[i].Scalar() == "auto")
-          Fail(node, ctx, "`auto` stands alone: give either `auto` or a list, not both");
+        if (node[i].IsScalar() && core::ParseEnum<Word>(node[i].Scalar())) {
+          Fail(node, ctx,
+               "`" + node[i].Scalar() + "` stands alone: give either one of " +
+                   core::EnumNameList<Word>() + " or a list, not both");
+        }
       }
     }
-    out.automatic = false;
+    out.word.reset();
     Read(node, out.value, ctx);
   } else if constexpr (IsOptional<T>::value) {
     typename T::value_type value{};
@@ -211,9 +217,9 @@ void Write(YAML::Emitter& out, const T& value) {
     Emit(out, static_cast<double>(value));
   } else if constexpr (std::is_same_v<T, std::string>) {
     out << value;
-  } else if constexpr (core::IsAutoOr<T>::value) {
-    if (value.automatic) {
-      out << std::string("auto");
+  } else if constexpr (core::IsWordOr<T>::value) {
+    if (value.word) {
+      out << std::string(core::EnumName(*value.word));
     } else {
       Write(out, value.value);
     }

@@ -10,6 +10,7 @@
 #include "bench/compare/comparison_report.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "bench/metrics/flat_metrics.hpp"
 #include "bench/output/staged_folder.hpp"
@@ -81,6 +82,7 @@ int RunCompareCommand(const CompareOptions& options, const std::string& command_
   if (options.repeats)
     overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
   const Scenario scenario = LoadScenario(options.scenario, overrides);
+  RequireSwitchingModeIfOnline(scenario, modes);
   for (const std::string& warning : scenario.warnings)
     std::cerr << "retrace: warning: " << warning << "\n";
   const std::filesystem::path out =

@@ -9,7 +9,7 @@
 
 namespace retrace::bench {
 
-/// Parses mode names, in the order given; `all` alone is partial, single and consistent. Throws
+/// Parses mode names, in the order given; `all` alone is every mode. Throws
 /// core::ConfigError naming `option` when the list is empty, a name is not a mode, or a mode is
 /// given twice.
 std::vector<MapMode> ParseModeList(const std::vector<std::string>& names, std::string_view option);

@@ -13,6 +13,7 @@
 #include "bench/cli/progress.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "bench/metrics/metrics.hpp"
 #include "bench/output/manifest.hpp"
@@ -94,6 +95,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   Scenario scenario = LoadScenario(options.scenario, overrides);
   ScenarioConfig& config = scenario.config;
   config.modes = ResolveModes(options.modes, config.modes, phases);
+  if (phases != RunPhases::kPlaybackOnly) RequireSwitchingModeIfOnline(scenario, config.modes);
   const std::filesystem::path out =
       options.out.empty() ? std::filesystem::path("results") / config.name : options.out;
   for (const std::string& warning : scenario.warnings)

@@ -31,22 +31,43 @@
 
 namespace retrace::bench {
 
+/// How switch points are chosen instead of being listed: `auto` from the route's geometry when
+/// the scenario is loaded, `online` by the teach recorder while it teaches (nav/online_switcher
+/// .hpp), from its own odometry and scans.
+enum class SwitchPlanning : std::uint8_t { kAuto, kOnline };
+
+}  // namespace retrace::bench
+
+template <>
+struct retrace::core::EnumTraits<retrace::bench::SwitchPlanning> {
+  static constexpr std::array<std::pair<retrace::bench::SwitchPlanning, std::string_view>, 2>
+      kNames{{{retrace::bench::SwitchPlanning::kAuto, "auto"},
+              {retrace::bench::SwitchPlanning::kOnline, "online"}}};
+};
+
+namespace retrace::bench {
+
 /// The taught route: a polyline in W, from a route file or inline, and where the operator
-/// starts a new partial map (mode `partial`).
+/// starts a new partial map (modes `partial` and `scan_matched`).
 struct RouteConfig {
   std::string file;                ///< route file (x y per line, or AutoNavi x y z qx qy qz qw)
   std::vector<core::Vec2> points;  ///< inline waypoints (W, m), when `file` is empty
   /// Arc lengths (m) along the route at which map k+1 starts; strictly increasing, inside the
   /// route. Empty: one partial map. `auto`: chosen from the route's geometry when the scenario
   /// is loaded (SuggestSwitchPoints, bench/engine/switch_points.hpp): each map ends just before
-  /// the route comes back within revisit_radius of where that map has already been.
-  core::AutoOr<std::vector<double>> switch_points;
+  /// the route comes back within revisit_radius of where that map has already been. `online`:
+  /// the teach recorder decides while teaching, without the route (nav/online_switcher.hpp).
+  core::WordOr<SwitchPlanning, std::vector<double>> switch_points;
   /// m: a map's segment that comes back within this distance of where it already drove is
   /// reported as a revisit (its switch point comes too late).
   double revisit_radius = 3.0;
   /// m: a switch point's place is compared with the places up to this far before it
-  /// (bench/engine/switch_visibility.hpp); `auto` points move to the best of them.
+  /// (bench/engine/switch_visibility.hpp); `auto` and `online` points move to the best of them.
   double switch_window = 10.0;
+  /// `online`: the odometry error allowed per metre driven between two visits of a place (a
+  /// fraction); the recorder treats a place as revisited within revisit_radius plus this times
+  /// the distance driven since. Larger: safer against drift, more maps.
+  double online_drift = 0.03;
   /// How well a scan at a switch point must constrain the pose (≈ end points constraining the
   /// weakest direction); below it the scenario gets a warning naming a better place nearby.
   /// The default is where the scan matcher calls a scan degenerate (nav.scan_matcher
@@ -60,6 +81,7 @@ struct RouteConfig {
     v("switch_points", switch_points);
     v("revisit_radius", revisit_radius);
     v("switch_window", switch_window);
+    v("online_drift", online_drift);
     v("min_switch_constraint", min_switch_constraint);
   }
   void Validate() const;
@@ -269,6 +291,11 @@ struct Scenario {
   std::string playback_blocked;  ///< why the route is not drivable in the playback world, if so
   /// route.switch_points was `auto`: config.route.switch_points now holds the points chosen.
   bool switch_points_auto = false;
+
+  /// route.switch_points is `online`: the teach recorders choose them while teaching.
+  bool switching_online() const {
+    return config.route.switch_points.is(SwitchPlanning::kOnline);
+  }
 };
 
 /// The robot's geometry for the navigation stack: sim.robot.radius, sim.lidar.mount and

@@ -1,6 +1,5 @@
 #include "bench/engine/switch_visibility.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,38 +8,15 @@
 #include "core/config.hpp"
 #include "core/path_projection.hpp"
 #include "core/rng.hpp"
+#include "nav/scan_constraint.hpp"
 #include "sim/lidar.hpp"
 
 namespace retrace::bench {
 namespace {
 
-constexpr double kPointSpacing = 0.1;  // m, as the scan matcher keeps end points
-constexpr double kNeighbourGap = 0.3;  // m: neighbours farther apart lie on different surfaces
-constexpr double kStep = 0.5;          // m between the places tried before a switch point
+constexpr double kStep = 0.5;  // m between the places tried before a switch point
 
 }  // namespace
-
-double ScanConstraint(const core::LaserScan& scan, const nav::RobotGeometry& robot) {
-  std::vector<core::Vec2> points;
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    if (!scan.Valid(i)) continue;
-    const double r = scan.ranges[i];
-    const double a = scan.Angle(i);
-    const core::Vec2 p = robot.X_RL * core::Vec2(r * std::cos(a), r * std::sin(a));
-    if (!points.empty() && (p - points.back()).norm() < kPointSpacing) continue;
-    points.push_back(p);
-  }
-  Eigen::Matrix2d H = Eigen::Matrix2d::Zero();
-  for (std::size_t i = 1; i + 1 < points.size(); ++i) {
-    const core::Vec2 before = points[i] - points[i - 1];
-    const core::Vec2 after = points[i + 1] - points[i];
-    if (before.norm() > kNeighbourGap || after.norm() > kNeighbourGap) continue;
-    const core::Vec2 tangent = (points[i + 1] - points[i - 1]).normalized();
-    const core::Vec2 n(-tangent.y(), tangent.x());
-    H += n * n.transpose();
-  }
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(H).eigenvalues()(0);
-}
 
 std::vector<SwitchPlace> JudgeSwitchPlaces(const Scenario& scenario,
                                            const std::vector<double>& switch_points,
@@ -52,7 +28,7 @@ std::vector<SwitchPlace> JudgeSwitchPlaces(const Scenario& scenario,
   auto constraint_at = [&](double s) {
     core::Rng rng(0);  // the same noise draw at every place: only the place differs
     const core::Pose2 X_WR = RoutePoseAt(scenario.route, cum, s);
-    return ScanConstraint(lidar.Scan(X_WR, {}, 0.0, rng).scan, scenario.robot);
+    return nav::ScanConstraint(lidar.Scan(X_WR, {}, 0.0, rng).scan, scenario.robot);
   };
   for (std::size_t k = 0; k < switch_points.size(); ++k) {
     SwitchPlace place;

@@ -3,23 +3,14 @@
 // ahead"): after a switch the localizer starts in the new map from the transformed pose, and a
 // scan that does not pin the pose down — a featureless corridor along its axis, an open field —
 // lets that start drift before the map has anything to hold on to. So a switch point's place is
-// judged by how well a scan taken there constrains the robot's position, measured as the scan
-// matcher measures it (nav/scan_matcher.hpp): the smaller eigenvalue of Σ n nᵀ over the scan's
-// end points (kept 0.1 m apart; n the unit normal of the surface through each end point and its
-// neighbours along the scan), i.e. about the number of end points that constrain the weakest
-// direction.
+// judged by how well a scan taken there constrains the robot's position (nav/scan_constraint.hpp).
 
 #include <string>
 #include <vector>
 
 #include "bench/engine/scenario.hpp"
-#include "core/laser_scan.hpp"
-#include "nav/robot_geometry.hpp"
 
 namespace retrace::bench {
-
-/// The constraint of one scan (see above); 0 for a scan without usable end points.
-double ScanConstraint(const core::LaserScan& scan, const nav::RobotGeometry& robot);
 
 /// A switch point's place and the best place near it.
 struct SwitchPlace {

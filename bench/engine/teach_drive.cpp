@@ -6,6 +6,7 @@
 #include "bench/engine/scripted_events.hpp"
 #include "bench/engine/stepper.hpp"
 #include "bench/engine/thread_cpu_time.hpp"
+#include "core/check.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 #include "nav/teach_recorder.hpp"
@@ -16,15 +17,42 @@ namespace retrace::bench {
 
 namespace {
 
-// One mode's recorder and its references, fed from the shared drive.
+// One mode's recorder, fed from the shared drive.
 struct ModeRecorder {
   MapMode mode;
   nav::TeachRecorder recorder;
-  std::vector<TeachMapTrace> maps{1};
   std::size_t next_switch = 0;
 };
 
+// Splits the drive's odometry ticks into the `map_count` maps the recorder put them in.
+std::vector<TeachMapTrace> MapTraces(const nav::TeachRecorder& recorder, std::size_t map_count,
+                                     const std::vector<double>& time,
+                                     const std::vector<core::Pose2>& X_WR) {
+  const std::vector<nav::RecordedPose>& poses = recorder.recorded_poses();
+  RETRACE_CHECK(poses.size() == time.size());
+  std::vector<TeachMapTrace> maps(map_count);
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    TeachMapTrace& map = maps.at(poses[i].map);
+    map.time.push_back(time[i]);
+    map.X_MR.push_back(poses[i].X_MR);
+    map.X_WR.push_back(X_WR[i]);
+  }
+  return maps;
+}
+
 }  // namespace
+
+void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<MapMode>& modes) {
+  if (!scenario.switching_online()) return;
+  for (MapMode mode : modes) {
+    if (SwitchesMaps(mode)) return;
+  }
+  std::string asked;
+  for (MapMode mode : modes) asked += (asked.empty() ? "" : ", ") + std::string(core::EnumName(mode));
+  throw core::ConfigError("route.switch_points",
+                          "`online` switching needs a map mode that switches maps (partial or "
+                          "scan_matched); the modes asked for are: " + asked);
+}
 
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,
                           const ProgressFn& progress) {
@@ -38,13 +66,23 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   sim::Teacher teacher(scenario.route, config.teach.teacher, rng.Split("teacher"));
   ScriptedEvents events(config.events, EventPhase::kTeach);
 
+  RequireSwitchingModeIfOnline(scenario, modes);
+  std::optional<nav::OnlineSwitchingConfig> online;
+  if (scenario.switching_online()) {
+    online = nav::OnlineSwitchingConfig{config.route.revisit_radius, config.route.switch_window,
+                                        config.route.online_drift};
+  }
   std::vector<ModeRecorder> recorders;
   recorders.reserve(modes.size());
   for (MapMode mode : modes) {
     std::optional<nav::ScanMatcherConfig> matcher;
     if (mode == MapMode::kScanMatched) matcher = config.nav.scan_matcher;
-    recorders.push_back({mode, nav::TeachRecorder(config.nav.mapper, scenario.robot, matcher)});
+    recorders.push_back({mode, nav::TeachRecorder(config.nav.mapper, scenario.robot, matcher,
+                                                  SwitchesMaps(mode) ? online : std::nullopt)});
   }
+  // The odometry ticks, for the per-map traces.
+  std::vector<double> tick_time;
+  std::vector<core::Pose2> tick_X_WR;
 
   TeachResult result;
   TeachTrace trace;
@@ -71,11 +109,10 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
       command = teacher.Command(X_WR, stepper.control_dt());
       // The operator's switch signal, given as the teacher's progress passes a switch point.
       for (ModeRecorder& r : recorders) {
-        if (!SwitchesMaps(r.mode)) continue;
+        if (!SwitchesMaps(r.mode) || online) continue;
         while (r.next_switch < switch_points.size() &&
                teacher.Progress() >= switch_points[r.next_switch]) {
           r.recorder.CloseMap();
-          r.maps.emplace_back();
           ++r.next_switch;
         }
       }
@@ -86,14 +123,13 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
     const sim::SimStep s = stepper.Step(command);
     if (s.odometry) {
       const core::Pose2 X_WR = simulator.RobotPose();
+      tick_time.push_back(s.time);
+      tick_X_WR.push_back(X_WR);
       for (ModeRecorder& r : recorders) {
         // The consistent map's pose source is ground truth, expressed from the start so that
         // its frame M_0 is the teaching start like the odometry maps'.
         r.recorder.OnPose(r.mode == MapMode::kConsistent ? X_RW_start * X_WR
                                                          : simulator.OdometryPose());
-        r.maps.back().time.push_back(s.time);
-        r.maps.back().X_MR.push_back(r.recorder.pose());
-        r.maps.back().X_WR.push_back(X_WR);
       }
     }
     if (s.lidar) {
@@ -108,8 +144,9 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
     m.mode = r.mode;
     m.match_counts = r.recorder.match_counts();
     m.bundle = r.recorder.Finish();
+    m.online_switches = r.recorder.online_switches();
     m.trace = trace;
-    m.trace.maps = std::move(r.maps);
+    m.trace.maps = MapTraces(r.recorder, m.bundle.maps.size(), tick_time, tick_X_WR);
     result.modes.push_back(std::move(m));
   }
   result.cpu_time_s = ThreadCpuSeconds() - cpu_start;

@@ -16,6 +16,7 @@
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/trace.hpp"
 #include "nav/teach_bundle.hpp"
+#include "nav/teach_recorder.hpp"
 #include "sim/collision_event.hpp"
 
 namespace retrace::bench {
@@ -26,6 +27,8 @@ struct ModeTeach {
   TeachTrace trace;  ///< the drive's ground truth, with this mode's per-map references
   /// scan_matched: keyframe matches by verdict (nav::MatchVerdict order); zero otherwise
   std::array<int, 5> match_counts{};
+  /// route.switch_points: online — the switches the recorder made, in order
+  std::vector<nav::OnlineSwitch> online_switches;
 };
 
 struct TeachResult {
@@ -36,7 +39,12 @@ struct TeachResult {
   std::vector<ModeTeach> modes;     ///< in the order requested
 };
 
-/// Drives the route with the teacher and builds the bundles of `modes`. Throws
+/// Throws core::ConfigError("route.switch_points", ...) when switching is `online` but none of
+/// `modes` switches maps (a consistent or single map alone).
+void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<MapMode>& modes);
+
+/// Drives the route with the teacher and builds the bundles of `modes`. Throws like
+/// RequireSwitchingModeIfOnline, and
 /// core::WorldError when the teacher does not finish the route within the teach timeout (a
 /// route it cannot drive), with where it got stuck.
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,

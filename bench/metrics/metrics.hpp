@@ -110,6 +110,7 @@
 #include "bench/engine/metrics_config.hpp"
 #include "bench/engine/trace.hpp"
 #include "bench/metrics/map_quality.hpp"
+#include "bench/metrics/switching.hpp"
 
 namespace retrace::bench {
 
@@ -246,6 +247,7 @@ struct AggregateMetrics {
   // Of the taught maps, the same for every run of the mode: set by the experiment
   // (bench/metrics/experiment.hpp), not by Aggregate.
   MapQualityStats map_quality;
+  SwitchingQuality switching;
   std::array<int, 5> match_counts{};  ///< scan_matched: keyframe matches by nav::MatchVerdict
 };
 

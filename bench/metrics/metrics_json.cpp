@@ -152,6 +152,10 @@ nlohmann::json ToJson(const AggregateMetrics& a) {
           {"dynamic_points", ToJson(a.dynamic_points)},
           {"maps", a.map_quality.maps.size()},
           {"map_quality", ToJson(a.map_quality)},
+          {"switching",
+           {{"minimum_maps", a.switching.minimum},
+            {"revisiting_maps", a.switching.revisiting},
+            {"switch_travel_m", a.switching.switch_travel_m}}},
           {"scan_matching", MatchCountsJson(a.match_counts)},
           {"cpu", ToJson(a.cpu)}};
 }

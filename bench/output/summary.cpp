@@ -25,8 +25,12 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
                         const std::filesystem::path& out, double wall_time_s) {
   const std::vector<double>& switch_points = scenario.config.route.switch_points.value;
   std::string text = "scenario " + scenario.config.name + ": route " +
-                     Cell(scenario.route_length, "%.1f") + " m, " +
-                     std::to_string(switch_points.size() + 1) + " partial maps";
+                     Cell(scenario.route_length, "%.1f") + " m, ";
+  if (scenario.switching_online()) {
+    text += "switch points online (chosen while teaching)";
+  } else {
+    text += std::to_string(switch_points.size() + 1) + " partial maps";
+  }
   if (scenario.switch_points_auto) {
     text += " (switch points auto:";
     for (std::size_t i = 0; i < switch_points.size(); ++i)
@@ -60,6 +64,21 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
                   Cell(a.repeatability.repeatability_m).c_str(), Cell(a.switch_error.max_m).c_str(),
                   collisions.c_str(), Cell(a.cpu.real_time_factor, "%.0f").c_str());
     text += line;
+  }
+  // How the switching modes' maps were cut, judged on the drive's ground truth.
+  for (const ModeSummary& m : modes) {
+    const SwitchingQuality& q = m.aggregate.switching;
+    if (!SwitchesMaps(m.mode) || q.maps == 0) continue;
+    std::string cut = std::string(core::EnumName(m.mode)) + ": " + std::to_string(q.maps) +
+                      " maps (fewest possible " + std::to_string(q.minimum) + "), " +
+                      std::to_string(q.revisiting) + " holding a place twice";
+    if (!q.switch_travel_m.empty()) {
+      cut += "; switches after";
+      for (std::size_t i = 0; i < q.switch_travel_m.size(); ++i)
+        cut += (i ? ", " : " ") + Cell(q.switch_travel_m[i], "%.1f");
+      cut += " m driven";
+    }
+    text += cut + "\n";
   }
   text +=
       "(m; track = distance to the taught trajectory, loc = localization error in the map, repeat "

@@ -599,8 +599,10 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                  "dynamic_points",
                  "maps",
                  "map_quality",
+                 "switching",
                  "scan_matching",
                  "cpu"});
+  ExpectKeys(a["switching"], {"minimum_maps", "revisiting_maps", "switch_travel_m"});
   ExpectKeys(a["outcomes"], {"success", "timeout", "collision", "lost"});
   ExpectKeys(a["map_quality"], {"distortion_m", "agreement", "per_map"});
   ExpectKeys(a["map_quality"]["distortion_m"], {"rms", "max"});

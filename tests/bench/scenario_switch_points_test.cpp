@@ -12,6 +12,7 @@
 #include "bench/engine/switch_visibility.hpp"
 #include "core/errors.hpp"
 #include "io/config_override.hpp"
+#include "nav/scan_constraint.hpp"
 #include "tests/support/fake_scan.hpp"
 #include "tests/support/source_dir.hpp"
 
@@ -27,7 +28,7 @@ Scenario SmallWith(const std::string& override_text) {
 TEST(ScenarioSwitchPoints, AutoIsResolvedFromTheRouteWhenLoaded) {
   const Scenario scenario = SmallWith("route.switch_points=auto");
   EXPECT_TRUE(scenario.switch_points_auto);
-  EXPECT_FALSE(scenario.config.route.switch_points.automatic);
+  EXPECT_FALSE(scenario.config.route.switch_points.word.has_value());
   // The route's suggestion, each point moved back (within route.switch_window) to where a
   // scan constrains the pose best.
   const std::vector<double> suggested =
@@ -66,7 +67,7 @@ TEST(ScenarioSwitchPoints, AScanAlongACorridorConstrainsLittleARoomMuch) {
                                                    [&](const core::Vec2& o, const core::Vec2& d) {
                                                      return testing::NearestSegment(o, d, faces);
                                                    });
-    return ScanConstraint(scan, nav::RobotGeometry{});
+    return nav::ScanConstraint(scan, nav::RobotGeometry{});
   };
   const double corridor = constraint({{{-60.0, -1.0}, {60.0, -1.0}}, {{-60.0, 1.0}, {60.0, 1.0}}});
   const double room = constraint({{{-4.0, -3.0}, {6.0, -3.0}},

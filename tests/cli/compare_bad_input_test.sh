@@ -39,6 +39,7 @@ expect_bad seeds-not-a-number "--seeds" "$small" --seeds many
 expect_bad zero-repeats "--repeats" "$small" --repeats 0
 expect_bad unknown-set-key "particle" "$small" --set nav.localizer.particle=100
 expect_bad bad-set-syntax "--set expects key.path=value" "$small" --set nonsense
+expect_bad online-no-switching "\`online\` switching needs a map mode that switches maps" "$small" --modes single,consistent --set route.switch_points=online --seeds 2
 expect_bad missing-scenario "missing.yaml" "$tmp/missing.yaml"
 
 # An output folder that cannot be created fails before any run (the staging folder comes first).

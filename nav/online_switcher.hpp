@@ -1,0 +1,74 @@
+#pragma once
+// Online map switching (beyond the paper, which has the operator switch by hand, §3.1): the teach
+// recorder decides by itself, while it teaches, to start a new partial map just before the robot
+// comes back to a place the current map already holds — from its own odometry and scans only, no
+// route and no ground truth, so it works the same in the simulator and on a recorded log.
+//
+// When: a revisit is what CheckSwitchPoints (bench/engine/switch_points.hpp) calls one, seen on
+// the pose source's own trail instead of the route: the robot comes within revisit_radius of a
+// part of the current map's trail that lies more than 3·revisit_radius of travel behind. Odometry
+// drifts, so the trail bends away from where the robot really was; the radius therefore grows by
+// `drift` times the distance driven between the two visits (odometry's error is a few per cent of
+// the distance driven), which makes the test err on the early side.
+//
+// Where: like `route.switch_points: auto`, at the place within `window` metres before the revisit
+// whose scan constrains the pose best (nav/scan_constraint.hpp): after a switch the localizer
+// starts in the new map from the transformed pose, so that place should have landmarks in view.
+// Choosing a place behind the robot needs hindsight: the recorder holds the latest
+// window + 2·step metres of poses and scans back and builds its maps that far behind the robot
+// (nav/teach_recorder.hpp).
+
+#include <vector>
+
+#include "core/pose2.hpp"
+
+namespace retrace::nav {
+
+struct OnlineSwitchingConfig {
+  double revisit_radius = 3.0;  ///< m (route.revisit_radius)
+  double window = 10.0;         ///< m before the revisit to choose the place in (route.switch_window)
+  double drift = 0.03;          ///< odometry error per metre driven, a fraction (route.online_drift)
+
+  /// Throws core::ConfigError naming the key: revisit_radius > 0, window >= 0, 0 <= drift <= 0.5.
+  void Validate() const;
+};
+
+/// Watches the pose source's trail for the moment the robot comes back to where the current map
+/// has already been (see above).
+class RevisitDetector {
+ public:
+  /// Throws core::ConfigError for an invalid config.
+  explicit RevisitDetector(const OnlineSwitchingConfig& config);
+
+  /// The next pose X_OR of the source. Returns whether the robot, here, comes back to the current
+  /// map's trail. Only every step() metres of travel is a pose tested (and kept in the trail).
+  bool OnPose(const core::Pose2& X_OR);
+
+  /// m driven so far: the sum of the distances between consecutive poses.
+  double travelled() const { return travelled_; }
+
+  /// A new map starts where the robot was after `travelled` m (at most travelled()): the trail
+  /// before that no longer counts.
+  void StartMap(double travelled);
+
+  /// m of travel between the poses tested.
+  double step() const { return step_; }
+
+  const OnlineSwitchingConfig& config() const { return config_; }
+
+ private:
+  struct Sample {
+    core::Vec2 p;       ///< position in the source's frame
+    double travelled;   ///< m driven when the robot was there
+  };
+
+  OnlineSwitchingConfig config_;
+  double step_ = 0.0;
+  double lag_ = 0.0;
+  double travelled_ = 0.0;
+  bool has_pose_ = false;
+  core::Vec2 last_p_;
+  std::vector<Sample> trail_;  ///< of the current map, every step_ m
+};
+
+}  // namespace retrace::nav
