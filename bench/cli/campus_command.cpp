@@ -126,13 +126,18 @@ void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options) {
 
 std::string RunGenerateCampusCommand(const GenerateCampusOptions& options) {
   if (options.out.empty()) throw core::ConfigError("--out", "needs the world file to write");
-  const CampusConfig config = LoadCampusConfig(options);
   const std::vector<core::Vec2> route = io::ReadRouteFile(options.route_file);
   if (route.size() < 2) {
     throw core::IoError(options.route_file.string() + ": a route needs at least 2 points, got " +
                         std::to_string(route.size()));
   }
+  return WriteCampusWorld(route, options, options.out);
+}
 
+std::string WriteCampusWorld(const std::vector<core::Vec2>& route,
+                             const GenerateCampusOptions& options,
+                             const std::filesystem::path& file) {
+  const CampusConfig config = LoadCampusConfig(options);
   CampusStats stats;
   sim::WorldConfig world;
   try {
@@ -145,17 +150,17 @@ std::string RunGenerateCampusCommand(const GenerateCampusOptions& options) {
                             /*located=*/true);
   }
   // Check before writing, so that a failure leaves nothing behind.
-  RequireDrivable(sim::BuildGeometry(world, options.out.parent_path()), route, options.route_file);
+  RequireDrivable(sim::BuildGeometry(world, file.parent_path()), route, options.route_file);
 
-  io::WriteFileAtomic(options.out, Header(options, config, stats) + io::ConfigToYaml(world));
+  io::WriteFileAtomic(file, Header(options, config, stats) + io::ConfigToYaml(world));
 
   // What users load is the file, not the struct: check it round-trips.
   try {
-    const sim::World loaded = sim::LoadWorld(options.out);
+    const sim::World loaded = sim::LoadWorld(file);
     RequireDrivable(loaded.geometry, route, options.route_file);
   } catch (const core::Error& e) {
     std::error_code ignored;
-    std::filesystem::remove(options.out, ignored);
+    std::filesystem::remove(file, ignored);
     throw core::WorldError(options.out.string() +
                            ": the generated world does not load back: " + e.what());
   }

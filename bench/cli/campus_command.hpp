@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/pose2.hpp"
+
 namespace CLI {
 class App;
 }  // namespace CLI
@@ -33,5 +35,11 @@ void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options);
 /// a route of fewer than 2 points), core::ConfigError (unknown or invalid config key) or
 /// core::WorldError; nothing is written then.
 std::string RunGenerateCampusCommand(const GenerateCampusOptions& options);
+
+/// The same for a route in hand, writing the world to `file` (e.g. inside a staging folder)
+/// while its header names options.route_file and options.out, where the files will be.
+std::string WriteCampusWorld(const std::vector<core::Vec2>& route,
+                             const GenerateCampusOptions& options,
+                             const std::filesystem::path& file);
 
 }  // namespace retrace::bench

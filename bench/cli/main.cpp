@@ -11,6 +11,7 @@
 
 #include "bench/cli/bench_command.hpp"
 #include "bench/cli/campus_command.hpp"
+#include "bench/cli/tour_command.hpp"
 #include "bench/cli/compare_command.hpp"
 #include "bench/cli/merge_command.hpp"
 #include "bench/cli/run_command.hpp"
@@ -81,6 +82,12 @@ int main(int argc, char** argv) {
       "Turn a route into a campus world: buildings, hedges, trees, poles, benches, pedestrians");
   bench::AddGenerateCampusOptions(campus_cmd, &campus);
 
+  bench::GenerateTourOptions tour;
+  CLI::App* tour_cmd = app.add_subcommand(
+      "generate-tour",
+      "Write a random looped tour, a campus world round it and a scenario that drives it");
+  bench::AddGenerateTourOptions(tour_cmd, &tour);
+
   bench::CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand(
       "compare",
@@ -123,6 +130,7 @@ int main(int argc, char** argv) {
       return bench::RunRunCommand(playback, bench::RunPhases::kPlaybackOnly, command_line);
     if (*world_cmd) std::cout << bench::RunWorldCommand(world) << "\n";
     if (*campus_cmd) std::cout << bench::RunGenerateCampusCommand(campus) << "\n";
+    if (*tour_cmd) std::cout << bench::RunGenerateTourCommand(tour) << "\n";
     if (*compare_cmd) return bench::RunCompareCommand(compare, command_line);
     if (*bench_cmd) return bench::RunBenchCommand(bench_options);
     if (*sweep_cmd) return bench::RunSweepCommand(sweep, command_line);
