@@ -201,7 +201,8 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
     }
   }
 
-  std::cout << SummaryText(scenario, summaries, out, wall_time);
+  const TeachSpeed teach_speed{experiment.teach_duration_s, experiment.teach_cpu_time_s};
+  std::cout << SummaryText(scenario, summaries, teach_speed, out, wall_time);
   return exit_code;
 }
 

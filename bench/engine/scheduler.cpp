@@ -21,8 +21,8 @@ std::vector<std::size_t> LongestFirst(const std::vector<double>& cost) {
 
 }  // namespace
 
-std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, ProgressSink* progress,
-                                const EpisodeCallbacks& callbacks) {
+std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
+                                     ProgressSink* progress, const EpisodeCallbacks& callbacks) {
   // Teaching drives, the longest route (in time) first.
   std::vector<std::size_t> to_teach;
   std::vector<double> teach_cost;
@@ -32,8 +32,8 @@ std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, Progr
     const Scenario& s = *jobs[j].scenario;
     teach_cost.push_back(s.route_length / s.config.teach.teacher.speed);
   }
-  std::vector<double> duration(jobs.size());
-  for (std::size_t j = 0; j < jobs.size(); ++j) duration[j] = jobs[j].taught_duration_s;
+  std::vector<TeachTiming> timing(jobs.size());
+  for (std::size_t j = 0; j < jobs.size(); ++j) timing[j].duration_s = jobs[j].taught_duration_s;
   if (!to_teach.empty()) {
     const std::vector<std::size_t> order = LongestFirst(teach_cost);
     if (progress) progress->Phase("teach", static_cast<int>(to_teach.size()));
@@ -41,7 +41,7 @@ std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, Progr
       EpisodeJob& job = jobs[to_teach[order[i]]];
       TeachResult teach = RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress));
       job.taught = std::move(teach.modes);
-      duration[to_teach[order[i]]] = teach.duration_s;
+      timing[to_teach[order[i]]] = {teach.duration_s, teach.cpu_time_s};
       if (progress) progress->UnitDone();
     });
   }
@@ -64,11 +64,11 @@ std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, Progr
         callbacks.mode_done(j, m, std::move(jobs[j].taught[m]));
       for (int r = 0; r < jobs[j].repeats; ++r) {
         tasks.push_back({j, m, r});
-        run_cost.push_back(duration[j]);
+        run_cost.push_back(timing[j].duration_s);
       }
     }
   }
-  if (tasks.empty()) return duration;
+  if (tasks.empty()) return timing;
 
   const std::vector<std::size_t> order = LongestFirst(run_cost);
   if (progress) progress->Phase("playback", static_cast<int>(tasks.size()));
@@ -79,14 +79,14 @@ std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, Progr
     std::unique_ptr<PlaybackObserver> observer =
         callbacks.observe ? callbacks.observe(teach, task.run) : nullptr;
     RunTrace run = RunPlayback(*job.scenario, teach.bundle, teach.trace, task.run,
-                               PlaybackTimeout(*job.scenario, duration[task.job]),
+                               PlaybackTimeout(*job.scenario, timing[task.job].duration_s),
                                SimTimeReporter(progress), observer.get());
     if (callbacks.run_done) callbacks.run_done(task.job, task.mode, teach, std::move(run));
     if (remaining[task.job][task.mode].fetch_sub(1) == 1 && callbacks.mode_done)
       callbacks.mode_done(task.job, task.mode, std::move(teach));
     if (progress) progress->UnitDone();
   });
-  return duration;
+  return timing;
 }
 
 }  // namespace retrace::bench

@@ -42,12 +42,19 @@ struct EpisodeCallbacks {
   std::function<std::unique_ptr<PlaybackObserver>(const ModeTeach& teach, int run)> observe;
 };
 
-/// Runs the jobs on `threads` threads (>= 1) and returns each job's teaching duration (s,
-/// simulated). Progress: a "teach" phase of the drives (when any job teaches), then a
+/// A job's teaching drive: how long it took in simulated time and on its thread's CPU (0 for a
+/// job given its teach).
+struct TeachTiming {
+  double duration_s = 0.0;
+  double cpu_time_s = 0.0;
+};
+
+/// Runs the jobs on `threads` threads (>= 1) and returns each job's teach timing. Progress: a "teach" phase of the drives (when any job teaches), then a
 /// "playback" phase of all runs. Throws core::WorldError when a teaching drive cannot finish
 /// its route or the world refuses a run's start; the first error in the order the
 /// work was started (longest first) wins, whatever the number of threads.
-std::vector<double> RunEpisodes(std::vector<EpisodeJob> jobs, int threads, ProgressSink* progress,
+std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
+                                     ProgressSink* progress,
                                 const EpisodeCallbacks& callbacks);
 
 }  // namespace retrace::bench

@@ -38,10 +38,11 @@ std::vector<Experiment> Run(std::vector<EpisodeJob> jobs, const ExperimentOption
       mode.aggregate = AggregateMode(*scenarios[j], mode.teach, mode.runs, mode.run_metrics);
   };
   callbacks.observe = options.observe;
-  const std::vector<double> durations =
+  const std::vector<TeachTiming> timing =
       RunEpisodes(std::move(jobs), options.jobs, options.progress, callbacks);
   for (std::size_t j = 0; j < experiments.size(); ++j) {
-    experiments[j].teach_duration_s = durations[j];
+    experiments[j].teach_duration_s = timing[j].duration_s;
+    experiments[j].teach_cpu_time_s = timing[j].cpu_time_s;
   }
   return experiments;
 }

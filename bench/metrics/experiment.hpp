@@ -26,6 +26,7 @@ struct ModeResult {
 
 struct Experiment {
   double teach_duration_s = 0.0;  ///< simulated
+  double teach_cpu_time_s = 0.0;  ///< of the teaching drive, on its thread (0: teach given)
   std::vector<ModeResult> modes;  ///< in the order of the teaches
 };
 

@@ -22,7 +22,8 @@ ModeSummary SummarizeMode(MapMode mode, const AggregateMetrics& aggregate) {
 }
 
 std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>& modes,
-                        const std::filesystem::path& out, double wall_time_s) {
+                        const TeachSpeed& teach, const std::filesystem::path& out,
+                        double wall_time_s) {
   const std::vector<double>& switch_points = scenario.config.route.switch_points.value;
   std::string text = "scenario " + scenario.config.name + ": route " +
                      Cell(scenario.route_length, "%.1f") + " m, ";
@@ -85,6 +86,12 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
       "= "
       "repeatability, coll_ped = pedestrian collisions (of them, the robot driving into the "
       "pedestrian), rtf = real-time factor per core)\n";
+  if (teach.cpu_time_s > 0.0) {
+    text += "teaching drive: " + Cell(teach.duration_s, "%.0f") + " s simulated in " +
+            Cell(teach.cpu_time_s, "%.1f") + " s of CPU for " + std::to_string(modes.size()) +
+            (modes.size() == 1 ? " mode" : " modes") + " (" +
+            Cell(teach.duration_s / teach.cpu_time_s, "%.0f") + "x real time)\n";
+  }
   text += "results in " + out.string() + " (" + Cell(wall_time_s, "%.1f") + " s)\n";
   return text;
 }

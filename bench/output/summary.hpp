@@ -20,7 +20,16 @@ struct ModeSummary {
 
 ModeSummary SummarizeMode(MapMode mode, const AggregateMetrics& aggregate);
 
+/// The teaching drive's speed, for the summary: simulated and CPU seconds (cpu 0: no drive ran).
+struct TeachSpeed {
+  double duration_s = 0.0;
+  double cpu_time_s = 0.0;
+};
+
+/// The summary `retrace run` prints: the scenario and its maps, one table row per mode, how the
+/// switching modes' maps were cut, the teaching drive's speed and where the results are.
 std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>& modes,
-                        const std::filesystem::path& out, double wall_time_s);
+                        const TeachSpeed& teach, const std::filesystem::path& out,
+                        double wall_time_s);
 
 }  // namespace retrace::bench
