@@ -21,6 +21,7 @@ enum class BeamKind { kSkip, kHit, kClear };
 // clear_to (cells lying wholly inside it), or not at all.
 struct BeamPlan {
   BeamKind kind = BeamKind::kSkip;
+  core::Vec2 dir = core::Vec2::Zero();  // unit vector of the beam in M
   double z = 0.0;         // m, the reading (hits)
   double length = 0.0;    // m, how far to cast
   double clear_to = 0.0;  // m, clearing beams: cells with t_out <= clear_to are free
@@ -54,34 +55,41 @@ BeamPlan PlanBeam(const MapperConfig& config, double hit_range_max, const core::
 }
 
 // Exact cell traversal (Amanatides & Woo 1987) of the ray from `start` along the unit vector
-// `dir` for `length` metres: calls visit(cell, t_in, t_out) for every cell whose interior the
-// ray crosses, in order, with the ray's stretch [t_in, t_out] (m from start) inside it
-// (t_out is the cell's true exit, which may exceed `length`). visit returns false to stop.
+// `dir` from t0 to `length` metres: calls visit(cell, t_in, t_out) for every cell whose
+// interior the ray crosses beyond t0, in order, with the ray's stretch [t_in, t_out] (m from
+// start) inside it (t_in is t0 in the first cell; t_out is the cell's true exit, which may
+// exceed `length`). visit returns false to stop.
 template <class Visit>
 void TraverseCells(const core::OccupancyGrid& grid, const core::Vec2& start, const core::Vec2& dir,
-                   double length, Visit&& visit) {
+                   double t0, double length, Visit&& visit) {
   const double res = grid.resolution();
-  const double gx = (start.x() - grid.origin().x()) / res;
-  const double gy = (start.y() - grid.origin().y()) / res;
+  const core::Vec2 from = t0 > 0.0 ? core::Vec2(start + t0 * dir) : start;
+  const double gx = (from.x() - grid.origin().x()) / res;
+  const double gy = (from.y() - grid.origin().y()) / res;
   core::CellIndex c{static_cast<int>(std::floor(gx)), static_cast<int>(std::floor(gy))};
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const int step_x = dir.x() > 0.0 ? 1 : -1;
   const int step_y = dir.y() > 0.0 ? 1 : -1;
   const double delta_x = dir.x() != 0.0 ? res / std::abs(dir.x()) : kInf;
   const double delta_y = dir.y() != 0.0 ? res / std::abs(dir.y()) : kInf;
-  double next_x = dir.x() > 0.0   ? (c.x + 1 - gx) * delta_x
-                  : dir.x() < 0.0 ? (gx - c.x) * delta_x
+  double next_x = dir.x() > 0.0   ? t0 + (c.x + 1 - gx) * delta_x
+                  : dir.x() < 0.0 ? t0 + (gx - c.x) * delta_x
                                   : kInf;
-  double next_y = dir.y() > 0.0   ? (c.y + 1 - gy) * delta_y
-                  : dir.y() < 0.0 ? (gy - c.y) * delta_y
+  double next_y = dir.y() > 0.0   ? t0 + (c.y + 1 - gy) * delta_y
+                  : dir.y() < 0.0 ? t0 + (gy - c.y) * delta_y
                                   : kInf;
-  double t_in = 0.0;
+  // The cells crossed lie in the bounding box of the first and the last one, which the grid
+  // holds (Integrate grows it to every beam's far end first).
+  const core::Vec2 to = start + length * dir;
+  RETRACE_CHECK(grid.Contains(c) &&
+                grid.Contains({static_cast<int>(std::floor((to.x() - grid.origin().x()) / res)),
+                               static_cast<int>(std::floor((to.y() - grid.origin().y()) / res))}));
+  double t_in = t0;
   // A ray of length L crosses at most L/res + 1 columns and as many rows.
-  const long max_steps = 2 * static_cast<long>(std::ceil(length / res)) + 4;
+  const long max_steps = 2 * static_cast<long>(std::ceil((length - t0) / res)) + 4;
   for (long step = 0; step < max_steps && t_in < length; ++step) {
     const double t_out = std::min(next_x, next_y);
     if (t_out > t_in) {  // skip the zero-length stretch of a corner crossing
-      RETRACE_CHECK(grid.Contains(c));
       if (!visit(c, t_in, t_out)) return;
     }
     t_in = t_out;
@@ -93,6 +101,20 @@ void TraverseCells(const core::OccupancyGrid& grid, const core::Vec2& start, con
       next_y += delta_y;
     }
   }
+}
+
+// Near the LiDAR its beams lie closer together than cells, and every cell their free stretches
+// cross is crossed by many of them. Beam i's free stretch is traced only from where the beams of
+// a higher level (more trailing zero bits in their index: every 2nd, 4th, ... beam) lie more
+// than `spacing` apart: at range r the beams of level >= m are 2^m · increment · r apart, so
+// beam i of level l is needed from spacing / (2^(l+1) · increment) on. Beams of level
+// kDenseLevels and above are traced from the LiDAR.
+constexpr int kDenseLevels = 8;
+double FreeStretchStart(std::size_t i, double increment, double spacing) {
+  int level = 0;
+  while (level < kDenseLevels && ((i >> level) & 1U) == 0) ++level;
+  if (level >= kDenseLevels || !(increment > 0.0)) return 0.0;
+  return spacing / std::ldexp(increment, level + 1);
 }
 
 void RequireConfig(bool ok, const char* key, const std::string& message) {
@@ -142,12 +164,26 @@ bool Mapper::OnScan(const core::LaserScan& scan) {
   return true;
 }
 
-void Mapper::ProposeUpdate(core::CellIndex c, float delta, bool end_cell) {
-  const std::size_t i = grid_.Index(c);
+inline bool Mapper::Marked(const std::vector<std::uint64_t>& bits, std::size_t i) {
+  return (bits[i >> 6] >> (i & 63)) & 1U;
+}
+
+inline void Mapper::ProposeFree(std::size_t i) {
+  std::uint64_t& word = touched_bits_[i >> 6];
+  const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+  if ((word & bit) != 0) return;
+  word |= bit;
+  touched_.push_back(i);
+}
+
+inline void Mapper::ProposeNearEnd(std::size_t i, float delta, bool end_cell) {
+  ProposeFree(i);
+  std::uint64_t& word = near_bits_[i >> 6];
+  const std::uint64_t bit = std::uint64_t{1} << (i & 63);
   Proposal& p = proposals_[i];
-  if (p.stamp != scan_id_) {
-    p = {scan_id_, 0.0f, 0, 0};
-    touched_.push_back(i);
+  if ((word & bit) == 0) {
+    word |= bit;
+    p = Proposal{};
   }
   p.sum += delta;
   ++p.count;
@@ -166,28 +202,28 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
     plans[i] = PlanBeam(config_, robot_.range_max, scan, i);
     if (plans[i].kind == BeamKind::kSkip) continue;
     const double a = X_ML.theta + scan.Angle(i);
-    const core::Vec2 end = p_ML + plans[i].length * core::Vec2(std::cos(a), std::sin(a));
+    plans[i].dir = core::Vec2(std::cos(a), std::sin(a));
+    const core::Vec2 end = p_ML + plans[i].length * plans[i].dir;
     lo = lo.cwiseMin(end);
     hi = hi.cwiseMax(end);
   }
   // Grow before any index is taken: growing shifts the indices of existing cells.
   grid_.GrowToInclude(lo, kGrowMargin);
   grid_.GrowToInclude(hi, kGrowMargin);
+  // The scratch: every bit is clear between scans (each scan clears the bits it set), a grown
+  // grid only needs longer bitmaps; proposals are valid where the near bit is set.
   const std::size_t cells = grid_.log_odds().size();
-  // A grown grid shifts every cell's index, but entries stamped by an earlier scan are stale
-  // wherever they land, so the scratch only needs to be long enough; it is cleared only when
-  // the stamp would wrap.
-  if (scan_id_ == std::numeric_limits<std::uint32_t>::max()) {
-    proposals_.assign(cells, Proposal{});
-    scan_id_ = 0;
-  } else if (proposals_.size() < cells) {
+  if (proposals_.size() < cells) {
     proposals_.resize(cells);
+    touched_bits_.resize((cells + 63) / 64);
+    near_bits_.resize((cells + 63) / 64);
   }
-  ++scan_id_;
   touched_.clear();
 
   const auto hit = static_cast<float>(HitLogOdds(config_.inverse_model));
   const auto miss = static_cast<float>(MissLogOdds(config_.inverse_model));
+  const double reach = config_.inverse_model.ReachBehind();
+  const double spacing = config_.resolution;
   MapperStats stats;
   stats.keyframes = stats_.keyframes + 1;
   // Hits first, then the clearing beams, so that these stop at this scan's end points too.
@@ -196,17 +232,23 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
     if (plan.kind == BeamKind::kSkip) ++stats.beams_skipped;
     if (plan.kind != BeamKind::kHit) continue;
     ++stats.beams_hit;
-    const double a = X_ML.theta + scan.Angle(i);
-    TraverseCells(grid_, p_ML, core::Vec2(std::cos(a), std::sin(a)), plan.length,
+    // The free stretch, well before the end point, from where this beam is needed; then the
+    // end point's neighbourhood, every cell of it.
+    const double near_end = plan.z - reach;
+    const double free_from =
+        std::min(FreeStretchStart(i, scan.angle_increment, spacing), std::max(near_end, 0.0));
+    TraverseCells(grid_, p_ML, plan.dir, free_from, plan.length,
                   [&](core::CellIndex c, double t_in, double t_out) {
+                    if (t_out < near_end) {
+                      ProposeFree(grid_.Index(c));
+                      return true;
+                    }
                     const double d = SignedDistanceToEndPoint(t_in, t_out, plan.z);
-                    if (d > config_.inverse_model.ReachBehind()) return false;
-                    // Exact constants away from the end point; the model's curve near it.
+                    if (d > reach) return false;
                     const float delta =
-                        d < -config_.inverse_model.ReachBehind() ? miss
-                        : d == 0.0                               ? hit
-                                   : static_cast<float>(LogOddsUpdate(config_.inverse_model, d));
-                    if (delta != 0.0f) ProposeUpdate(c, delta, d == 0.0);
+                        d == 0.0 ? hit
+                                 : static_cast<float>(LogOddsUpdate(config_.inverse_model, d));
+                    if (delta != 0.0f) ProposeNearEnd(grid_.Index(c), delta, d == 0.0);
                     return true;
                   });
   }
@@ -215,19 +257,28 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
   // mark, so that dropouts neither wear walls away nor paint free space behind them (a wall
   // first seen in this scan included).
   const std::vector<float>& before = grid_.log_odds();
+  // Within no_return_range the beams lie at most a cell apart (0.25 deg at 10 m: 4.4 cm), so of
+  // a run of clearing beams every other one is enough; each traced one stops at its own
+  // blocking cell.
   const auto blocks = [&](std::size_t cell) {
-    const Proposal& p = proposals_[cell];
-    return before[cell] > 0.0f || (p.stamp == scan_id_ && p.end_cell != 0);
+    return before[cell] > 0.0f || (Marked(near_bits_, cell) && proposals_[cell].end_cell != 0);
+  };
+  const auto clearing = [&](std::size_t j) {
+    return j < plans.size() && plans[j].kind == BeamKind::kClear;
   };
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const BeamPlan& plan = plans[i];
     if (plan.kind != BeamKind::kClear) continue;
     ++stats.beams_cleared;
-    const double a = X_ML.theta + scan.Angle(i);
-    TraverseCells(grid_, p_ML, core::Vec2(std::cos(a), std::sin(a)), plan.length,
+    if ((i & 1U) != 0 && i > 0 && clearing(i - 1) && clearing(i + 1) &&
+        plan.clear_to * scan.angle_increment <= spacing * 2.0) {
+      continue;
+    }
+    TraverseCells(grid_, p_ML, plan.dir, 0.0, plan.length,
                   [&](core::CellIndex c, double /*t_in*/, double t_out) {
-                    if (t_out > plan.clear_to || blocks(grid_.Index(c))) return false;
-                    ProposeUpdate(c, miss, false);
+                    const std::size_t cell = grid_.Index(c);
+                    if (t_out > plan.clear_to || blocks(cell)) return false;
+                    ProposeFree(cell);
                     return true;
                   });
   }
@@ -238,9 +289,16 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
   for (const std::size_t i : touched_) {
     // One update per cell and scan: the beams of one scan that meet a cell are not independent
     // measurements of it. A cell holding an end point takes the hit (hits win over beams that
-    // graze it); any other cell takes the mean of its beams' inverse-model values.
-    const Proposal& p = proposals_[i];
-    const float delta = p.end_cell != 0 ? hit : p.sum / static_cast<float>(p.count);
+    // graze it); a cell near end points the mean of those beams' inverse-model values (they
+    // win over beams that only pass through); any other cell the miss.
+    float delta = miss;
+    const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+    if ((near_bits_[i >> 6] & bit) != 0) {
+      const Proposal& p = proposals_[i];
+      delta = p.end_cell != 0 ? hit : p.sum / static_cast<float>(p.count);
+      near_bits_[i >> 6] &= ~bit;
+    }
+    touched_bits_[i >> 6] &= ~bit;
     log_odds[i] = std::clamp(log_odds[i] + delta, l_min, l_max);  // eq. (4)
   }
   stats.cells_updated = touched_.size();

@@ -95,7 +95,9 @@ class Mapper {
   const MapperConfig& config() const { return config_; }
 
  private:
-  void ProposeUpdate(core::CellIndex c, float delta, bool end_cell);
+  static bool Marked(const std::vector<std::uint64_t>& bits, std::size_t cell);
+  void ProposeNearEnd(std::size_t cell, float delta, bool end_cell);
+  void ProposeFree(std::size_t cell);
 
   MapperConfig config_;
   RobotGeometry robot_;
@@ -103,17 +105,19 @@ class Mapper {
   core::Path path_;
   core::Pose2 X_MR_;
   MapperStats stats_;
-  // Per-scan scratch, valid for cells whose stamp is scan_id_: the sum and number of the
-  // beams' log-odds updates, and whether a beam ended in the cell.
+  // Per-scan scratch. Most cells a scan touches are only passed through well before a beam's
+  // end: for them one bit says so, in a bitmap small enough to stay in cache. Cells near end
+  // points also get a proposal: the sum and number of those beams' log-odds updates and whether
+  // a beam ended in the cell.
   struct Proposal {
-    std::uint32_t stamp = 0;  ///< scan_id_ of the scan the other fields belong to
     float sum = 0.0f;
     std::uint32_t count = 0;
     std::uint32_t end_cell = 0;
   };
-  std::vector<Proposal> proposals_;  ///< one per cell: its four fields in one cache line
-  std::vector<std::size_t> touched_;
-  std::uint32_t scan_id_ = 0;
+  std::vector<Proposal> proposals_;          ///< one per cell, valid where near_bits_ is set
+  std::vector<std::uint64_t> touched_bits_;  ///< one bit per cell: touched by this scan
+  std::vector<std::uint64_t> near_bits_;     ///< one bit per cell: near an end point
+  std::vector<std::size_t> touched_;         ///< the cells touched by this scan
 };
 
 }  // namespace retrace::nav

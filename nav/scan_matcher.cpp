@@ -79,6 +79,7 @@ void ScanMatcher::AddScan(const core::LaserScan& scan, const core::Pose2& X_MR) 
     v.sum_x += p.x();
     v.sum_y += p.y();
     ++v.count;
+    v.mean = core::Vec2(v.sum_x / v.count, v.sum_y / v.count);
   }
 }
 
@@ -98,7 +99,7 @@ bool ScanMatcher::Pair(const core::Vec2& p_M, Pairing* pairing) const {
     for (int dx = -1; dx <= 1; ++dx) {
       const auto it = search_cells_.find(Key(cx + dx, cy + dy));
       if (it == search_cells_.end()) continue;
-      for (std::uint32_t v : it->second) near_.push_back(voxels_[v].Mean());
+      for (std::uint32_t v : it->second) near_.push_back(voxels_[v].mean);
     }
   }
   double best = config_.max_distance * config_.max_distance;
@@ -129,10 +130,19 @@ bool ScanMatcher::Pair(const core::Vec2& p_M, Pairing* pairing) const {
   for (const core::Vec2& c : near_) {
     if ((c - *q).squaredNorm() <= radius2) cov += (c - mean) * (c - mean).transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-  // A line when the spread across is small against the spread along it.
-  if (eig.eigenvalues()(0) < 0.1 * eig.eigenvalues()(1))
-    pairing->normal = eig.eigenvectors().col(0);
+  // The eigenvalues of the symmetric 2×2 covariance in closed form, and the eigenvector of the
+  // smaller one: a line when the spread across is small against the spread along it.
+  const double a = cov(0, 0), b = cov(0, 1), d = cov(1, 1);
+  const double half_trace = 0.5 * (a + d);
+  const double root = std::hypot(0.5 * (a - d), b);
+  const double small = half_trace - root, large = half_trace + root;
+  if (small < 0.1 * large) {
+    // (b, small - a) and (small - d, b) are both eigenvectors of `small`; the longer is stabler.
+    const core::Vec2 v1(b, small - a), v2(small - d, b);
+    const core::Vec2 v = v1.squaredNorm() >= v2.squaredNorm() ? v1 : v2;
+    const double norm = v.norm();
+    if (norm > 0.0) pairing->normal = v / norm;
+  }
   return true;
 }
 

@@ -117,7 +117,7 @@ class ScanMatcher {
   struct Voxel {
     double sum_x = 0.0, sum_y = 0.0;
     int count = 0;
-    core::Vec2 Mean() const { return core::Vec2(sum_x / count, sum_y / count); }
+    core::Vec2 mean = core::Vec2::Zero();  ///< sum / count, kept up to date
   };
   // One end point's pairing: the line (or point) it is fitted to.
   struct Pairing {

@@ -23,10 +23,19 @@ TourConfig LoadTourConfig(const GenerateTourOptions& options) {
   return io::ReadConfig<TourConfig>(root, "generate-tour", overrides);
 }
 
+// The command that makes the folder again.
+std::string CommandLine(const GenerateTourOptions& options) {
+  std::string cmd = "retrace generate-tour --seed " + std::to_string(options.seed);
+  for (const std::string& s : options.overrides) cmd += " --set " + s;
+  if (options.pedestrians != GenerateTourOptions{}.pedestrians)
+    cmd += " --pedestrians " + std::to_string(options.pedestrians);
+  return cmd + " --out " + options.out.string();
+}
+
 std::string RouteText(const std::vector<core::Vec2>& route, const TourConfig& config,
-                      std::uint64_t seed) {
+                      const std::string& command) {
   std::ostringstream out;
-  out << "# A random looped tour (`retrace generate-tour --seed " << seed << "`), "
+  out << "# A random looped tour (`" << command << "`), "
       << std::lround(RouteLength(route)) << " m on a " << config.columns << " x " << config.rows
       << " street grid (x y, metres, frame W).\n";
   for (const core::Vec2& p : route) {
@@ -36,10 +45,10 @@ std::string RouteText(const std::vector<core::Vec2>& route, const TourConfig& co
   return out.str();
 }
 
-std::string ScenarioText(const std::string& name, std::uint64_t seed) {
+std::string ScenarioText(const std::string& name, std::uint64_t seed,
+                         const std::string& command) {
   std::ostringstream out;
-  out << "# A random looped tour written by `retrace generate-tour --seed " << seed
-      << "`: the route in route.txt,\n"
+  out << "# A random looped tour written by `" << command << "`: the route in route.txt,\n"
       << "# a campus round it in world.yaml. Switch points come from the route's geometry; try\n"
       << "# `--set route.switch_points=online` to let the teach recorder choose them.\n"
       << "name: " << name << "\n"
@@ -80,7 +89,8 @@ std::string RunGenerateTourCommand(const GenerateTourOptions& options) {
   const std::vector<core::Vec2> route = GenerateTour(config, options.seed);
 
   StagedFolder folder(options.out);
-  io::WriteFileAtomic(folder.path() / "route.txt", RouteText(route, config, options.seed));
+  const std::string command = CommandLine(options);
+  io::WriteFileAtomic(folder.path() / "route.txt", RouteText(route, config, command));
   GenerateCampusOptions campus;
   campus.route_file = options.out / "route.txt";
   campus.out = options.out / "world.yaml";
@@ -88,7 +98,7 @@ std::string RunGenerateTourCommand(const GenerateTourOptions& options) {
   campus.pedestrians = options.pedestrians;
   const std::string world = WriteCampusWorld(route, campus, folder.path() / "world.yaml");
   const std::string name = "tour-" + std::to_string(options.seed);
-  io::WriteFileAtomic(folder.path() / "scenario.yaml", ScenarioText(name, options.seed));
+  io::WriteFileAtomic(folder.path() / "scenario.yaml", ScenarioText(name, options.seed, command));
   folder.Commit();
   return options.out.string() + ": a " + std::to_string(std::lround(RouteLength(route))) +
          " m tour of " + std::to_string(route.size()) + " waypoints; " + world +
