@@ -22,9 +22,9 @@ enum class BeamKind { kSkip, kHit, kClear };
 struct BeamPlan {
   BeamKind kind = BeamKind::kSkip;
   core::Vec2 dir = core::Vec2::Zero();  // unit vector of the beam in M
-  double z = 0.0;         // m, the reading (hits)
-  double length = 0.0;    // m, how far to cast
-  double clear_to = 0.0;  // m, clearing beams: cells with t_out <= clear_to are free
+  double z = 0.0;                       // m, the reading (hits)
+  double length = 0.0;                  // m, how far to cast
+  double clear_to = 0.0;                // m, clearing beams: cells with t_out <= clear_to are free
 };
 
 BeamPlan PlanBeam(const MapperConfig& config, double hit_range_max, const core::LaserScan& scan,

@@ -26,8 +26,8 @@ namespace retrace::nav {
 
 struct OnlineSwitchingConfig {
   double revisit_radius = 3.0;  ///< m (route.revisit_radius)
-  double window = 10.0;         ///< m before the revisit to choose the place in (route.switch_window)
-  double drift = 0.03;          ///< odometry error per metre driven, a fraction (route.online_drift)
+  double window = 10.0;  ///< m before the revisit to choose the place in (route.switch_window)
+  double drift = 0.03;   ///< odometry error per metre driven, a fraction (route.online_drift)
 
   /// Throws core::ConfigError naming the key: revisit_radius > 0, window >= 0, 0 <= drift <= 0.5.
   void Validate() const;
@@ -58,8 +58,8 @@ class RevisitDetector {
 
  private:
   struct Sample {
-    core::Vec2 p;       ///< position in the source's frame
-    double travelled;   ///< m driven when the robot was there
+    core::Vec2 p;      ///< position in the source's frame
+    double travelled;  ///< m driven when the robot was there
   };
 
   OnlineSwitchingConfig config_;

@@ -129,8 +129,8 @@ class TeachRecorder {
   // Online switching.
   std::optional<RevisitDetector> detector_;
   std::deque<Held> held_;
-  std::optional<core::Pose2> X_OR_latest_;      // the latest pose given
-  std::optional<core::Pose2> X_OR_last_scan_;   // the pose of the latest scan held
+  std::optional<core::Pose2> X_OR_latest_;     // the latest pose given
+  std::optional<core::Pose2> X_OR_last_scan_;  // the pose of the latest scan held
   double map_start_travelled_ = 0.0;           // m, where the current map began
   std::vector<OnlineSwitch> switches_;
 };

@@ -35,8 +35,8 @@ std::string CommandLine(const GenerateTourOptions& options) {
 std::string RouteText(const std::vector<core::Vec2>& route, const TourConfig& config,
                       const std::string& command) {
   std::ostringstream out;
-  out << "# A random looped tour (`" << command << "`), "
-      << std::lround(RouteLength(route)) << " m on a " << config.columns << " x " << config.rows
+  out << "# A random looped tour (`" << command << "`), " << std::lround(RouteLength(route))
+      << " m on a " << config.columns << " x " << config.rows
       << " street grid (x y, metres, frame W).\n";
   for (const core::Vec2& p : route) {
     out << core::FormatNumber(std::round(p.x() * 1000.0) / 1000.0) << " "
@@ -45,8 +45,7 @@ std::string RouteText(const std::vector<core::Vec2>& route, const TourConfig& co
   return out.str();
 }
 
-std::string ScenarioText(const std::string& name, std::uint64_t seed,
-                         const std::string& command) {
+std::string ScenarioText(const std::string& name, std::uint64_t seed, const std::string& command) {
   std::ostringstream out;
   out << "# A random looped tour written by `" << command << "`: the route in route.txt,\n"
       << "# a campus round it in world.yaml. Switch points come from the route's geometry; try\n"

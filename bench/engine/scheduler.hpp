@@ -49,12 +49,12 @@ struct TeachTiming {
   double cpu_time_s = 0.0;
 };
 
-/// Runs the jobs on `threads` threads (>= 1) and returns each job's teach timing. Progress: a "teach" phase of the drives (when any job teaches), then a
-/// "playback" phase of all runs. Throws core::WorldError when a teaching drive cannot finish
-/// its route or the world refuses a run's start; the first error in the order the
-/// work was started (longest first) wins, whatever the number of threads.
+/// Runs the jobs on `threads` threads (>= 1) and returns each job's teach timing. Progress: a
+/// "teach" phase of the drives (when any job teaches), then a "playback" phase of all runs. Throws
+/// core::WorldError when a teaching drive cannot finish its route or the world refuses a run's
+/// start; the first error in the order the work was started (longest first) wins, whatever the
+/// number of threads.
 std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
-                                     ProgressSink* progress,
-                                const EpisodeCallbacks& callbacks);
+                                     ProgressSink* progress, const EpisodeCallbacks& callbacks);
 
 }  // namespace retrace::bench

@@ -48,10 +48,12 @@ void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<Ma
     if (SwitchesMaps(mode)) return;
   }
   std::string asked;
-  for (MapMode mode : modes) asked += (asked.empty() ? "" : ", ") + std::string(core::EnumName(mode));
+  for (MapMode mode : modes)
+    asked += (asked.empty() ? "" : ", ") + std::string(core::EnumName(mode));
   throw core::ConfigError("route.switch_points",
                           "`online` switching needs a map mode that switches maps (partial or "
-                          "scan_matched); the modes asked for are: " + asked);
+                          "scan_matched); the modes asked for are: " +
+                              asked);
 }
 
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <vector>
 
+#include "core/angle.hpp"
+
 namespace retrace::bench_micro {
 
 // Campus: building outlines, free-standing walls and trees on a free background.
@@ -65,6 +67,22 @@ core::Pose2 FreeCampusPose(const core::OccupancyGrid& map, const nav::Likelihood
     const core::Pose2 X(rng.Uniform(-50, 50), rng.Uniform(-50, 50), rng.Uniform(-3, 3));
     if (field.Distance(map.WorldToCell(X.translation())) > 1.5f) return X;
   }
+}
+
+core::LaserScan CampusScan(const nav::GridRayCaster& caster, const core::Pose2& X_M,
+                           core::Rng& rng) {
+  core::LaserScan scan;
+  scan.angle_min = -core::DegToRad(135.0);
+  scan.angle_increment = core::DegToRad(0.25);
+  scan.range_min = 0.05;
+  scan.range_max = 30.0;
+  for (std::size_t i = 0; i < 1081; ++i) {
+    const double a = X_M.theta + scan.Angle(i);
+    const double r = caster.Cast(X_M.x, X_M.y, std::cos(a), std::sin(a), 30.0);
+    scan.ranges.push_back(std::isinf(r) ? static_cast<float>(r)
+                                        : static_cast<float>(r + 0.02 * rng.Normal()));
+  }
+  return scan;
 }
 
 }  // namespace retrace::bench_micro

@@ -4,9 +4,11 @@
 // (-150, -150) m) of free ground with 70 building outlines, 120 walls and hedges and 3000
 // trees, the same on every run (seeded).
 
+#include "core/laser_scan.hpp"
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
 #include "core/rng.hpp"
+#include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
 
 namespace retrace::bench_micro {
@@ -20,6 +22,11 @@ core::OccupancyGrid CampusMap();
 /// Draws poses X_M (m, rad) uniformly from [-50, 50] m x [-50, 50] m x [-3, 3] rad with rng
 /// until one lies more than 1.5 m from every obstacle of `field` (built on `map`), and returns it.
 core::Pose2 FreeCampusPose(const core::OccupancyGrid& map, const nav::LikelihoodField& field,
+                           core::Rng& rng);
+
+/// A Hokuyo-like scan from X_M: 1081 beams over 270°, 0.05–30 m, cast in `caster`'s map, with
+/// 2 cm of Gaussian range noise drawn from rng on every finite reading.
+core::LaserScan CampusScan(const nav::GridRayCaster& caster, const core::Pose2& X_M,
                            core::Rng& rng);
 
 }  // namespace retrace::bench_micro

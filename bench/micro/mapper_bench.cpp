@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "bench/micro/campus_map.hpp"
-#include "core/angle.hpp"
 #include "core/laser_scan.hpp"
 #include "core/pose2.hpp"
 #include "core/rng.hpp"
@@ -42,19 +41,8 @@ struct MapperFixture {
         X = Pose2(X.x, X.y, X.theta + 0.6);
         continue;
       }
-      retrace::core::LaserScan scan;
-      scan.angle_min = -retrace::core::DegToRad(135.0);
-      scan.angle_increment = retrace::core::DegToRad(0.25);
-      scan.range_min = 0.05;
-      scan.range_max = 30.0;
-      for (int i = 0; i < 1081; ++i) {
-        const double a = X.theta + scan.Angle(static_cast<std::size_t>(i));
-        const double r = caster.Cast(X.x, X.y, std::cos(a), std::sin(a), 30.0);
-        scan.ranges.push_back(std::isinf(r) ? static_cast<float>(r)
-                                            : static_cast<float>(r + 0.02 * rng.Normal()));
-      }
       poses.push_back(X);
-      scans.push_back(std::move(scan));
+      scans.push_back(retrace::bench_micro::CampusScan(caster, X, rng));
       X = X * Pose2(0.5, 0.0, 0.02);
     }
   }

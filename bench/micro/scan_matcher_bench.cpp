@@ -39,20 +39,6 @@ struct Fixture {
     const retrace::nav::GridRayCaster caster(field);
     retrace::core::Rng rng(11);
     Pose2 X = retrace::bench_micro::FreeCampusPose(map, field, rng);
-    auto scan_at = [&](const Pose2& p) {
-      retrace::core::LaserScan scan;
-      scan.angle_min = -retrace::core::DegToRad(135.0);
-      scan.angle_increment = retrace::core::DegToRad(0.25);
-      scan.range_min = 0.05;
-      scan.range_max = 30.0;
-      for (int i = 0; i < 1081; ++i) {
-        const double a = p.theta + scan.Angle(static_cast<std::size_t>(i));
-        const double r = caster.Cast(p.x, p.y, std::cos(a), std::sin(a), 30.0);
-        scan.ranges.push_back(std::isinf(r) ? static_cast<float>(r)
-                                            : static_cast<float>(r + 0.02 * rng.Normal()));
-      }
-      return scan;
-    };
     while (static_cast<int>(poses.size()) < kKeyframes) {
       // Straight on while there is room ahead, else turn.
       const double ahead = caster.Cast(X.x, X.y, std::cos(X.theta), std::sin(X.theta), 30.0);
@@ -61,7 +47,7 @@ struct Fixture {
         continue;
       }
       poses.push_back(X);
-      scans.push_back(scan_at(X));
+      scans.push_back(retrace::bench_micro::CampusScan(caster, X, rng));
       X = X * Pose2(0.5, 0.0, 0.05);
     }
     const Pose2& last = poses.back();

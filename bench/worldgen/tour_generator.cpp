@@ -113,12 +113,13 @@ std::vector<core::Vec2> GenerateTour(const TourConfig& config, std::uint64_t see
       }
     }
     // Then on along one to max_transfer streets, never back the way it came.
-    const int transfer = 1 + static_cast<int>(rng.UniformIndex(
-                                 static_cast<std::uint64_t>(config.max_transfer)));
+    const int transfer =
+        1 + static_cast<int>(rng.UniformIndex(static_cast<std::uint64_t>(config.max_transfer)));
     for (int k = 0; k < transfer && w.length < config.length; ++k) {
       std::vector<int> ways;
       for (int d = 0; d < 4; ++d) {
-        if ((w.heading < 0 || d != Reverse(w.heading)) && w.Inside(w.i + kDx[d], w.j + kDy[d])) ways.push_back(d);
+        if ((w.heading < 0 || d != Reverse(w.heading)) && w.Inside(w.i + kDx[d], w.j + kDy[d]))
+          ways.push_back(d);
       }
       w.Drive(ways[rng.UniformIndex(ways.size())]);  // a grid crossing always has a way on
     }

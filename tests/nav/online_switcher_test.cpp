@@ -100,7 +100,8 @@ TEST(OnlineSwitching, AFigureEightSwitchesBeforeTheCrossing) {
     const Vec2 p = FigureEight::At(t);
     const Vec2 ahead = FigureEight::At(t + 1e-4) - p;
     const Pose2 X_WR(p.x(), p.y(), std::atan2(ahead.y(), ahead.x()));
-    if (!poses.empty()) travelled.push_back(travelled.back() + (p - poses.back().translation()).norm());
+    if (!poses.empty())
+      travelled.push_back(travelled.back() + (p - poses.back().translation()).norm());
     if (second_crossing == 0.0 && t >= 2.0 * core::kPi) second_crossing = travelled.back();
     poses.push_back(X_WR);
     recorder.OnPose(X_WR);  // exact odometry: O = W
