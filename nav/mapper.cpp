@@ -223,7 +223,7 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
   const auto hit = static_cast<float>(HitLogOdds(config_.inverse_model));
   const auto miss = static_cast<float>(MissLogOdds(config_.inverse_model));
   const double reach = config_.inverse_model.ReachBehind();
-  const double spacing = config_.resolution;
+  const double spacing = 0.5 * config_.resolution;
   MapperStats stats;
   stats.keyframes = stats_.keyframes + 1;
   // Hits first, then the clearing beams, so that these stop at this scan's end points too.
