@@ -85,4 +85,24 @@ core::LaserScan CampusScan(const nav::GridRayCaster& caster, const core::Pose2& 
   return scan;
 }
 
+CampusDrive DriveThroughCampus(int keyframes, double turn, std::uint64_t seed) {
+  const core::OccupancyGrid map = CampusMap();
+  const nav::LikelihoodField field(map, {}, 30.0);
+  const nav::GridRayCaster caster(field);
+  core::Rng rng(seed);
+  core::Pose2 X = FreeCampusPose(map, field, rng);
+  CampusDrive drive;
+  while (static_cast<int>(drive.poses.size()) < keyframes) {
+    const double ahead = caster.Cast(X.x, X.y, std::cos(X.theta), std::sin(X.theta), 30.0);
+    if (ahead < 2.0) {
+      X = core::Pose2(X.x, X.y, X.theta + 0.6);
+      continue;
+    }
+    drive.poses.push_back(X);
+    drive.scans.push_back(CampusScan(caster, X, rng));
+    X = X * core::Pose2(0.5, 0.0, turn);
+  }
+  return drive;
+}
+
 }  // namespace retrace::bench_micro

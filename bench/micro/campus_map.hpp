@@ -4,6 +4,9 @@
 // (-150, -150) m) of free ground with 70 building outlines, 120 walls and hedges and 3000
 // trees, the same on every run (seeded).
 
+#include <cstdint>
+#include <vector>
+
 #include "core/laser_scan.hpp"
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
@@ -28,5 +31,14 @@ core::Pose2 FreeCampusPose(const core::OccupancyGrid& map, const nav::Likelihood
 /// 2 cm of Gaussian range noise drawn from rng on every finite reading.
 core::LaserScan CampusScan(const nav::GridRayCaster& caster, const core::Pose2& X_M,
                            core::Rng& rng);
+
+/// A drive through the campus: from a free pose drawn with Rng(seed), keyframes 0.5 m apart,
+/// turning `turn` rad per keyframe, straight on while there is room ahead (2 m), else turning on
+/// the spot; a CampusScan at every keyframe.
+struct CampusDrive {
+  std::vector<core::Pose2> poses;
+  std::vector<core::LaserScan> scans;
+};
+CampusDrive DriveThroughCampus(int keyframes, double turn, std::uint64_t seed);
 
 }  // namespace retrace::bench_micro

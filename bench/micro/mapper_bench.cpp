@@ -25,37 +25,15 @@ using retrace::core::Pose2;
 
 constexpr int kKeyframes = 200;
 
-struct MapperFixture {
-  std::vector<Pose2> poses;
-  std::vector<retrace::core::LaserScan> scans;
-
-  MapperFixture() {
-    const retrace::core::OccupancyGrid map = retrace::bench_micro::CampusMap();
-    const retrace::nav::LikelihoodField field(map, {}, 30.0);
-    const retrace::nav::GridRayCaster caster(field);
-    retrace::core::Rng rng(7);
-    Pose2 X = retrace::bench_micro::FreeCampusPose(map, field, rng);
-    while (static_cast<int>(poses.size()) < kKeyframes) {
-      const double ahead = caster.Cast(X.x, X.y, std::cos(X.theta), std::sin(X.theta), 30.0);
-      if (ahead < 2.0) {
-        X = Pose2(X.x, X.y, X.theta + 0.6);
-        continue;
-      }
-      poses.push_back(X);
-      scans.push_back(retrace::bench_micro::CampusScan(caster, X, rng));
-      X = X * Pose2(0.5, 0.0, 0.02);
-    }
-  }
-};
-
-const MapperFixture& GetMapperFixture() {
-  static const MapperFixture f;
+const retrace::bench_micro::CampusDrive& GetMapperFixture() {
+  static const retrace::bench_micro::CampusDrive f =
+      retrace::bench_micro::DriveThroughCampus(kKeyframes, 0.02, 7);
   return f;
 }
 
 // A fresh map, then every keyframe of the drive: items are keyframes.
 void BM_MapperKeyframe(benchmark::State& state) {
-  const MapperFixture& f = GetMapperFixture();
+  const retrace::bench_micro::CampusDrive& f = GetMapperFixture();
   for (auto _ : state) {
     retrace::nav::Mapper mapper({}, {});
     for (std::size_t k = 0; k < f.scans.size(); ++k) {

@@ -34,22 +34,10 @@ struct Fixture {
   Pose2 predicted;
 
   Fixture() {
-    const retrace::core::OccupancyGrid map = retrace::bench_micro::CampusMap();
-    const retrace::nav::LikelihoodField field(map, {}, 30.0);
-    const retrace::nav::GridRayCaster caster(field);
-    retrace::core::Rng rng(11);
-    Pose2 X = retrace::bench_micro::FreeCampusPose(map, field, rng);
-    while (static_cast<int>(poses.size()) < kKeyframes) {
-      // Straight on while there is room ahead, else turn.
-      const double ahead = caster.Cast(X.x, X.y, std::cos(X.theta), std::sin(X.theta), 30.0);
-      if (ahead < 2.0) {
-        X = Pose2(X.x, X.y, X.theta + 0.6);
-        continue;
-      }
-      poses.push_back(X);
-      scans.push_back(retrace::bench_micro::CampusScan(caster, X, rng));
-      X = X * Pose2(0.5, 0.0, 0.05);
-    }
+    retrace::bench_micro::CampusDrive drive =
+        retrace::bench_micro::DriveThroughCampus(kKeyframes, 0.05, 11);
+    poses = std::move(drive.poses);
+    scans = std::move(drive.scans);
     const Pose2& last = poses.back();
     predicted = Pose2(last.x + 0.03, last.y - 0.02, last.theta + retrace::core::DegToRad(0.3));
   }
