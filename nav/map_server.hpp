@@ -49,6 +49,14 @@ class MapServer {
   /// estimate transformed by eq. (1), the follower gets path k+1. Requires !IsLast().
   MapSwitch SwitchToNext(Localizer& localizer, PathFollower& follower);
 
+  /// For a route driven again and again (a loop): the last map's frame in map 0's, chained
+  /// through the switch poses by eq. (1), X_{M_0 M_n} = X_{M_0 S_0} * ... * X_{M_{n-1} S_{n-1}}
+  /// (the identity for one map). It carries the drift the maps accumulated over the route.
+  core::Pose2 LastMapInFirst() const;
+  /// From the end of the last path back to map 0 and path 0 (the loop driven again): every
+  /// particle becomes X_{M_0 R} = LastMapInFirst() * X_{M_n R}. Requires IsLast().
+  MapSwitch WrapToFirst(Localizer& localizer, PathFollower& follower);
+
  private:
   TeachBundle bundle_;
   std::size_t index_ = 0;

@@ -3,8 +3,9 @@
 # which (internal/ folders included), that third-party types stay out of the public headers of
 # sim, nav and viz, and that CLI11 lives only in the command line. The layers, bottom up:
 #
-#   core → io → sim, nav, viz → bench/engine → bench/metrics → bench/output, bench/suite,
-#   bench/sweep, bench/compare → bench/cli        (bench/worldgen: on core, io and sim only)
+#   core → io → sim, nav, viz, logs → bench/engine → bench/metrics → bench/output, bench/suite,
+#   bench/sweep, bench/compare, bench/replay → bench/cli   (bench/worldgen: on core, io and sim
+#   only; logs: only bench/replay and bench/cli read logs)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 fail=0
@@ -18,30 +19,33 @@ check() {  # check <dir> <file-glob> <forbidden include regex> <reason> [exempt 
     fail=1
   fi
 }
-harness='bench/(engine|metrics|output|suite|sweep|compare|cli|worldgen)/'
-above_engine='bench/(metrics|output|suite|sweep|compare|cli|worldgen)/'
+harness='bench/(engine|metrics|output|suite|sweep|compare|replay|cli|worldgen)/'
+above_engine='bench/(metrics|output|suite|sweep|compare|replay|cli|worldgen)/'
 check core '*' 'io/|sim/|nav/|viz/|bench/|yaml-cpp|box2d|opencv2|nlohmann|CLI/' "core depends on Eigen and std only"
-check io '*' 'sim/|nav/|viz/|bench/|box2d|CLI/' "io depends on core only"
-check sim '*' 'nav/|viz/|bench/|CLI/' "sim must not see nav, viz or bench"
-check nav '*' 'sim/|viz/|bench/|box2d|CLI/' "nav must never see the simulator"
-check viz '*' 'sim/|nav/|bench/|box2d|CLI/' "viz depends on core and io only"
-for lib in sim nav viz; do
-  check "$lib" '*.hpp' 'box2d|opencv2|yaml-cpp|io/config_yaml' \
+check io '*' 'sim/|nav/|logs/|viz/|bench/|box2d|CLI/' "io depends on core only"
+check sim '*' 'nav/|logs/|viz/|bench/|CLI/' "sim must not see nav, viz or bench"
+check nav '*' 'sim/|logs/|viz/|bench/|box2d|CLI/' "nav must never see the simulator or logs"
+check logs '*' 'sim/|nav/|viz/|bench/|box2d|opencv2|CLI/' "logs depend on core and io only"
+check viz '*' 'sim/|nav/|logs/|bench/|box2d|CLI/' "viz depends on core and io only"
+for lib in sim nav viz logs; do
+  check "$lib" '*.hpp' 'box2d|opencv2|yaml-cpp|io/config_yaml|sqlite3|zstd|lz4|zlib' \
     "third-party types stay out of $lib's public headers" '/internal/'
 done
-check bench/engine '*' "$above_engine|viz/|CLI/" \
+check bench/engine '*' "$above_engine|viz/|logs/|CLI/" \
   "the episode engine sees core, io, sim and nav only"
-check bench/metrics '*' 'bench/(output|suite|sweep|compare|cli|worldgen)/|viz/|CLI/' \
+check bench/metrics '*' 'bench/(output|suite|sweep|compare|replay|cli|worldgen)/|viz/|logs/|CLI/' \
   "metrics depend on the engine only"
-check bench/output '*' 'bench/(suite|sweep|compare|cli|worldgen)/|CLI/' \
+check bench/output '*' 'bench/(suite|sweep|compare|replay|cli|worldgen)/|logs/|CLI/' \
   "output depends on the engine, metrics and viz only"
-check bench/suite '*' 'bench/(output|sweep|compare|cli|worldgen)/|viz/|CLI/' \
+check bench/suite '*' 'bench/(output|sweep|compare|replay|cli|worldgen)/|viz/|logs/|CLI/' \
   "suites depend on the engine and metrics only"
-check bench/sweep '*' 'bench/(output|suite|compare|cli|worldgen)/|CLI/' \
+check bench/sweep '*' 'bench/(output|suite|compare|replay|cli|worldgen)/|logs/|CLI/' \
   "sweeps depend on the engine, metrics and viz only"
-check bench/compare '*' 'bench/(output|suite|sweep|cli|worldgen)/|CLI/' \
+check bench/compare '*' 'bench/(output|suite|sweep|replay|cli|worldgen)/|logs/|CLI/' \
   "the comparison study depends on metrics and viz only"
-check bench/worldgen '*' "bench/(engine|metrics|output|suite|sweep|compare|cli)/|nav/|viz/|CLI/" "world generation depends on core, io and sim only"
+check bench/worldgen '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli)/|nav/|viz/|logs/|CLI/" "world generation depends on core, io and sim only"
+check bench/replay '*' 'bench/(output|suite|sweep|compare|cli|worldgen)/|CLI/' \
+  "replay depends on the engine, metrics, logs and viz only"
 check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim and nav kernels only"
 [ $fail -eq 0 ] && echo "include rules: ok"
 exit $fail

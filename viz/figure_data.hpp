@@ -106,6 +106,8 @@ struct LikelihoodFigureData {
   core::Pose2 true_pose;            ///< the robot's true pose (map frame of the grids)
   std::vector<Circle> pedestrians;  ///< same frame
   double time_s = std::numeric_limits<double>::quiet_NaN();  ///< shown when finite
+  /// false for a log: no pedestrians known, and the true pose is the log's reference
+  bool simulated = true;
 };
 
 /// A LiDAR end point with what the localizer and the simulator know about it.
@@ -128,6 +130,8 @@ struct SnapshotData {
   std::vector<ScanPoint> scan;         ///< end points in M
   std::vector<Circle> pedestrians;     ///< in M
   double robot_radius = 0.0;           ///< m, the robot's (the run's sim.robot.radius)
+  /// false for a log: which beams hit people is unknown, and the truth is the log's reference
+  bool simulated = true;
 };
 
 /// Errors of one run along the route.
@@ -143,6 +147,11 @@ struct ErrorsFigureData {
   std::string mode;
   std::vector<ErrorSeries> runs;
   std::vector<double> switch_arc_lengths;  ///< m along the taught path
+  /// What the horizontal axis and the top panel show; a log's run has no controller of its own,
+  /// so its top panel is how far its driver stayed from the taught path.
+  std::string x_label = "arc length along the taught path (m)";
+  std::string top_title = "Tracking error: distance to the taught path";
+  std::string top_y_label = "tracking error (m)";
 };
 
 /// One metric of one mode: a value and an optional interval (a CI, min-max, ...).

@@ -22,7 +22,8 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
                      ? "Errors along the route" +
                            (data.mode.empty() ? std::string() : " (" + ModeMaps(data.mode) + ")")
                      : options.title;
-  header.subtitle = "Against arc length along the taught path; dashed lines: map switches.";
+  header.subtitle = "Against " + data.x_label.substr(0, data.x_label.rfind(" (")) +
+                    "; dashed lines: map switches.";
   if (n <= palette::kRuns.size()) {
     for (std::size_t i = 0; i < n; ++i) {
       header.legend.push_back(
@@ -56,9 +57,9 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
   internal::DrawHeader(fig, header);
 
   const char* names[2] = {"tracking", "localization"};
-  const char* titles[2] = {"Tracking error: distance to the taught path",
-                           "Localization error: estimate vs local ground truth"};
-  const char* y_labels[2] = {"tracking error (m)", "localization error (m)"};
+  const std::string titles[2] = {data.top_title,
+                                 "Localization error: estimate vs local ground truth"};
+  const std::string y_labels[2] = {data.top_y_label, "localization error (m)"};
   std::vector<PanelInfo> panels;
   for (int k = 0; k < 2; ++k) {
     std::vector<const std::vector<double>*> series;
@@ -73,7 +74,7 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
     chart.plot = cv::Rect(internal::kChartLeft, y0 + internal::kChartTop,
                           W - internal::kChartLeft - internal::kChartRight, plot_h);
     chart.box = Box2::Of(Vec2(0.0, 0.0), Vec2(s_max, std::max(y_top, 1e-3)));
-    internal::DrawChartAxes(fig, chart, "arc length along the taught path (m)", y_labels[k]);
+    internal::DrawChartAxes(fig, chart, data.x_label, y_labels[k]);
     for (double s : data.switch_arc_lengths)
       internal::DrawChartVLine(fig, chart, s, palette::kSwitch);
     const int thickness = n > 5 ? 1 : 2;

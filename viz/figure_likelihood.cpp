@@ -106,7 +106,10 @@ FigureInfo RenderLikelihoodFigure(const LikelihoodFigureData& data,
   const int plot_h = static_cast<int>(std::lround(plot_w * std::min(aspect, 1.2)));
 
   internal::Header header;
-  header.title = fo.title.empty() ? "Measurement likelihood around the true pose" : fo.title;
+  const char* truth = data.simulated ? "true" : "reference";
+  header.title = fo.title.empty()
+                     ? std::string("Measurement likelihood around the ") + truth + " pose"
+                     : fo.title;
   // The pedestrians that can block the robot's view here, not everyone in the world.
   constexpr double kNearby = 5.0;  // m from the true position to a pedestrian's edge
   const auto nearby =
@@ -116,13 +119,22 @@ FigureInfo RenderLikelihoodFigure(const LikelihoodFigureData& data,
   char when[48] = "";
   if (std::isfinite(data.time_s)) std::snprintf(when, sizeof(when), "t = %.1f s, ", data.time_s);
   char sub[200];
-  std::snprintf(sub, sizeof(sub),
-                "Over (x, y) at the true heading, %s%td pedestrians within %.0f m. Map frame.",
-                when, nearby, kNearby);
+  if (data.simulated) {
+    std::snprintf(sub, sizeof(sub),
+                  "Over (x, y) at the true heading, %s%td pedestrians within %.0f m. Map frame.",
+                  when, nearby, kNearby);
+  } else {
+    std::snprintf(sub, sizeof(sub),
+                  "Over (x, y) at the reference heading, %sa recorded log. Map "
+                  "frame.",
+                  when);
+  }
   header.subtitle = sub;
-  header.legend = {{"true pose", palette::kTruth, LegendSymbol::kArrow, Marker::kDisc, 3.0, true},
-                   {"likelihood peak", palette::kText, LegendSymbol::kRing},
-                   {"pedestrians", palette::kPedestrian, LegendSymbol::kRing}};
+  header.legend = {{std::string(truth) + " pose", palette::kTruth, LegendSymbol::kArrow,
+                    Marker::kDisc, 3.0, true},
+                   {"likelihood peak", palette::kText, LegendSymbol::kRing}};
+  if (data.simulated)
+    header.legend.push_back({"pedestrians", palette::kPedestrian, LegendSymbol::kRing});
   const int top = internal::HeaderHeight(header, W);
   const int tile_h = internal::MapPanelAt(0, 0, tile_w, plot_h).tile.height;
   cv::Mat fig = internal::NewFigure(W, top + tile_h + 8);
@@ -136,8 +148,9 @@ FigureInfo RenderLikelihoodFigure(const LikelihoodFigureData& data,
     std::string title = titles[i];
     if (s.any) {
       char buf[96];
-      std::snprintf(buf, sizeof(buf), ": peak %.2f m from truth",
-                    (s.peak - data.true_pose.translation()).norm());
+      std::snprintf(buf, sizeof(buf), ": peak %.2f m from %s",
+                    (s.peak - data.true_pose.translation()).norm(),
+                    data.simulated ? "truth" : "the reference");
       title += buf;
     }
     panels.push_back(internal::RenderMapPanel(

@@ -51,18 +51,37 @@ FigureInfo RenderSnapshotFigure(const SnapshotData& data, const std::filesystem:
                 data.map_index);
   header.title = fo.title.empty() ? title : fo.title;
   char sub[256];
-  std::snprintf(sub, sizeof(sub),
-                "Map frame M_%d. %zu particles (opacity: weight), %zu scan points: %d not rejected, %d "
-                "rejected, %d hit pedestrians. Position error %.2f m.",
-                data.map_index, data.particles.size(), data.scan.size(), used, rejected, ped,
-                core::Distance(data.estimate, data.truth));
+  if (data.simulated) {
+    std::snprintf(sub, sizeof(sub),
+                  "Map frame M_%d. %zu particles (opacity: weight), %zu scan points: %d not "
+                  "rejected, %d rejected, %d hit pedestrians. Position error %.2f m.",
+                  data.map_index, data.particles.size(), data.scan.size(), used, rejected, ped,
+                  core::Distance(data.estimate, data.truth));
+  } else {
+    std::snprintf(sub, sizeof(sub),
+                  "Map frame M_%d, a recorded log. %zu particles (opacity: weight), %zu scan "
+                  "points: %d not rejected, %d rejected. Distance to the reference %.2f m.",
+                  data.map_index, data.particles.size(), data.scan.size(), used, rejected,
+                  core::Distance(data.estimate, data.truth));
+  }
   header.subtitle = sub;
   header.legend = internal::LocalizationLegend();
-  header.legend.push_back({"inset", palette::kInsetFrame, internal::LegendSymbol::kLine, Marker::kDisc, 2.0});
+  if (!data.simulated) {
+    // A log knows no pedestrians, and its truth is its reference.
+    std::erase_if(header.legend, [](const internal::LegendEntry& e) {
+      return e.label.find("pedestrian") != std::string::npos;
+    });
+    for (internal::LegendEntry& e : header.legend) {
+      if (e.label == "ground truth") e.label = "reference";
+    }
+  }
+  header.legend.push_back(
+      {"inset", palette::kInsetFrame, internal::LegendSymbol::kLine, Marker::kDisc, 2.0});
 
   const int top = internal::HeaderHeight(header, W);
   const internal::MapPanelRect main_rect = internal::MapPanelAt(0, top, main_tile_w, plot_h);
-  const internal::MapPanelRect inset_rect = internal::MapPanelAt(main_tile_w, top, inset_tile_w, plot_h);
+  const internal::MapPanelRect inset_rect =
+      internal::MapPanelAt(main_tile_w, top, inset_tile_w, plot_h);
   cv::Mat fig = internal::NewFigure(W, std::max(main_rect.tile.br().y, inset_rect.tile.br().y) + 8);
   internal::DrawHeader(fig, header);
 
@@ -76,8 +95,8 @@ FigureInfo RenderSnapshotFigure(const SnapshotData& data, const std::filesystem:
   panels.push_back(internal::RenderMapPanel(
       fig, main_rect, main_box, "map", "Map, scan and particles", fo.supersample,
       [&](GlCanvas& cv) {
-        internal::DrawLocalizationLayers(cv, data.grid, data.path, data.particles, data.weights, data.estimate,
-                                         data.truth, data.scan, data.pedestrians,
+        internal::DrawLocalizationLayers(cv, data.grid, data.path, data.particles, data.weights,
+                                         data.estimate, data.truth, data.scan, data.pedestrians,
                                          data.robot_radius, 1.0);
         cv.DrawPolyline(frame, 2.0, palette::kInsetFrame, true);
       },
@@ -85,8 +104,8 @@ FigureInfo RenderSnapshotFigure(const SnapshotData& data, const std::filesystem:
   panels.push_back(internal::RenderMapPanel(
       fig, inset_rect, inset_box, "inset", "Particles, estimate and truth (zoomed)", fo.supersample,
       [&](GlCanvas& cv) {
-        internal::DrawLocalizationLayers(cv, data.grid, data.path, data.particles, data.weights, data.estimate,
-                                         data.truth, data.scan, data.pedestrians,
+        internal::DrawLocalizationLayers(cv, data.grid, data.path, data.particles, data.weights,
+                                         data.estimate, data.truth, data.scan, data.pedestrians,
                                          data.robot_radius, 1.6);
       },
       inset_style));

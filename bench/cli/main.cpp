@@ -11,11 +11,14 @@
 
 #include "bench/cli/bench_command.hpp"
 #include "bench/cli/campus_command.hpp"
-#include "bench/cli/tour_command.hpp"
 #include "bench/cli/compare_command.hpp"
+#include "bench/cli/log_info_command.hpp"
+#include "bench/cli/log_localize_command.hpp"
+#include "bench/cli/log_teach_command.hpp"
 #include "bench/cli/merge_command.hpp"
 #include "bench/cli/run_command.hpp"
 #include "bench/cli/sweep_command.hpp"
+#include "bench/cli/tour_command.hpp"
 #include "bench/cli/world_command.hpp"
 #include "bench/output/render_results.hpp"
 #include "core/errors.hpp"
@@ -111,6 +114,23 @@ int main(int argc, char** argv) {
       app.add_subcommand("merge", "Join the results folders of a sweep's shards into one");
   bench::AddMergeOptions(merge_cmd, &merge);
 
+  bench::LogInfoOptions log_info;
+  CLI::App* log_info_cmd = app.add_subcommand(
+      "log-info",
+      "Describe a recorded log (CARMEN, MCAP, rosbag2): topics, scans, odometry, reference");
+  bench::AddLogInfoOptions(log_info_cmd, &log_info);
+
+  bench::LogTeachOptions log_teach;
+  CLI::App* log_teach_cmd = app.add_subcommand(
+      "log-teach", "Build the teach folders (partial maps, paths) of a recorded log's drive");
+  bench::AddLogTeachOptions(log_teach_cmd, &log_teach);
+
+  bench::LogLocalizeOptions log_localize;
+  CLI::App* log_localize_cmd = app.add_subcommand(
+      "log-localize",
+      "Localize a recorded log in a teach folder's partial maps, measured against its reference");
+  bench::AddLogLocalizeOptions(log_localize_cmd, &log_localize);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -135,6 +155,9 @@ int main(int argc, char** argv) {
     if (*bench_cmd) return bench::RunBenchCommand(bench_options);
     if (*sweep_cmd) return bench::RunSweepCommand(sweep, command_line);
     if (*merge_cmd) return bench::RunMergeCommand(merge, command_line);
+    if (*log_info_cmd) return bench::RunLogInfoCommand(log_info);
+    if (*log_teach_cmd) return bench::RunLogTeachCommand(log_teach, command_line);
+    if (*log_localize_cmd) return bench::RunLogLocalizeCommand(log_localize, command_line);
     if (*render_cmd) {
       const auto files = bench::RenderResults(render_dir);
       std::cout << files.size() << " figures in " << render_dir.string() << "\n";

@@ -22,6 +22,7 @@
 #include "bench/output/staged_folder.hpp"
 #include "bench/output/summary.hpp"
 #include "bench/output/video_recorder.hpp"
+#include "bench/replay/log_recorder.hpp"
 #include "core/errors.hpp"
 #include "io/config_override.hpp"
 
@@ -71,6 +72,11 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   command->add_option("--out", options->out, "Results folder (default: results/<scenario name>)");
   command->add_option("--set", options->overrides,
                       "Override a scenario key: a.b.c=value (repeatable)");
+  if (phases != RunPhases::kPlaybackOnly) {
+    command->add_option("--record-log", options->record_log,
+                        "Also write every drive as a CARMEN log and an MCAP bag into this folder: "
+                        "teach.log.gz, teach.mcap, <mode>/run_<i>.log.gz, <mode>/run_<i>.mcap");
+  }
   if (phases != RunPhases::kTeachOnly) {
     command->add_flag("!--no-figures", options->figures,
                       "Do not render the figures (retrace render does it later)");
@@ -108,10 +114,29 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
                                                " runs per mode)");
   }
 
+  if (!options.record_log.empty()) {
+    // The logs are published as one folder: it must not be, or hold, a results folder.
+    const std::filesystem::path logs =
+        std::filesystem::absolute(options.record_log).lexically_normal();
+    const std::filesystem::path results = std::filesystem::absolute(out).lexically_normal();
+    const auto [r, l] = std::mismatch(results.begin(), results.end(), logs.begin(), logs.end());
+    if (r == results.end() || l == logs.end()) {
+      throw core::ConfigError("--record-log", "must be a folder apart from the results folder " +
+                                                  out.string() + ", not it, in it or around it");
+    }
+  }
+
   // Read a reused teach folder before anything is run or written.
   std::vector<ModeTeach> reused;
-  if (phases == RunPhases::kPlaybackOnly)
+  if (phases == RunPhases::kPlaybackOnly) {
     reused.push_back(ReadTeachFolder(options.teach_dir, config.modes.front()));
+    if (reused.back().trace.X_WR.empty()) {
+      throw core::IoError(options.teach_dir.string() +
+                          ": no gt.tum (taught from a log without a reference): a simulated "
+                          "playback measures against the teaching drive's truth; use "
+                          "`retrace log-localize` for logs");
+    }
+  }
 
   // One staged folder per mode: a video is written into it while its run drives.
   std::map<MapMode, std::unique_ptr<StagedFolder>> folders;
@@ -139,6 +164,17 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
         std::cerr << "retrace: warning: no video of " << mode_name << ": " << e.what() << "\n";
         return nullptr;
       }
+    };
+  }
+  std::unique_ptr<StagedFolder> log_folder;
+  if (!options.record_log.empty()) {
+    log_folder = std::make_unique<StagedFolder>(options.record_log);
+    run_options.tap = [&](const ModeTeach* teach, int run) -> std::unique_ptr<SensorTap> {
+      if (teach == nullptr)
+        return std::make_unique<LogRecorder>(log_folder->path(), "teach", scenario.robot);
+      return std::make_unique<LogRecorder>(
+          log_folder->path() / std::string(core::EnumName(teach->mode)),
+          "run_" + std::to_string(run), scenario.robot);
     };
   }
   Experiment experiment;
@@ -184,6 +220,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
   }
   if (experiment.modes.size() > 1 && repeats > 0)
     WriteComparison(out / "comparison.json", experiment.modes);
+  if (log_folder) log_folder->Commit();
 
   // Figures last: a rendering failure (no OSMesa context, say) leaves the numbers intact.
   if (options.figures) {

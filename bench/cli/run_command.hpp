@@ -27,6 +27,8 @@ struct RunOptions {
   bool video = false;               ///< record a video of playback run `video_run` of each mode
   int video_run = 0;
   double video_speedup = 10.0;  ///< seconds of the run per second of video
+  /// Write every drive as a CARMEN log and an MCAP bag into this folder (empty: no logs).
+  std::filesystem::path record_log;
 };
 
 enum class RunPhases { kAll, kTeachOnly, kPlaybackOnly };

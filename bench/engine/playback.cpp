@@ -67,13 +67,14 @@ core::Rng PlaybackRng(const ScenarioConfig& config, int run) {
 
 RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
                      const TeachTrace& teach, int run, double timeout_s, const ProgressFn& progress,
-                     PlaybackObserver* observer) {
+                     PlaybackObserver* observer, SensorTap* tap) {
   const double cpu_start = ThreadCpuSeconds();
   const ScenarioConfig& config = scenario.config;
   const core::Rng rng = PlaybackRng(config, run);
   sim::Simulator simulator(scenario.playback_world, config.sim,
                            StartPose(scenario, rng.Split("start")), rng.Split("sim"));
   Stepper stepper(simulator, config.nav.control_rate_hz, progress);
+  stepper.SetTap(tap);
   ScriptedEvents events(config.events, EventPhase::kPlayback);
   RouteProgress route_progress(scenario.route);
   // The navigation stack: it believes the robot is at map 0's origin.
@@ -131,6 +132,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
                    Compare(X_MR, X_MR_truth).distance, server.index(), follow.remaining});
   }
   feed.OnEnd();
+  if (tap != nullptr) tap->OnEnd();
   return recorder.Finish(*outcome, stepper.collisions(), simulator.time(),
                          ThreadCpuSeconds() - cpu_start);
 }

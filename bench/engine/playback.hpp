@@ -7,6 +7,7 @@
 
 #include "bench/engine/playback_observer.hpp"
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/sensor_tap.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/engine/trace.hpp"
 #include "nav/teach_bundle.hpp"
@@ -25,6 +26,7 @@ core::Rng PlaybackRng(const ScenarioConfig& config, int run);
 /// control tick and cannot change the run.
 RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
                      const TeachTrace& teach, int run, double timeout_s,
-                     const ProgressFn& progress = {}, PlaybackObserver* observer = nullptr);
+                     const ProgressFn& progress = {}, PlaybackObserver* observer = nullptr,
+                     SensorTap* tap = nullptr);
 
 }  // namespace retrace::bench

@@ -56,10 +56,6 @@ nav::RobotGeometry RobotGeometryOf(const sim::SimConfig& sim) {
 }
 
 void RouteConfig::Validate() const {
-  if (file.empty() == points.empty()) {
-    throw core::ConfigError(file.empty() ? "points" : "file",
-                            "give the route either as `file` or as inline `points`, not both");
-  }
   core::RequireNonNegative("switch_window", switch_window);
   core::RequireNonNegative("min_switch_constraint", min_switch_constraint);
   core::RequireInRange("online_drift", online_drift, 0.0, 0.5);
@@ -118,6 +114,10 @@ void NavConfig::Validate() const {
 void ScenarioConfig::Validate() const {
   if (name.empty()) throw core::ConfigError("name", "must not be empty");
   if (world.empty()) throw core::ConfigError("world", "must name a world file");
+  if (route.file.empty() == route.points.empty()) {
+    throw core::ConfigError(route.file.empty() ? "route.points" : "route.file",
+                            "give the route either as `file` or as inline `points`, not both");
+  }
   if (modes.empty()) throw core::ConfigError("modes", "must list at least one map mode");
   for (std::size_t i = 0; i < modes.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {

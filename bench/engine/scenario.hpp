@@ -84,6 +84,7 @@ struct RouteConfig {
     v("online_drift", online_drift);
     v("min_switch_constraint", min_switch_constraint);
   }
+  /// The switching keys (the scenario checks that exactly one of file and points is given).
   void Validate() const;
 };
 
@@ -293,9 +294,7 @@ struct Scenario {
   bool switch_points_auto = false;
 
   /// route.switch_points is `online`: the teach recorders choose them while teaching.
-  bool switching_online() const {
-    return config.route.switch_points.is(SwitchPlanning::kOnline);
-  }
+  bool switching_online() const { return config.route.switch_points.is(SwitchPlanning::kOnline); }
 };
 
 /// The robot's geometry for the navigation stack: sim.robot.radius, sim.lidar.mount and

@@ -39,7 +39,10 @@ std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
     if (progress) progress->Phase("teach", static_cast<int>(to_teach.size()));
     ParallelFor(threads, to_teach.size(), [&](std::size_t i) {
       EpisodeJob& job = jobs[to_teach[order[i]]];
-      TeachResult teach = RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress));
+      const std::size_t j = to_teach[order[i]];
+      std::unique_ptr<SensorTap> tap = callbacks.tap ? callbacks.tap(j, nullptr, -1) : nullptr;
+      TeachResult teach =
+          RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress), tap.get());
       job.taught = std::move(teach.modes);
       timing[to_teach[order[i]]] = {teach.duration_s, teach.cpu_time_s};
       if (progress) progress->UnitDone();
@@ -78,9 +81,11 @@ std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
     ModeTeach& teach = job.taught[task.mode];
     std::unique_ptr<PlaybackObserver> observer =
         callbacks.observe ? callbacks.observe(teach, task.run) : nullptr;
+    std::unique_ptr<SensorTap> tap =
+        callbacks.tap ? callbacks.tap(task.job, &teach, task.run) : nullptr;
     RunTrace run = RunPlayback(*job.scenario, teach.bundle, teach.trace, task.run,
                                PlaybackTimeout(*job.scenario, timing[task.job].duration_s),
-                               SimTimeReporter(progress), observer.get());
+                               SimTimeReporter(progress), observer.get(), tap.get());
     if (callbacks.run_done) callbacks.run_done(task.job, task.mode, teach, std::move(run));
     if (remaining[task.job][task.mode].fetch_sub(1) == 1 && callbacks.mode_done)
       callbacks.mode_done(task.job, task.mode, std::move(teach));

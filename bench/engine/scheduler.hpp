@@ -13,6 +13,7 @@
 #include "bench/engine/playback_observer.hpp"
 #include "bench/engine/progress.hpp"
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/sensor_tap.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/engine/trace.hpp"
 
@@ -40,6 +41,9 @@ struct EpisodeCallbacks {
   std::function<void(std::size_t job, std::size_t mode, ModeTeach&& teach)> mode_done;
   /// Optional: an observer of run `run` (nullptr: none), e.g. a video recorder.
   std::function<std::unique_ptr<PlaybackObserver>(const ModeTeach& teach, int run)> observe;
+  /// Optional: a sensor tap (nullptr: none) for job `job`'s teaching drive (`teach` nullptr) or
+  /// its run `run` of a mode, e.g. a log recorder. Called from a worker thread.
+  std::function<std::unique_ptr<SensorTap>(std::size_t job, const ModeTeach* teach, int run)> tap;
 };
 
 /// A job's teaching drive: how long it took in simulated time and on its thread's CPU (0 for a

@@ -36,8 +36,9 @@ struct LocalizationSnapshot {
   std::vector<core::Pose2> particles;  ///< X_MR of each particle after the update
   std::vector<double> weights;
   core::LaserScan scan;
-  std::vector<std::uint8_t> beam_use;    ///< nav::BeamUse per beam (0 unused, 1 used, 2 rejected)
-  std::vector<std::uint8_t> pedestrian;  ///< 1 where the beam hit a pedestrian (simulator truth)
+  std::vector<std::uint8_t> beam_use;  ///< nav::BeamUse per beam (0 unused, 1 used, 2 rejected)
+  /// 1 where the beam hit a pedestrian (simulator truth); empty: unknown (a log)
+  std::vector<std::uint8_t> pedestrian;
   std::vector<sim::DynamicCircle> pedestrians_W;  ///< where the pedestrians were (W)
   LikelihoodSlice likelihood;
 };

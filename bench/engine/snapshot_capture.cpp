@@ -21,10 +21,24 @@ LocalizationSnapshot CaptureSnapshot(const nav::Localizer& localizer,
                                      const core::Pose2& X_WR, const core::Pose2& X_MR_truth,
                                      std::vector<sim::DynamicCircle> pedestrians_W,
                                      double half_width, double resolution) {
+  std::vector<std::uint8_t> pedestrian;
+  for (std::size_t i = 0; i < update.beams.size(); ++i)
+    pedestrian.push_back(reading.truth[i].source == sim::BeamSource::kPedestrian ? 1 : 0);
+  LocalizationSnapshot s =
+      CaptureSnapshot(localizer, update, reading.scan, pedestrian, time, map_index, X_WR,
+                      X_MR_truth, std::move(pedestrians_W), half_width, resolution);
+  s.pedestrian_beams = PedestrianBeams(update, reading);
+  return s;
+}
+
+LocalizationSnapshot CaptureSnapshot(
+    const nav::Localizer& localizer, const nav::LocalizerUpdate& update,
+    const core::LaserScan& scan, const std::vector<std::uint8_t>& pedestrian, double time,
+    int map_index, const core::Pose2& X_WR, const core::Pose2& X_MR_truth,
+    std::vector<sim::DynamicCircle> pedestrians_W, double half_width, double resolution) {
   LocalizationSnapshot s;
   s.time = time;
   s.map_index = map_index;
-  s.pedestrian_beams = PedestrianBeams(update, reading);
   s.X_WR = X_WR;
   s.X_MR_truth = X_MR_truth;
   s.X_MR_estimate = localizer.Estimate();
@@ -34,11 +48,10 @@ LocalizationSnapshot CaptureSnapshot(const nav::Localizer& localizer,
     s.particles.push_back(p.X_MR);
     s.weights.push_back(p.weight);
   }
-  s.scan = reading.scan;
-  for (std::size_t i = 0; i < update.beams.size(); ++i) {
+  s.scan = scan;
+  for (std::size_t i = 0; i < update.beams.size(); ++i)
     s.beam_use.push_back(static_cast<std::uint8_t>(update.beams[i]));
-    s.pedestrian.push_back(reading.truth[i].source == sim::BeamSource::kPedestrian ? 1 : 0);
-  }
+  s.pedestrian = pedestrian;
 
   // The beam end points in L, of the tested beams, split by the rejection.
   std::vector<core::Vec2> all, kept;

@@ -21,6 +21,10 @@ sim::SimStep Stepper::Step(const core::Twist& command) {
   sim::SimStep s = simulator_.Step(command);
   ++steps_;
   collisions_.insert(collisions_.end(), s.collisions.begin(), s.collisions.end());
+  if (tap_ != nullptr) {
+    if (s.odometry) tap_->OnOdometry(s.time, simulator_.OdometryPose(), simulator_.RobotPose());
+    if (s.lidar) tap_->OnScan(s.lidar->scan, simulator_.OdometryPose(), simulator_.RobotPose());
+  }
   if (progress_ && s.time >= next_report_) {
     progress_(s.time);
     next_report_ += kProgressPeriod;

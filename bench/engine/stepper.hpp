@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bench/engine/progress.hpp"
+#include "bench/engine/sensor_tap.hpp"
 #include "core/twist.hpp"
 #include "sim/collision_event.hpp"
 #include "sim/simulator.hpp"
@@ -19,8 +20,10 @@ class Stepper {
   /// nav.control_rate_hz when the control period is not a whole number of physics steps.
   Stepper(sim::Simulator& simulator, double control_rate_hz, ProgressFn progress = {});
 
-  /// One physics step with `command` (and the sensors that came due).
+  /// One physics step with `command` (and the sensors that came due, which go to the tap).
   sim::SimStep Step(const core::Twist& command);
+  /// Copies every odometry tick and scan to `tap` (nullptr: none), which must outlive the steps.
+  void SetTap(SensorTap* tap) { tap_ = tap; }
 
   /// Whether the current instant is a control tick: every control period, the start included.
   bool ControlDue() const { return steps_ % control_steps_ == 0; }
@@ -37,6 +40,7 @@ class Stepper {
   double next_report_;
   std::uint64_t steps_ = 0;
   std::vector<sim::CollisionEvent> collisions_;
+  SensorTap* tap_ = nullptr;
 };
 
 }  // namespace retrace::bench

@@ -24,23 +24,23 @@ struct ModeRecorder {
   std::size_t next_switch = 0;
 };
 
-// Splits the drive's odometry ticks into the `map_count` maps the recorder put them in.
+}  // namespace
+
 std::vector<TeachMapTrace> MapTraces(const nav::TeachRecorder& recorder, std::size_t map_count,
                                      const std::vector<double>& time,
                                      const std::vector<core::Pose2>& X_WR) {
   const std::vector<nav::RecordedPose>& poses = recorder.recorded_poses();
   RETRACE_CHECK(poses.size() == time.size());
+  RETRACE_CHECK(X_WR.empty() || X_WR.size() == time.size());
   std::vector<TeachMapTrace> maps(map_count);
   for (std::size_t i = 0; i < poses.size(); ++i) {
     TeachMapTrace& map = maps.at(poses[i].map);
     map.time.push_back(time[i]);
     map.X_MR.push_back(poses[i].X_MR);
-    map.X_WR.push_back(X_WR[i]);
+    if (!X_WR.empty()) map.X_WR.push_back(X_WR[i]);
   }
   return maps;
 }
-
-}  // namespace
 
 void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<MapMode>& modes) {
   if (!scenario.switching_online()) return;
@@ -57,7 +57,7 @@ void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<Ma
 }
 
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,
-                          const ProgressFn& progress) {
+                          const ProgressFn& progress, SensorTap* tap) {
   const double cpu_start = ThreadCpuSeconds();
   const ScenarioConfig& config = scenario.config;
   const core::Rng rng = core::Rng(config.seed).Split("teach");
@@ -90,6 +90,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   TeachTrace trace;
   const core::Pose2 X_RW_start = simulator.RobotPose().Inverse();
   Stepper stepper(simulator, config.nav.control_rate_hz, progress);
+  stepper.SetTap(tap);
   const double timeout = TeachTimeout(scenario);
   const std::vector<double>& switch_points = config.route.switch_points.value;
   core::Twist command;
@@ -139,6 +140,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
     }
   }
 
+  if (tap != nullptr) tap->OnEnd();
   result.collisions = stepper.collisions();
   result.duration_s = simulator.time();
   for (ModeRecorder& r : recorders) {

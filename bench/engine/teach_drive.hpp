@@ -14,6 +14,7 @@
 
 #include "bench/engine/progress.hpp"
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/sensor_tap.hpp"
 #include "bench/engine/trace.hpp"
 #include "nav/teach_bundle.hpp"
 #include "nav/teach_recorder.hpp"
@@ -43,11 +44,19 @@ struct TeachResult {
 /// `modes` switches maps (a consistent or single map alone).
 void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<MapMode>& modes);
 
-/// Drives the route with the teacher and builds the bundles of `modes`. Throws like
+/// Splits the poses a finished recorder was given into its `map_count` maps: per map the
+/// instants, the recorder's pose in the map and the truth `X_WR` at the same instants (one entry
+/// per OnPose call, `time` and `X_WR` in the same order; `X_WR` may be empty: no truth).
+std::vector<TeachMapTrace> MapTraces(const nav::TeachRecorder& recorder, std::size_t map_count,
+                                     const std::vector<double>& time,
+                                     const std::vector<core::Pose2>& X_WR);
+
+/// Drives the route with the teacher and builds the bundles of `modes`; `tap` (optional) gets
+/// a copy of the sensor stream. Throws like
 /// RequireSwitchingModeIfOnline, and
 /// core::WorldError when the teacher does not finish the route within the teach timeout (a
 /// route it cannot drive), with where it got stuck.
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,
-                          const ProgressFn& progress = {});
+                          const ProgressFn& progress = {}, SensorTap* tap = nullptr);
 
 }  // namespace retrace::bench

@@ -38,6 +38,11 @@ std::vector<Experiment> Run(std::vector<EpisodeJob> jobs, const ExperimentOption
       mode.aggregate = AggregateMode(*scenarios[j], mode.teach, mode.runs, mode.run_metrics);
   };
   callbacks.observe = options.observe;
+  if (options.tap) {
+    callbacks.tap = [&](std::size_t, const ModeTeach* teach, int run) {
+      return options.tap(teach, run);
+    };
+  }
   const std::vector<TeachTiming> timing =
       RunEpisodes(std::move(jobs), options.jobs, options.progress, callbacks);
   for (std::size_t j = 0; j < experiments.size(); ++j) {

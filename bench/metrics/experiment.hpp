@@ -36,6 +36,8 @@ struct ExperimentOptions {
   ProgressSink* progress = nullptr;  ///< optional
   /// Optional: an observer for run `run` of a mode (nullptr: none), e.g. a video recorder.
   std::function<std::unique_ptr<PlaybackObserver>(const ModeTeach& teach, int run)> observe;
+  /// Optional: a sensor tap of the teaching drive (`teach` nullptr) or of run `run` of a mode.
+  std::function<std::unique_ptr<SensorTap>(const ModeTeach* teach, int run)> tap;
 };
 
 /// The metrics of one mode: Aggregate over its runs, plus the quality of its taught maps

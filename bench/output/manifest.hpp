@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/trace.hpp"
@@ -24,5 +26,19 @@ std::string ManifestYaml(const Scenario& scenario, const ManifestInfo& info);
 /// Writes it atomically. Throws core::IoError.
 void WriteManifest(const std::filesystem::path& path, const Scenario& scenario,
                    const ManifestInfo& info);
+
+/// What made a results folder from a recorded log (`retrace log-teach`, `log-localize`).
+struct LogManifestInfo {
+  std::string command_line;
+  /// Facts in order, key and text: the log, its format, the streams used, the mode, the window.
+  std::vector<std::pair<std::string, std::string>> fields;
+  std::vector<std::string> notes;
+  std::string config_yaml;  ///< the effective config (io::ConfigToYaml)
+  double wall_time_s = 0.0;
+};
+
+/// The manifest of a log's results folder as YAML text: the facts, then the build (revision,
+/// compiler, libraries) as in ManifestYaml, and the config.
+std::string LogManifestYaml(const LogManifestInfo& info);
 
 }  // namespace retrace::bench

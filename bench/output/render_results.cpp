@@ -86,6 +86,14 @@ std::vector<std::string> RunLabels(const std::filesystem::path& mode_dir,
   return labels;
 }
 
+// The teaching drive's pose (truth, else odometry) at the trace's instant `time`.
+core::Pose2 DrivePoseAt(const TeachTrace& trace, double time) {
+  const std::vector<core::Pose2>& poses = trace.X_WR.empty() ? trace.X_OR : trace.X_WR;
+  const auto it = std::lower_bound(trace.time.begin(), trace.time.end(), time);
+  const std::size_t i = std::min<std::size_t>(it - trace.time.begin(), poses.size() - 1);
+  return poses.at(i);
+}
+
 std::vector<viz::PartialMapView> MapViews(const ModeTeach& teach) {
   std::vector<viz::PartialMapView> views;
   for (std::size_t k = 0; k < teach.bundle.maps.size(); ++k) {
@@ -94,7 +102,9 @@ std::vector<viz::PartialMapView> MapViews(const ModeTeach& teach) {
     viz::PartialMapView view;
     view.label = "map " + std::to_string(k);
     view.grid = map.grid;
-    view.X_WM = ref.X_WR.front() * ref.X_MR.front().Inverse();
+    const core::Pose2 X_WR =
+        ref.X_WR.empty() ? DrivePoseAt(teach.trace, ref.time.front()) : ref.X_WR.front();
+    view.X_WM = X_WR * ref.X_MR.front().Inverse();
     view.path = map.path.poses();
     view.start = core::Pose2::Identity();
     if (k + 1 < teach.bundle.maps.size()) view.switch_pose = map.X_MS;
@@ -105,8 +115,10 @@ std::vector<viz::PartialMapView> MapViews(const ModeTeach& teach) {
 
 std::vector<core::Pose2> SwitchPosesW(const ModeTeach& teach) {
   std::vector<core::Pose2> out;
-  for (std::size_t k = 0; k + 1 < teach.trace.maps.size(); ++k)
-    out.push_back(teach.trace.maps[k].X_WR.back());
+  for (std::size_t k = 0; k + 1 < teach.trace.maps.size(); ++k) {
+    const TeachMapTrace& map = teach.trace.maps[k];
+    out.push_back(map.X_WR.empty() ? DrivePoseAt(teach.trace, map.time.back()) : map.X_WR.back());
+  }
   return out;
 }
 
@@ -114,7 +126,8 @@ core::Pose2 PoseFrom(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
-// snapshot.png and likelihood.png from runs/0/snapshot.json.
+}  // namespace
+
 void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, double robot_radius,
                     const std::filesystem::path& figures,
                     std::vector<std::filesystem::path>* written) {
@@ -146,6 +159,9 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, d
   const double angle_min = scan.at("angle_min").get<double>(),
                increment = scan.at("angle_increment").get<double>();
   const core::Pose2 X_ML = truth * X_RL;
+  // A log's snapshot knows no pedestrians: its per-beam labels are empty.
+  const bool simulated = !scan.at("pedestrian").empty();
+  snap.simulated = simulated;
   for (std::size_t i = 0; i < scan.at("ranges").size(); ++i) {
     const nlohmann::json& r = scan.at("ranges")[i];
     if (!r.is_number()) continue;  // no return (written as null)
@@ -153,7 +169,7 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, d
     viz::ScanPoint point;
     point.point = X_ML * core::Vec2(range * std::cos(a), range * std::sin(a));
     point.rejected = scan.at("use")[i].get<int>() == 2;
-    point.hits_pedestrian = scan.at("pedestrian")[i].get<int>() == 1;
+    point.hits_pedestrian = simulated && scan.at("pedestrian")[i].get<int>() == 1;
     snap.scan.push_back(point);
   }
   snap.pedestrians = pedestrians;
@@ -177,10 +193,19 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, d
   like.true_pose = truth;
   like.pedestrians = pedestrians;
   like.time_s = snap.time_s;
+  like.simulated = simulated;
   written->push_back(viz::RenderLikelihoodFigure(like, figures / "likelihood.png").path);
 }
 
-}  // namespace
+std::filesystem::path RenderTeachMaps(const ModeTeach& teach, const viz::WorldShapes& world,
+                                      const std::filesystem::path& png) {
+  viz::MapsFigureData maps;
+  maps.world = world;
+  maps.route = teach.trace.X_WR.empty() ? teach.trace.X_OR : teach.trace.X_WR;
+  maps.switch_poses = SwitchPosesW(teach);
+  maps.maps = MapViews(teach);
+  return viz::RenderMapsFigure(maps, png).path;
+}
 
 std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& out) {
   std::vector<std::filesystem::path> written;
@@ -196,12 +221,8 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
     const std::filesystem::path figures = dir / "figures";
     std::filesystem::create_directories(figures);
 
-    viz::MapsFigureData maps;
-    maps.world = shapes;
-    maps.route = teach.trace.X_WR;
-    maps.switch_poses = SwitchPosesW(teach);
-    maps.maps = MapViews(teach);
-    written.push_back(viz::RenderMapsFigure(maps, figures / "maps.png").path);
+    written.push_back(RenderTeachMaps(teach, shapes, figures / "maps.png"));
+    const std::vector<core::Pose2> switch_poses = SwitchPosesW(teach);
 
     const std::vector<RunTrace> runs = ReadRuns(dir);
     if (!runs.empty()) {
@@ -209,7 +230,7 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
       playback.mode = mode_name;
       playback.world = shapes;
       playback.target = teach.trace.X_WR;
-      playback.switch_poses = maps.switch_poses;
+      playback.switch_poses = switch_poses;
       viz::ErrorsFigureData errors;
       errors.mode = mode_name;
       const std::vector<std::string> labels = RunLabels(dir, runs);

@@ -11,7 +11,24 @@
 #include <filesystem>
 #include <vector>
 
+#include "bench/engine/teach_drive.hpp"
+#include "viz/figure_data.hpp"
+
 namespace retrace::bench {
+
+/// snapshot.png and likelihood.png (paper Fig. 4 and 5) from a snapshot.json written by
+/// WriteSnapshot, over the maps of `teach`; appends the files written to `written`. Throws
+/// core::IoError for a malformed file and like RenderResults.
+void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, double robot_radius,
+                    const std::filesystem::path& figures,
+                    std::vector<std::filesystem::path>* written);
+
+/// maps.png of one mode's teaching (paper Fig. 1): `world` (may be empty, as for a log) with the
+/// taught trajectory coloured per map, then every partial map in its own frame. The trajectory
+/// is the truth where the trace has one, else the odometry. Returns the file written; throws
+/// like RenderResults.
+std::filesystem::path RenderTeachMaps(const ModeTeach& teach, const viz::WorldShapes& world,
+                                      const std::filesystem::path& png);
 
 /// Renders every figure the folder's data allows; returns the files written. Throws
 /// core::IoError for unreadable results and viz::RenderError when OSMesa cannot render (the

@@ -22,7 +22,29 @@ namespace {
 
 nlohmann::json PoseJson(const core::Pose2& X) { return {X.x, X.y, X.theta}; }
 
-// snapshot.json (compact arrays; see docs/FORMATS.md).
+std::vector<io::StampedPose> Stamped(const std::vector<double>& time,
+                                     const std::vector<core::Pose2>& poses) {
+  std::vector<io::StampedPose> out(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) out[i] = {time[i], poses[i]};
+  return out;
+}
+
+void Unstamp(const std::vector<io::StampedPose>& in, std::vector<double>* time,
+             std::vector<core::Pose2>* poses) {
+  time->clear();
+  poses->clear();
+  for (const io::StampedPose& p : in) {
+    time->push_back(p.t);
+    poses->push_back(p.pose);
+  }
+}
+
+std::string MapFile(std::size_t k, const char* frame) {
+  return "map_" + std::to_string(k) + "_in_" + frame + ".tum";
+}
+
+}  // namespace
+
 void WriteSnapshot(const std::filesystem::path& path, const LocalizationSnapshot& s) {
   nlohmann::json particles = nlohmann::json::array();
   for (std::size_t j = 0; j < s.particles.size(); ++j) {
@@ -56,38 +78,17 @@ void WriteSnapshot(const std::filesystem::path& path, const LocalizationSnapshot
   io::WriteJsonAtomic(path, j);
 }
 
-std::vector<io::StampedPose> Stamped(const std::vector<double>& time,
-                                     const std::vector<core::Pose2>& poses) {
-  std::vector<io::StampedPose> out(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) out[i] = {time[i], poses[i]};
-  return out;
-}
-
-void Unstamp(const std::vector<io::StampedPose>& in, std::vector<double>* time,
-             std::vector<core::Pose2>* poses) {
-  time->clear();
-  poses->clear();
-  for (const io::StampedPose& p : in) {
-    time->push_back(p.t);
-    poses->push_back(p.pose);
-  }
-}
-
-std::string MapFile(std::size_t k, const char* frame) {
-  return "map_" + std::to_string(k) + "_in_" + frame + ".tum";
-}
-
-}  // namespace
-
 void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach) {
   nav::WriteTeachBundle(dir, teach.bundle);
   const TeachTrace& trace = teach.trace;
-  io::WriteTum(dir / "gt.tum", Stamped(trace.time, trace.X_WR));
+  // Without a truth (a log without reference) there is no gt.tum and no map_<k>_in_world.tum.
+  const bool truth = !trace.X_WR.empty();
+  if (truth) io::WriteTum(dir / "gt.tum", Stamped(trace.time, trace.X_WR));
   io::WriteTum(dir / "odom.tum", Stamped(trace.time, trace.X_OR));
   for (std::size_t k = 0; k < trace.maps.size(); ++k) {
     const TeachMapTrace& map = trace.maps[k];
     io::WriteTum(dir / "reference" / MapFile(k, "map"), Stamped(map.time, map.X_MR));
-    io::WriteTum(dir / "reference" / MapFile(k, "world"), Stamped(map.time, map.X_WR));
+    if (truth) io::WriteTum(dir / "reference" / MapFile(k, "world"), Stamped(map.time, map.X_WR));
   }
 }
 
@@ -100,18 +101,23 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
   teach.mode = mode;
   teach.bundle = nav::ReadTeachBundle(dir);
   TeachTrace& trace = teach.trace;
-  Unstamp(io::ReadTum(dir / "gt.tum"), &trace.time, &trace.X_WR);
-  std::vector<double> odom_time;
-  Unstamp(io::ReadTum(dir / "odom.tum"), &odom_time, &trace.X_OR);
-  if (odom_time.size() != trace.time.size() || trace.time.empty()) {
-    throw core::IoError(dir.string() +
-                        ": gt.tum and odom.tum must hold the same, non-empty, instants");
+  // A log taught without a reference has no gt.tum: no truth to measure against.
+  const bool truth = std::filesystem::exists(dir / "gt.tum");
+  Unstamp(io::ReadTum(dir / "odom.tum"), &trace.time, &trace.X_OR);
+  if (truth) {
+    std::vector<double> gt_time;
+    Unstamp(io::ReadTum(dir / "gt.tum"), &gt_time, &trace.X_WR);
+    if (gt_time != trace.time) {
+      throw core::IoError(dir.string() + ": gt.tum and odom.tum must hold the same instants");
+    }
   }
+  if (trace.time.empty()) throw core::IoError(dir.string() + ": odom.tum holds no pose");
   for (std::size_t k = 0; k < teach.bundle.maps.size(); ++k) {
     TeachMapTrace map;
-    std::vector<double> world_time;
     Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "map")), &map.time, &map.X_MR);
-    Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "world")), &world_time, &map.X_WR);
+    std::vector<double> world_time = map.time;
+    if (truth)
+      Unstamp(io::ReadTum(dir / "reference" / MapFile(k, "world")), &world_time, &map.X_WR);
     if (map.time.empty() || world_time != map.time) {
       throw core::IoError(dir.string() + ": reference/" + MapFile(k, "map") + " and " +
                           MapFile(k, "world") + " must hold the same, non-empty, instants");

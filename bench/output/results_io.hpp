@@ -26,12 +26,16 @@
 #include <filesystem>
 #include <vector>
 
+#include "bench/engine/snapshot.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/engine/trace.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "bench/metrics/metrics.hpp"
 
 namespace retrace::bench {
+
+/// Writes snapshot.json (compact arrays; docs/FORMATS.md) atomically.
+void WriteSnapshot(const std::filesystem::path& path, const LocalizationSnapshot& snapshot);
 
 /// Writes the teach bundle and the references of one mode into `dir`.
 void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach);

@@ -1,0 +1,115 @@
+#include "bench/cli/log_info_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+
+#include "bench/cli/log_options.hpp"
+#include "core/config.hpp"
+
+namespace retrace::bench {
+
+namespace {
+
+std::string Degrees(double rad, int digits) {
+  return FixedText(rad * 180.0 / std::numbers::pi, digits);
+}
+
+std::string Duration(double s) {
+  const long total = std::lround(s);
+  std::string text = FixedText(s, 1) + " s";
+  if (total >= 3600) {
+    text += " (" + std::to_string(total / 3600) + " h " + std::to_string(total / 60 % 60) + " min)";
+  } else if (total >= 60) {
+    text += " (" + std::to_string(total / 60) + " min " + std::to_string(total % 60) + " s)";
+  }
+  return text;
+}
+
+std::string Rate(std::uint64_t messages, double span_s) {
+  if (messages < 2 || span_s <= 0.0) return "";
+  return FixedText(static_cast<double>(messages - 1) / span_s, 2);
+}
+
+std::string Pose(const core::Pose2& p) {
+  return "(" + FixedText(p.x, 3) + " m, " + FixedText(p.y, 3) + " m, " + Degrees(p.theta, 1) +
+         " deg)";
+}
+
+}  // namespace
+
+void AddLogInfoOptions(CLI::App* cmd, LogInfoOptions* options) {
+  cmd->add_option("log", options->log,
+                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
+                  "rosbag2 folder")
+      ->required();
+  AddStreamOptions(cmd, &options->streams);
+}
+
+std::string DescribeLog(const logs::LogIndex& index) {
+  std::ostringstream out;
+  std::uint64_t messages = 0;
+  for (const logs::LogTopic& t : index.topics) messages += t.messages;
+  out << index.name << ": " << logs::LogFormatName(index.format) << ", "
+      << Duration(index.duration_s()) << ", " << messages << " messages\n";
+
+  std::size_t topic_width = 5;
+  std::size_t type_width = 4;
+  for (const logs::LogTopic& t : index.topics) {
+    topic_width = std::max(topic_width, t.topic.size());
+    type_width = std::max(type_width, t.type.size());
+  }
+  char line[512];
+  std::snprintf(line, sizeof line, "  %-*s  %-*s  %9s  %9s  %9s  %7s\n",
+                static_cast<int>(topic_width), "topic", static_cast<int>(type_width), "type",
+                "messages", "first s", "last s", "rate Hz");
+  out << line;
+  for (const logs::LogTopic& t : index.topics) {
+    std::snprintf(line, sizeof line, "  %-*s  %-*s  %9llu  %9.2f  %9.2f  %7s\n",
+                  static_cast<int>(topic_width), t.topic.c_str(), static_cast<int>(type_width),
+                  t.type.c_str(), static_cast<unsigned long long>(t.messages), t.first_s, t.last_s,
+                  Rate(t.messages, t.last_s - t.first_s).c_str());
+    out << line;
+  }
+
+  if (!index.scan_topic.empty()) {
+    const logs::ScanGeometry& s = index.scan;
+    out << "scans:      " << index.scan_topic << ": " << s.scans << " scans of " << s.beams
+        << " beams over " << Degrees(s.field_of_view(), 1) << " deg from "
+        << Degrees(s.angle_min, 1) << " deg, " << Degrees(s.angle_increment, 3)
+        << " deg apart; ranges " << FixedText(s.range_min, 2) << " to " << FixedText(s.range_max, 2)
+        << " m; frame " << (index.laser_frame.empty() ? "-" : index.laser_frame) << "\n";
+  }
+  if (!index.odometry_source.empty() && !index.odometry.empty()) {
+    out << "odometry:   " << index.odometry_source << ": " << index.odometry.size() << " poses, "
+        << FixedText(logs::PathLength(index.odometry), 1) << " m driven over "
+        << FixedText(index.odometry.back().t - index.odometry.front().t, 1) << " s; base frame "
+        << (index.base_frame.empty() ? "-" : index.base_frame) << "\n";
+  }
+  if (!index.mount_source.empty())
+    out << "mount:      X_RL " << Pose(index.X_RL) << " from " << index.mount_source << "\n";
+  if (index.reference.empty() && !index.scan_topic.empty()) {
+    out << "reference:  none (a corrected log's odometry is its reference: "
+           "--synthetic-odometry draws drifting odometry from it)\n";
+  } else if (!index.reference.empty()) {
+    out << "reference:  " << index.reference_source << ": " << index.reference.size() << " poses, "
+        << FixedText(logs::PathLength(index.reference), 1) << " m\n";
+  }
+  for (const std::string& note : index.notes) out << "note:       " << note << "\n";
+  std::string text = out.str();
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+int RunLogInfoCommand(const LogInfoOptions& options) {
+  const logs::LogIndex index = logs::IndexLog(options.log, options.streams);
+  std::cout << DescribeLog(index) << "\n";
+  logs::RequireUsable(index);
+  return 0;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,30 @@
+#include "bench/cli/log_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+namespace retrace::bench {
+
+std::string FixedText(double v, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
+  return buffer;
+}
+
+void AddStreamOptions(CLI::App* cmd, logs::StreamChoice* choice) {
+  cmd->add_option("--scan-topic", choice->scan_topic,
+                  "LaserScan topic (CARMEN: FLASER, ROBOTLASER1, RAWLASER1, RLASER); needed when "
+                  "the log has several");
+  cmd->add_option("--odometry-topic", choice->odometry_topic,
+                  "Odometry topic (CARMEN: ODOM or a laser message name); default: the only "
+                  "nav_msgs/msg/Odometry topic, else tf from --odom-frame");
+  cmd->add_option("--reference-topic", choice->reference_topic,
+                  "PoseStamped topic with a reference trajectory (CARMEN: TRUEPOS)");
+  cmd->add_option("--odom-frame", choice->odom_frame,
+                  "Odometry frame of the tf transforms used when there is no odometry topic")
+      ->default_str("odom");
+  cmd->add_option("--base-frame", choice->base_frame,
+                  "The robot's frame in tf (default: the only frame tf moves in the odom frame)");
+}
+
+}  // namespace retrace::bench

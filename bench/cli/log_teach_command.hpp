@@ -1,0 +1,52 @@
+#pragma once
+// `retrace log-teach <log> --out DIR`: the teach folders of a recorded log, one per map mode, as
+// `retrace teach` writes them for a simulated drive (bench/replay/log_teach.hpp).
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/replay/log_teach.hpp"
+#include "logs/sensor_log.hpp"
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace retrace::bench {
+
+/// The options log-teach and log-localize share: the log, its streams and part, the config.
+struct LogRunOptions {
+  std::filesystem::path log;
+  std::filesystem::path out;
+  logs::StreamChoice streams;
+  LogWindow window;
+  bool synthetic_odometry = false;
+  std::optional<std::filesystem::path> reference;  ///< TUM file
+  std::optional<std::filesystem::path> config;     ///< --config FILE
+  std::vector<std::string> overrides;              ///< --set key=value
+  std::optional<std::uint64_t> seed;
+  bool figures = true;
+};
+
+struct LogTeachOptions {
+  LogRunOptions run;
+  std::string switch_points;       ///< auto, online or s1,s2,... (empty: the config's)
+  std::vector<std::string> modes;  ///< --mode
+};
+
+/// Adds the options of LogRunOptions to `cmd`.
+void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options);
+void AddLogTeachOptions(CLI::App* cmd, LogTeachOptions* options);
+
+/// The config of a log command: --config, then --set, then the options that stand for keys
+/// (`extra`, key=value). Throws core::ConfigError naming the option or key.
+LogConfig LoadLogRunConfig(const LogRunOptions& options, const std::vector<std::string>& extra);
+
+/// Runs log-teach; returns the exit code (0). Throws core::Error for bad input, before anything
+/// is written.
+int RunLogTeachCommand(const LogTeachOptions& options, const std::string& command_line);
+
+}  // namespace retrace::bench

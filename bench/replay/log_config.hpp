@@ -1,0 +1,73 @@
+#pragma once
+// The settings of the log commands (`retrace log-teach`, `log-localize`): `--config FILE` and
+// `--set key=value`, with the keys of a scenario file wherever the setting is the same one
+// (docs/FORMATS.md), so that a scenario's nav section works on a log unchanged:
+//
+//   seed                 the synthetic odometry's noise and the localizer's particles
+//   modes                log-teach: the map modes to build (default: partial and scan_matched,
+//                        and consistent when the log has a reference)
+//   route.switch_points  `online` (default), `auto` (from the driven path) or arc lengths (m)
+//                        along the driven path from --from; route.revisit_radius, switch_window,
+//                        online_drift as in a scenario; route.file and route.points do not apply
+//   sim.odometry         the odometry error model of --synthetic-odometry
+//   nav                  the navigation stack (mapper, scan_matcher, localizer, follower ...)
+//   playback             initial_sigma_xy, initial_sigma_yaw_deg: the localizer's start
+//   metrics              the local-truth matching of the localization error
+//
+// The robot's geometry comes from the log: the LiDAR mount and its range limits.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "bench/engine/metrics_config.hpp"
+#include "bench/engine/scenario.hpp"
+#include "bench/engine/trace.hpp"
+#include "io/config_override.hpp"
+#include "sim/odometry.hpp"
+
+namespace retrace::bench {
+
+struct LogSimConfig {
+  sim::OdometryConfig odometry;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("odometry", odometry);
+  }
+  void Validate() const { odometry.Validate(); }
+};
+
+struct LogConfig {
+  std::uint64_t seed = 1;
+  std::vector<MapMode> modes;  ///< empty: the default above
+  RouteConfig route;
+  LogSimConfig sim;
+  NavConfig nav;
+  PlaybackConfig playback;
+  MetricsConfig metrics;
+
+  LogConfig();
+
+  template <class V>
+  void Reflect(V& v) {
+    v("seed", seed);
+    v("modes", modes);
+    v("route", route);
+    v("sim", sim);
+    v("nav", nav);
+    v("playback", playback);
+    v("metrics", metrics);
+  }
+  /// Throws core::ConfigError for a key that does not apply to logs (route.file, route.points,
+  /// playback.repeats and the start offsets), a mode listed twice.
+  void Validate() const;
+};
+
+/// Reads `file` (if any) with `overrides` applied. Throws core::ConfigError / IoError naming the
+/// file and key.
+LogConfig LoadLogConfig(const std::optional<std::filesystem::path>& file,
+                        const std::vector<io::ConfigOverride>& overrides);
+
+}  // namespace retrace::bench

@@ -1,0 +1,62 @@
+#pragma once
+// The metrics of a log's localization run (`retrace log-localize`, docs/METRICS in
+// docs/DESIGN.md §10), the log's reference standing in for ground truth:
+//
+//   localization_error_m / _rad  the estimate against the local truth (bench/engine/
+//                                local_truth.hpp) at every scan, as for simulated runs
+//   lost_fraction                of those scans, the share with an error above
+//                                metrics.lost_error
+//   path_distance_m              how far the log's drive was from the taught path (the local
+//                                truth projected on the current map's path): a log is not
+//                                driven by the follower, so large values mean the robot was
+//                                somewhere the maps were not taught
+//   rejected_fraction            beams rejected as dynamic / beams tested, over every update
+//   update_time_ms               thread CPU time of each measurement update
+//   real_time_factor             log seconds per CPU second of the whole run
+//
+// Without a reference only the last three exist; the others are null.
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "bench/metrics/metrics.hpp"
+#include "bench/replay/log_localize.hpp"
+#include "nav/teach_bundle.hpp"
+
+namespace retrace::bench {
+
+/// Per scan of the run.
+struct LogLocalizeSeries {
+  std::vector<double> driven_m;                ///< along the reference (else the estimate's maps)
+  std::vector<double> path_distance_m;         ///< NaN without truth
+  std::vector<double> localization_error_m;    ///< NaN without truth
+  std::vector<double> localization_error_rad;  ///< NaN without truth
+};
+
+struct LogLocalizeMetrics {
+  int scans = 0;
+  int updates = 0;
+  int switches = 0;
+  int maps = 0;
+  bool loop = false;
+  int laps_completed = 0;
+  bool has_truth = false;
+  double duration_s = 0.0;  ///< of the log
+  Summary localization_error_m;
+  Summary localization_error_rad;
+  double lost_fraction = kMetricNaN;
+  Summary path_distance_m;
+  double rejected_fraction = kMetricNaN;
+  Summary update_time_ms;
+  double real_time_factor = kMetricNaN;
+};
+
+LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const nav::TeachBundle& bundle,
+                                   const MetricsConfig& config);
+
+LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLocalizeSeries& series,
+                                     const nav::TeachBundle& bundle, const MetricsConfig& config);
+
+nlohmann::json ToJson(const LogLocalizeMetrics& metrics);
+
+}  // namespace retrace::bench

@@ -1,0 +1,79 @@
+#include "bench/replay/log_streams.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace retrace::bench {
+
+namespace {
+
+constexpr double kStepDistance = 0.02;  // m
+constexpr double kStepAngle = 0.0175;   // rad
+
+}  // namespace
+
+std::vector<io::StampedPose> SyntheticOdometry(const std::vector<io::StampedPose>& truth,
+                                               const sim::OdometryConfig& config, core::Rng rng) {
+  std::vector<io::StampedPose> odometry;
+  if (truth.empty()) return odometry;
+  sim::Odometry model(config, std::move(rng));
+  odometry.reserve(truth.size());
+  odometry.push_back({truth.front().t, model.pose()});
+  for (std::size_t i = 1; i < truth.size(); ++i) {
+    const core::Pose2& a = truth[i - 1].pose;
+    const core::Pose2& b = truth[i].pose;
+    const double turn = std::abs(core::WrapAngle(b.theta - a.theta));
+    const int steps = std::max(1, static_cast<int>(std::ceil(std::max(
+                                      core::Distance(a, b) / kStepDistance, turn / kStepAngle))));
+    core::Pose2 previous = a;
+    for (int k = 1; k <= steps; ++k) {
+      const core::Pose2 next = k == steps ? b : core::Interpolate(a, b, double(k) / steps);
+      model.Update(previous, next);
+      previous = next;
+    }
+    odometry.push_back({truth[i].t, model.pose()});
+  }
+  return odometry;
+}
+
+LogStreams PrepareLogStreams(const logs::LogIndex& index, const LogConfig& config,
+                             bool synthetic_odometry,
+                             const std::optional<std::filesystem::path>& reference_file) {
+  logs::RequireUsable(index);
+  LogStreams streams;
+  streams.robot.X_RL = index.X_RL;
+  streams.robot.range_min = index.scan.range_min;
+  streams.robot.range_max = index.scan.range_max;
+  streams.odometry = index.odometry;
+  streams.odometry_source = index.odometry_source;
+  if (reference_file) {
+    streams.reference = io::ReadTum(*reference_file);
+    streams.reference_source = reference_file->string();
+    std::stable_sort(streams.reference.begin(), streams.reference.end(),
+                     [](const io::StampedPose& a, const io::StampedPose& b) { return a.t < b.t; });
+    if (streams.reference.empty() || streams.reference.back().t < index.odometry.front().t ||
+        streams.reference.front().t > index.odometry.back().t) {
+      throw core::IoError(reference_file->string() +
+                          ": the reference does not overlap the log's odometry in time (stamps " +
+                          core::FormatNumber(index.odometry.front().t) + " to " +
+                          core::FormatNumber(index.odometry.back().t) + " s)");
+    }
+  } else if (!index.reference.empty()) {
+    streams.reference = index.reference;
+    streams.reference_source = index.reference_source;
+  }
+  if (synthetic_odometry) {
+    if (streams.reference.empty()) {
+      streams.reference = index.odometry;
+      streams.reference_source = index.odometry_source + " (taken as the reference)";
+    }
+    streams.odometry = SyntheticOdometry(streams.reference, config.sim.odometry,
+                                         core::Rng(config.seed).Split("synthetic-odometry"));
+    streams.odometry_source = "synthetic, drawn from " + streams.reference_source;
+  }
+  return streams;
+}
+
+}  // namespace retrace::bench

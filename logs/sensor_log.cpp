@@ -1,0 +1,411 @@
+#include "logs/sensor_log.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string_view>
+
+#include "core/errors.hpp"
+#include "logs/carmen_reader.hpp"
+#include "logs/ros_messages.hpp"
+
+namespace retrace::logs {
+
+namespace {
+
+constexpr std::string_view kLaserScanType = "sensor_msgs/msg/LaserScan";
+constexpr std::string_view kOdometryType = "nav_msgs/msg/Odometry";
+constexpr std::string_view kTfType = "tf2_msgs/msg/TFMessage";
+constexpr std::string_view kPoseType = "geometry_msgs/msg/PoseStamped";
+
+// CARMEN laser messages, in the order a scan topic is chosen automatically (front first).
+constexpr std::string_view kCarmenLasers[] = {"FLASER",    "ROBOTLASER1", "RAWLASER1",
+                                              "RLASER",    "ROBOTLASER2", "RAWLASER2",
+                                              "RAWLASER3", "RAWLASER4"};
+
+bool IsCarmen(const RawMessage& m) { return m.encoding == "carmen"; }
+
+std::string Quote(std::string_view s) { return "'" + std::string(s) + "'"; }
+
+// Runs `decode` and prefixes its error with the log, the message's number and its topic.
+template <class F>
+auto Decoded(const std::string& log, std::uint64_t number, std::string_view topic, F&& decode) {
+  try {
+    return decode();
+  } catch (const core::IoError& e) {
+    throw core::IoError(log + ": message " + std::to_string(number) + " on " + Quote(topic) + ": " +
+                        e.what());
+  }
+}
+
+std::string_view Text(const RawMessage& m) {
+  return {reinterpret_cast<const char*>(m.data.data()), m.data.size()};
+}
+
+void SortByStamp(std::vector<StampedPose>& poses) {
+  std::stable_sort(poses.begin(), poses.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.t < b.t; });
+  // Keep the last of equal stamps: a pose cannot be in two places at one instant.
+  std::vector<StampedPose> unique;
+  unique.reserve(poses.size());
+  for (const StampedPose& p : poses) {
+    if (!unique.empty() && unique.back().t == p.t) {
+      unique.back() = p;
+    } else {
+      unique.push_back(p);
+    }
+  }
+  poses = std::move(unique);
+}
+
+// Everything the first pass gathers, before choosing.
+struct Gathered {
+  std::map<std::string, std::size_t, std::less<>> topic_index;
+  std::map<std::string, ScanGeometry, std::less<>> scans;  // per scan topic
+  std::map<std::string, std::string, std::less<>> scan_frame;
+  std::map<std::string, std::vector<StampedPose>, std::less<>> odometry;     // per topic
+  std::map<std::string, std::string, std::less<>> odometry_child;            // base frame per topic
+  std::map<std::string, std::vector<StampedPose>, std::less<>> tf_odometry;  // per child frame
+  std::map<std::string, TransformMessage, std::less<>> tf_static;            // by child frame
+  std::map<std::string, std::vector<StampedPose>, std::less<>> poses;        // reference topics
+  std::map<std::string, std::optional<core::Pose2>, std::less<>> carmen_mount;  // per laser
+  CarmenLaserDefaults carmen_defaults;
+};
+
+void AddScan(ScanGeometry& g, const core::LaserScan& scan) {
+  if (g.scans == 0) {
+    g.beams = scan.size();
+    g.angle_min = scan.angle_min;
+    g.angle_increment = scan.angle_increment;
+    g.range_min = scan.range_min;
+    g.range_max = scan.range_max;
+    g.first_stamp = scan.stamp;
+  }
+  g.last_stamp = scan.stamp;
+  ++g.scans;
+}
+
+// Chooses one of `candidates` (topics holding the wanted messages): the one named in `chosen`,
+// or the only one.
+std::string Choose(const std::string& log, std::string_view what, std::string_view option,
+                   const std::string& chosen, const std::vector<std::string>& candidates,
+                   const LogIndex& index) {
+  if (!chosen.empty()) {
+    if (std::find(candidates.begin(), candidates.end(), chosen) != candidates.end()) return chosen;
+    const bool exists = std::any_of(index.topics.begin(), index.topics.end(),
+                                    [&](const LogTopic& t) { return t.topic == chosen; });
+    throw core::IoError(
+        log + ": " + std::string(option) + " " + Quote(chosen) +
+        (exists ? " holds no " : " is not in the log, which has no such topic of ") +
+        std::string(what));
+  }
+  if (candidates.size() == 1) return candidates.front();
+  if (candidates.empty()) return {};
+  std::string list;
+  for (const std::string& c : candidates) list += (list.empty() ? "" : ", ") + c;
+  throw core::IoError(log + ": several topics hold " + std::string(what) + " (" + list +
+                      "); choose one with " + std::string(option));
+}
+
+template <class Map>
+std::vector<std::string> Keys(const Map& map) {
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : map) keys.push_back(key);
+  return keys;
+}
+
+// X_{base laser} through the static transforms, walking up from the laser frame.
+std::optional<core::Pose2> StaticChain(const Gathered& g, const std::string& base,
+                                       const std::string& laser) {
+  core::Pose2 X = core::Pose2::Identity();
+  std::string frame = laser;
+  for (std::size_t depth = 0; depth <= g.tf_static.size(); ++depth) {
+    if (frame == base) return X;
+    const auto it = g.tf_static.find(frame);
+    if (it == g.tf_static.end()) return std::nullopt;
+    X = it->second.X_PC * X;
+    frame = it->second.parent;
+  }
+  return std::nullopt;  // a cycle
+}
+
+void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+  const std::string& log = index.name;
+  index.scan_topic = Choose(log, "laser scans (sensor_msgs/msg/LaserScan)", "--scan-topic",
+                            choice.scan_topic, Keys(g.scans), index);
+  if (index.scan_topic.empty())
+    throw core::IoError(log +
+                        ": no sensor_msgs/msg/LaserScan topic: nothing to map or localize with");
+  index.scan = g.scans[index.scan_topic];
+  index.laser_frame = g.scan_frame[index.scan_topic];
+
+  const std::string odometry_topic =
+      Choose(log, "odometry (nav_msgs/msg/Odometry)", "--odometry-topic", choice.odometry_topic,
+             Keys(g.odometry), index);
+  if (!odometry_topic.empty()) {
+    index.odometry = std::move(g.odometry[odometry_topic]);
+    index.base_frame = g.odometry_child[odometry_topic];
+    index.odometry_source = odometry_topic + " (nav_msgs/msg/Odometry)";
+  } else {
+    std::string base = choice.base_frame;
+    if (base.empty()) {
+      if (g.tf_odometry.size() > 1) {
+        throw core::IoError(log + ": no odometry topic, and tf moves several frames in " +
+                            Quote(choice.odom_frame) + "; choose the robot's with --base-frame");
+      }
+      if (!g.tf_odometry.empty()) base = g.tf_odometry.begin()->first;
+    }
+    const auto it = g.tf_odometry.find(base);
+    if (it == g.tf_odometry.end()) {
+      throw core::IoError(
+          log + ": no odometry: no nav_msgs/msg/Odometry topic and no tf transform " + "from " +
+          Quote(choice.odom_frame) + (base.empty() ? std::string() : " to " + Quote(base)));
+    }
+    index.odometry = std::move(it->second);
+    index.base_frame = base;
+    index.odometry_source = "tf " + choice.odom_frame + " -> " + base;
+  }
+
+  const std::string reference_topic =
+      Choose(log, "poses (geometry_msgs/msg/PoseStamped)", "--reference-topic",
+             choice.reference_topic, Keys(g.poses), index);
+  if (!reference_topic.empty()) {
+    index.reference = std::move(g.poses[reference_topic]);
+    index.reference_source = reference_topic + " (geometry_msgs/msg/PoseStamped)";
+  }
+
+  if (const std::optional<core::Pose2> X_RL = StaticChain(g, index.base_frame, index.laser_frame)) {
+    index.X_RL = *X_RL;
+    index.mount_source = index.base_frame == index.laser_frame
+                             ? "the scans are in the base frame"
+                             : "tf_static " + index.base_frame + " -> " + index.laser_frame;
+  } else {
+    index.X_RL = core::Pose2::Identity();
+    index.mount_source = "assumed at the base";
+    index.notes.push_back("no static transform from " + Quote(index.base_frame) +
+                          " to the scans' " + "frame " + Quote(index.laser_frame) +
+                          ": the LiDAR is assumed at the robot's origin, facing forward");
+  }
+}
+
+void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+  const std::string& log = index.name;
+  if (!choice.scan_topic.empty()) {
+    if (!g.scans.contains(choice.scan_topic)) {
+      throw core::IoError(log + ": --scan-topic " + Quote(choice.scan_topic) +
+                          ": the log has no such laser messages");
+    }
+    index.scan_topic = choice.scan_topic;
+  } else {
+    for (std::string_view name : kCarmenLasers) {
+      if (g.scans.contains(name)) {
+        index.scan_topic = std::string(name);
+        break;
+      }
+    }
+  }
+  if (index.scan_topic.empty()) {
+    throw core::IoError(log + ": no laser messages (FLASER, ROBOTLASER1, RAWLASER1..4, RLASER): " +
+                        "nothing to map or localize with");
+  }
+  index.scan = g.scans[index.scan_topic];
+  index.laser_frame = "laser";
+  index.base_frame = "base_link";
+
+  // Odometry: the robot poses of the chosen laser lines (exactly at the scans), else ODOM.
+  std::string odometry = choice.odometry_topic;
+  if (odometry.empty()) {
+    odometry = g.odometry.contains(index.scan_topic) ? index.scan_topic : "ODOM";
+  }
+  if (!g.odometry.contains(odometry)) {
+    throw core::IoError(
+        log + ": no odometry" +
+        (choice.odometry_topic.empty()
+             ? std::string(": no ODOM lines and ") + index.scan_topic + " lines carry no robot pose"
+             : " in " + Quote(odometry) + " lines"));
+  }
+  index.odometry = std::move(g.odometry[odometry]);
+  index.odometry_source =
+      odometry == "ODOM" ? "ODOM lines" : "the robot pose of the " + odometry + " lines";
+
+  const std::string reference = choice.reference_topic.empty() ? "TRUEPOS" : choice.reference_topic;
+  if (g.poses.contains(reference)) {
+    index.reference = std::move(g.poses[reference]);
+    index.reference_source = reference + " lines";
+  } else if (!choice.reference_topic.empty()) {
+    throw core::IoError(log + ": --reference-topic " + Quote(reference) +
+                        ": the log has no such lines (CARMEN's reference is TRUEPOS)");
+  }
+
+  const std::optional<core::Pose2>& mount = g.carmen_mount[index.scan_topic];
+  if (mount) {
+    index.X_RL = *mount;
+    index.mount_source =
+        "the laser pose relative to the robot pose in the " + index.scan_topic + " lines";
+  } else {
+    index.X_RL = core::Pose2::Identity();
+    index.mount_source = "assumed at the base";
+    index.notes.push_back(index.scan_topic +
+                          " lines carry no laser pose: the LiDAR is assumed at " +
+                          "the robot's origin, facing forward");
+  }
+}
+
+void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choice,
+            const std::string& log, Gathered& g) {
+  if (IsCarmen(m)) {
+    const std::string_view line = Text(m);
+    if (m.type == "PARAM") {
+      Decoded(log, number, m.topic, [&] {
+        const auto [name, value] = ParseCarmenParam(line);
+        ApplyCarmenParam(name, value, g.carmen_defaults);
+        return 0;
+      });
+    } else if (IsCarmenLaser(m.type)) {
+      const CarmenLaser laser =
+          Decoded(log, number, m.topic, [&] { return ParseCarmenLaser(line, g.carmen_defaults); });
+      AddScan(g.scans[std::string(m.topic)], laser.scan.scan);
+      if (laser.X_OR) {
+        g.odometry[std::string(m.topic)].push_back({laser.scan.scan.stamp, *laser.X_OR});
+        auto& mount = g.carmen_mount[std::string(m.topic)];
+        if (!mount && laser.X_OL) mount = laser.X_OR->Inverse() * *laser.X_OL;
+      }
+    } else if (m.type == "ODOM") {
+      const OdometryMessage odom =
+          Decoded(log, number, m.topic, [&] { return ParseCarmenOdometry(line); });
+      g.odometry["ODOM"].push_back({odom.stamp, odom.pose});
+    } else if (m.type == "TRUEPOS") {
+      const PoseStampedMessage truth =
+          Decoded(log, number, m.topic, [&] { return ParseCarmenTruePose(line); });
+      g.poses["TRUEPOS"].push_back({truth.stamp, truth.pose});
+    }
+    return;
+  }
+  if (m.encoding != "cdr") return;
+  if (m.type == kLaserScanType) {
+    const ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeLaserScan(m.data); });
+    ScanGeometry& geometry = g.scans[std::string(m.topic)];
+    if (geometry.scans == 0) g.scan_frame[std::string(m.topic)] = scan.frame_id;
+    AddScan(geometry, scan.scan);
+  } else if (m.type == kOdometryType) {
+    const OdometryMessage odom =
+        Decoded(log, number, m.topic, [&] { return DecodeOdometry(m.data); });
+    g.odometry[std::string(m.topic)].push_back({odom.stamp, odom.pose});
+    g.odometry_child.try_emplace(std::string(m.topic), odom.child_frame_id);
+  } else if (m.type == kTfType) {
+    const TfMessage tf = Decoded(log, number, m.topic, [&] { return DecodeTfMessage(m.data); });
+    const bool is_static = m.topic.find("tf_static") != std::string_view::npos;
+    for (const TransformMessage& t : tf.transforms) {
+      if (is_static) {
+        g.tf_static[t.child] = t;
+      } else if (t.parent == choice.odom_frame) {
+        g.tf_odometry[t.child].push_back({t.stamp, t.X_PC});
+      }
+    }
+  } else if (m.type == kPoseType) {
+    const PoseStampedMessage pose =
+        Decoded(log, number, m.topic, [&] { return DecodePoseStamped(m.data); });
+    g.poses[std::string(m.topic)].push_back({pose.stamp, pose.pose});
+  }
+}
+
+}  // namespace
+
+LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice) {
+  LogIndex index;
+  index.name = path.string();
+  index.format = DetectLogFormat(path);
+  const std::unique_ptr<MessageSource> source = OpenLog(path);
+
+  Gathered g;
+  RawMessage m;
+  std::uint64_t number = 0;
+  while (source->Next(m)) {
+    ++number;
+    if (number == 1) index.start_ns = m.log_time_ns;
+    index.end_ns = std::max(index.end_ns, m.log_time_ns);
+    auto [it, added] = g.topic_index.try_emplace(std::string(m.topic), index.topics.size());
+    if (added) {
+      index.topics.push_back({std::string(m.topic), std::string(m.type), 0, 0.0, 0.0});
+      index.topics.back().first_s = static_cast<double>(m.log_time_ns);
+    }
+    LogTopic& topic = index.topics[it->second];
+    ++topic.messages;
+    topic.last_s = static_cast<double>(m.log_time_ns);
+    Gather(m, number, choice, index.name, g);
+  }
+  if (number == 0) throw core::IoError(index.name + ": the log holds no message");
+  index.start_ns = std::min(index.start_ns, index.end_ns);
+  for (LogTopic& t : index.topics) {
+    t.first_s = (t.first_s - static_cast<double>(index.start_ns)) * 1e-9;
+    t.last_s = (t.last_s - static_cast<double>(index.start_ns)) * 1e-9;
+  }
+
+  try {
+    if (index.format == LogFormat::kCarmen) {
+      ChooseCarmen(choice, g, index);
+    } else {
+      ChooseRos(choice, g, index);
+    }
+    SortByStamp(index.odometry);
+    SortByStamp(index.reference);
+    if (index.odometry.size() < 2) {
+      throw core::IoError(index.name + ": fewer than two odometry poses in " +
+                          index.odometry_source);
+    }
+  } catch (const core::IoError& e) {
+    index.problem = e.what();
+  }
+  return index;
+}
+
+void RequireUsable(const LogIndex& index) {
+  if (!index.problem.empty()) throw core::IoError(index.problem);
+}
+
+void ReadScans(const LogIndex& index, double from_s, double to_s,
+               const std::function<void(const ScanMessage&, double)>& on_scan) {
+  const std::unique_ptr<MessageSource> source = OpenLog(index.name);
+  CarmenLaserDefaults carmen_defaults;
+  RawMessage m;
+  std::uint64_t number = 0;
+  while (source->Next(m)) {
+    ++number;
+    if (IsCarmen(m) && m.type == "PARAM") {
+      const auto [name, value] = ParseCarmenParam(Text(m));
+      ApplyCarmenParam(name, value, carmen_defaults);
+      continue;
+    }
+    if (m.topic != index.scan_topic) continue;
+    const double t = index.Since(m.log_time_ns);
+    if (t < from_s) continue;
+    if (t > to_s) break;
+    if (IsCarmen(m)) {
+      const CarmenLaser laser = Decoded(index.name, number, m.topic,
+                                        [&] { return ParseCarmenLaser(Text(m), carmen_defaults); });
+      on_scan(laser.scan, t);
+    } else {
+      on_scan(Decoded(index.name, number, m.topic, [&] { return DecodeLaserScan(m.data); }), t);
+    }
+  }
+}
+
+std::optional<core::Pose2> PoseAt(const std::vector<StampedPose>& poses, double stamp) {
+  if (poses.empty() || stamp < poses.front().t || stamp > poses.back().t) return std::nullopt;
+  const auto after = std::lower_bound(poses.begin(), poses.end(), stamp,
+                                      [](const StampedPose& p, double s) { return p.t < s; });
+  if (after->t == stamp || after == poses.begin()) return after->pose;
+  const StampedPose& a = *(after - 1);
+  const StampedPose& b = *after;
+  return core::Interpolate(a.pose, b.pose, (stamp - a.t) / (b.t - a.t));
+}
+
+double PathLength(const std::vector<StampedPose>& poses) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < poses.size(); ++i)
+    length += core::Distance(poses[i - 1].pose, poses[i].pose);
+  return length;
+}
+
+}  // namespace retrace::logs

@@ -1,0 +1,119 @@
+#pragma once
+// A log as retrace uses it (docs/DESIGN.md §10): one LiDAR's scans, the robot's odometry, the
+// LiDAR's mount on the robot and, when the log carries one, a reference trajectory. Which
+// messages give them:
+//
+//   stream     ROS 2 bag                                   CARMEN log
+//   ---------  ------------------------------------------  -----------------------------------
+//   scans      the sensor_msgs/msg/LaserScan topic          FLASER, else ROBOTLASER1, RAWLASER1
+//   odometry   the nav_msgs/msg/Odometry topic, else the    the robot pose of the laser lines,
+//              tf transforms odom → base                    else ODOM lines
+//   mount X_RL static tf (tf_static) from the base to the   laser pose relative to robot pose in
+//              scan's frame, through any chain              the laser lines
+//   reference  the geometry_msgs/msg/PoseStamped topic      TRUEPOS lines
+//
+// A topic is found automatically when it is the only one of its type; otherwise StreamChoice
+// names it. Stamps are the messages' own (header stamps; CARMEN: the ipc timestamp), in s;
+// times given by the user (--from, --to) count in s from the log's first message (its log time).
+//
+// A log is read in two passes, so that a long one is streamed, never held whole: IndexLog reads
+// everything but the scans into memory (poses are small), ReadScans then streams the scans.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/pose2.hpp"
+#include "io/tum.hpp"
+#include "logs/log_messages.hpp"
+#include "logs/log_source.hpp"
+
+namespace retrace::logs {
+
+using io::StampedPose;
+
+/// Which topics (CARMEN: message names) to use where the log has several; empty: automatic.
+struct StreamChoice {
+  std::string scan_topic;
+  std::string odometry_topic;
+  std::string reference_topic;
+  std::string odom_frame = "odom";  ///< tf odometry: the parent frame
+  std::string base_frame;           ///< tf odometry: the robot's frame (empty: found)
+};
+
+/// Messages of one topic.
+struct LogTopic {
+  std::string topic;
+  std::string type;
+  std::uint64_t messages = 0;
+  double first_s = 0.0;  ///< log time of its first message (s since the log's first message)
+  double last_s = 0.0;
+};
+
+/// The chosen scan topic's geometry (of its first scan) and rate.
+struct ScanGeometry {
+  std::uint64_t scans = 0;
+  std::size_t beams = 0;
+  double angle_min = 0.0;        ///< rad
+  double angle_increment = 0.0;  ///< rad
+  double range_min = 0.0;        ///< m
+  double range_max = 0.0;        ///< m
+  double first_stamp = 0.0;      ///< s
+  double last_stamp = 0.0;       ///< s
+  double field_of_view() const { return static_cast<double>(beams) * angle_increment; }
+};
+
+/// What a log holds (the first pass).
+struct LogIndex {
+  std::string name;  ///< the path
+  LogFormat format = LogFormat::kCarmen;
+  std::vector<LogTopic> topics;  ///< in order of first appearance
+  std::int64_t start_ns = 0;     ///< log time of the first message
+  std::int64_t end_ns = 0;       ///< log time of the last message
+
+  std::string scan_topic;
+  ScanGeometry scan;
+  std::string odometry_source;         ///< what the odometry came from, for people
+  std::vector<StampedPose> odometry;   ///< X_OR, by stamp
+  std::string reference_source;        ///< empty: no reference
+  std::vector<StampedPose> reference;  ///< X_WR, by stamp
+  std::string base_frame;
+  std::string laser_frame;
+  core::Pose2 X_RL;                ///< the LiDAR mount
+  std::string mount_source;        ///< what X_RL came from
+  std::vector<std::string> notes;  ///< things the user should know (an assumed mount, ...)
+  std::string problem;             ///< why the log cannot be used as it is (empty: it can)
+
+  double duration_s() const { return static_cast<double>(end_ns - start_ns) * 1e-9; }
+  /// Log time (s since the first message) of a log time in ns.
+  double Since(std::int64_t log_time_ns) const {
+    return static_cast<double>(log_time_ns - start_ns) * 1e-9;
+  }
+};
+
+/// Reads the log at `path` once, all but the scans. Throws core::IoError naming the log for a
+/// missing or malformed file or message. A log that cannot be used — without scans or odometry,
+/// a topic in `choice` that is not in the log or not of the right type, an ambiguous choice
+/// (several scan or odometry topics) — is still described, with the reason in `problem`.
+LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice = {});
+
+/// Throws core::IoError with `index.problem` if there is one.
+void RequireUsable(const LogIndex& index);
+
+/// Calls `on_scan(scan, log_time_s)` for every scan of `index.scan_topic` whose log time (s since
+/// the log's first message) lies in [from_s, to_s], in log order. Throws core::IoError naming the
+/// log and the message for a scan that cannot be decoded.
+void ReadScans(const LogIndex& index, double from_s, double to_s,
+               const std::function<void(const ScanMessage&, double)>& on_scan);
+
+/// The pose at `stamp`, interpolated between the two samples around it (SE(2)), or nothing
+/// before the first sample or after the last. `poses` must be sorted by stamp.
+std::optional<core::Pose2> PoseAt(const std::vector<StampedPose>& poses, double stamp);
+
+/// The length (m) of the path through `poses`.
+double PathLength(const std::vector<StampedPose>& poses);
+
+}  // namespace retrace::logs
