@@ -61,29 +61,22 @@ void Append(std::string& line, const core::Pose2& p) {
   Append(line, p.theta);
 }
 
-// Appends one range as the file comment says: in millimetres ("%.3f") unless that would round it
-// up to range_max (it would read back as no return), no return as the exact range_max, and an
-// unusable reading as 0.
+// Appends one range as the file comment says: the shortest text that reads back as the same
+// float (so a log round-trips its scans bit for bit), no return as the exact range_max, and a
+// failed reading (NaN, zero or negative) as 0.
 void AppendRange(std::string& line, float r, const core::LaserScan& scan) {
-  const double range = static_cast<double>(r);
-  if (std::isnan(range) || range < scan.range_min || range <= 0.0) {
+  if (std::isnan(r) || r <= 0.0f) {
     line += "0 ";
     return;
   }
-  if (range >= scan.range_max) {
+  if (static_cast<double>(r) >= scan.range_max) {
     Append(line, scan.range_max);
     return;
   }
   char buf[64];
-  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), range, std::chars_format::fixed, 3);
-  double rounded = 0.0;
-  std::from_chars(buf, ptr, rounded);
-  if (rounded >= scan.range_max) {
-    Append(line, range);
-  } else {
-    line.append(buf, ptr);
-    line += ' ';
-  }
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), r);
+  line.append(buf, ptr);
+  line += ' ';
 }
 
 bool Finite(const core::Pose2& p) {

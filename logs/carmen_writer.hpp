@@ -6,11 +6,11 @@
 //
 // Every line ends in `ipc_timestamp ipc_hostname logger_timestamp`; both timestamps are the
 // message's stamp (s) and the hostname is "retrace". Poses, angles and stamps are written with
-// the shortest decimals that read back to the same double; ranges in millimetres (%.3f, as
-// CARMEN's logger writes them; exactly where rounding would reach range_max). A range of +inf
-// (no return) or at or beyond the scan's range_max is written as the exact maximum range, which
-// reads back as no return; -inf, NaN and readings below range_min (no usable reading) are
-// written as 0, which reads back as -inf.
+// the shortest decimals that read back to the same double, ranges with the shortest that read
+// back to the same float (CARMEN's logger writes millimetres; more digits read the same way), so
+// that a scan round-trips bit for bit. A range of +inf (no return) or at or beyond the scan's
+// range_max is written as the exact maximum range, which reads back as no return; -inf, NaN and
+// zero (no reading) are written as 0, which reads back as -inf.
 
 #include <filesystem>
 #include <memory>

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string_view>
 
+#include "core/config.hpp"
 #include "core/errors.hpp"
 #include "logs/carmen_reader.hpp"
 #include "logs/ros_messages.hpp"
@@ -73,7 +74,28 @@ struct Gathered {
   CarmenLaserDefaults carmen_defaults;
 };
 
-void AddScan(ScanGeometry& g, const core::LaserScan& scan) {
+// Appends a pose to its stream, refusing a stamp earlier than the stream's last: a log whose
+// clock runs backwards cannot be interpolated (equal stamps are kept, the last one wins).
+void AddPose(std::vector<StampedPose>& stream, double stamp, const core::Pose2& pose,
+             const std::string& log, std::uint64_t number, std::string_view topic) {
+  if (!stream.empty() && stamp < stream.back().t) {
+    throw core::IoError(log + ": message " + std::to_string(number) + " on " + Quote(topic) +
+                        ": its stamp " + core::FormatNumber(stamp) + " s goes back before " +
+                        core::FormatNumber(stream.back().t) + " s of the one before");
+  }
+  stream.push_back({stamp, pose});
+}
+
+// Counts a scan of message `number` into its topic's geometry (taken from the first scan),
+// refusing one stamped before the scan before it.
+void AddScan(ScanGeometry& g, const core::LaserScan& scan, const std::string& log,
+             std::uint64_t number, std::string_view topic) {
+  if (g.scans > 0 && scan.stamp < g.last_stamp) {
+    throw core::IoError(log + ": message " + std::to_string(number) + " on " + Quote(topic) +
+                        ": the scan's stamp " + core::FormatNumber(scan.stamp) +
+                        " s goes back before " + core::FormatNumber(g.last_stamp) +
+                        " s of the scan before");
+  }
   if (g.scans == 0) {
     g.beams = scan.size();
     g.angle_min = scan.angle_min;
@@ -265,20 +287,21 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     } else if (IsCarmenLaser(m.type)) {
       const CarmenLaser laser =
           Decoded(log, number, m.topic, [&] { return ParseCarmenLaser(line, g.carmen_defaults); });
-      AddScan(g.scans[std::string(m.topic)], laser.scan.scan);
+      AddScan(g.scans[std::string(m.topic)], laser.scan.scan, log, number, m.topic);
       if (laser.X_OR) {
-        g.odometry[std::string(m.topic)].push_back({laser.scan.scan.stamp, *laser.X_OR});
+        AddPose(g.odometry[std::string(m.topic)], laser.scan.scan.stamp, *laser.X_OR, log, number,
+                m.topic);
         auto& mount = g.carmen_mount[std::string(m.topic)];
         if (!mount && laser.X_OL) mount = laser.X_OR->Inverse() * *laser.X_OL;
       }
     } else if (m.type == "ODOM") {
       const OdometryMessage odom =
           Decoded(log, number, m.topic, [&] { return ParseCarmenOdometry(line); });
-      g.odometry["ODOM"].push_back({odom.stamp, odom.pose});
+      AddPose(g.odometry["ODOM"], odom.stamp, odom.pose, log, number, m.topic);
     } else if (m.type == "TRUEPOS") {
       const PoseStampedMessage truth =
           Decoded(log, number, m.topic, [&] { return ParseCarmenTruePose(line); });
-      g.poses["TRUEPOS"].push_back({truth.stamp, truth.pose});
+      AddPose(g.poses["TRUEPOS"], truth.stamp, truth.pose, log, number, m.topic);
     }
     return;
   }
@@ -287,11 +310,11 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     const ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeLaserScan(m.data); });
     ScanGeometry& geometry = g.scans[std::string(m.topic)];
     if (geometry.scans == 0) g.scan_frame[std::string(m.topic)] = scan.frame_id;
-    AddScan(geometry, scan.scan);
+    AddScan(geometry, scan.scan, log, number, m.topic);
   } else if (m.type == kOdometryType) {
     const OdometryMessage odom =
         Decoded(log, number, m.topic, [&] { return DecodeOdometry(m.data); });
-    g.odometry[std::string(m.topic)].push_back({odom.stamp, odom.pose});
+    AddPose(g.odometry[std::string(m.topic)], odom.stamp, odom.pose, log, number, m.topic);
     g.odometry_child.try_emplace(std::string(m.topic), odom.child_frame_id);
   } else if (m.type == kTfType) {
     const TfMessage tf = Decoded(log, number, m.topic, [&] { return DecodeTfMessage(m.data); });
@@ -300,13 +323,13 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
       if (is_static) {
         g.tf_static[t.child] = t;
       } else if (t.parent == choice.odom_frame) {
-        g.tf_odometry[t.child].push_back({t.stamp, t.X_PC});
+        AddPose(g.tf_odometry[t.child], t.stamp, t.X_PC, log, number, m.topic);
       }
     }
   } else if (m.type == kPoseType) {
     const PoseStampedMessage pose =
         Decoded(log, number, m.topic, [&] { return DecodePoseStamped(m.data); });
-    g.poses[std::string(m.topic)].push_back({pose.stamp, pose.pose});
+    AddPose(g.poses[std::string(m.topic)], pose.stamp, pose.pose, log, number, m.topic);
   }
 }
 

@@ -63,7 +63,10 @@ struct ScanGeometry {
   double range_max = 0.0;        ///< m
   double first_stamp = 0.0;      ///< s
   double last_stamp = 0.0;       ///< s
-  double field_of_view() const { return static_cast<double>(beams) * angle_increment; }
+  /// rad from the first beam to the last
+  double field_of_view() const {
+    return beams > 1 ? static_cast<double>(beams - 1) * angle_increment : 0.0;
+  }
 };
 
 /// What a log holds (the first pass).

@@ -140,6 +140,11 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
             FixedText(m.localization_error_m.max, 3) + " m; heading RMS " +
             FixedText(m.localization_error_rad.rms * 180.0 / M_PI, 2) + " deg; above " +
             "metrics.lost_error " + FixedText(100.0 * m.lost_fraction, 1) + " % of scans\n";
+    text += "  on the taught route (within " + FixedText(kOnRoute, 1) + " m of it, " +
+            FixedText(100.0 * m.on_route_fraction, 1) + " % of scans): RMS " +
+            FixedText(m.localization_error_on_route_m.rms, 3) + " m, p95 " +
+            FixedText(m.localization_error_on_route_m.p95, 3) + " m, max " +
+            FixedText(m.localization_error_on_route_m.max, 3) + " m\n";
     text += "  the drive's distance to the taught path: mean " +
             FixedText(m.path_distance_m.mean, 2) + " m, max " +
             FixedText(m.path_distance_m.max, 2) + " m\n";
@@ -178,7 +183,7 @@ int RunLogLocalizeCommand(const LogLocalizeOptions& options, const std::string& 
       PrepareLogStreams(index, config, options.run.synthetic_odometry, options.run.reference);
   const LogLocalizeResult run =
       RunLogLocalize(index, streams, teach, config, options.run.window, initial);
-  const LogLocalizeSeries series = ComputeLogSeries(run, teach.bundle, config.metrics);
+  const LogLocalizeSeries series = ComputeLogSeries(run, teach.trace);
   const LogLocalizeMetrics metrics = ComputeLogMetrics(run, series, teach.bundle, config.metrics);
 
   StagedFolder folder(options.run.out);

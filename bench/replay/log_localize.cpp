@@ -6,9 +6,9 @@
 #include "bench/engine/local_truth.hpp"
 #include "bench/engine/snapshot_capture.hpp"
 #include "bench/engine/thread_cpu_time.hpp"
+#include "bench/replay/log_metrics.hpp"
 #include "core/angle.hpp"
 #include "core/errors.hpp"
-#include "core/path_projection.hpp"
 #include "nav/localizer.hpp"
 #include "nav/map_server.hpp"
 #include "nav/path_follower.hpp"
@@ -19,8 +19,9 @@ namespace {
 
 // The estimate counts as at the end of its path within this much arc length of it.
 constexpr double kPathEndTolerance = 0.05;  // m
-// The snapshot is taken on the taught route: the estimate at most this far from its path.
-constexpr double kOnRoute = 1.0;  // m
+// Heading spread after going round a loop: the odometry's scale error alone over-counts a full
+// turn by about 1 % (3.6 degrees, sim/odometry.hpp).
+constexpr double kWrapSigmaTheta = 0.0873;  // rad, 5 degrees
 
 // The odometry increment (an arc, as wheel odometry measures it) that moves `a` to `b`: the
 // heading change, and the chord turned into arc length, signed by the direction of travel.
@@ -66,17 +67,19 @@ LogLocalizeResult RunLogLocalize(const logs::LogIndex& index, const LogStreams& 
   nav::MapServer server(teach.bundle);
   server.Start(localizer, follower);
 
-  // A loop (its last path ends near map 0's path, chained through the switch poses, within the
-  // revisit radius plus the drift allowed over the route) is driven again after its last map.
+  // A loop — its last path ends where its first began, chained through the switch poses, within
+  // the revisit radius plus the drift allowed over the route — is driven again after its last
+  // map.
   double route_length = 0.0;
   for (const nav::PartialMap& map : teach.bundle.maps) route_length += map.path.Length();
-  const core::Path& first_path = teach.bundle.maps.front().path;
-  const core::Vec2 end_in_first =
-      (server.LastMapInFirst() * teach.bundle.maps.back().path.back()).translation();
-  const bool loop =
-      core::ProjectOntoPath(first_path.positions(), first_path.arc_lengths(), end_in_first, 0.0,
-                            first_path.Length())
-          .distance <= config.route.revisit_radius + config.route.online_drift * route_length;
+  const core::Pose2 end_in_first = server.LastMapInFirst() * teach.bundle.maps.back().path.back();
+  const bool loop = core::Distance(end_in_first, teach.bundle.maps.front().path.front()) <=
+                    config.route.revisit_radius + config.route.online_drift * route_length;
+  // The spread after going round: the drift allowed over the route as two standard deviations.
+  const double wrap_sigma_xy =
+      std::max(config.playback.initial_sigma_xy, 0.5 * config.route.online_drift * route_length);
+  const double wrap_sigma_theta =
+      std::max(core::DegToRad(config.playback.initial_sigma_yaw_deg), kWrapSigmaTheta);
 
   LogLocalizeResult result;
   result.loop = loop;
@@ -145,9 +148,15 @@ LogLocalizeResult RunLogLocalize(const logs::LogIndex& index, const LogStreams& 
     // The map switch at the end of the taught path (eq. 1), as in playback.
     const bool at_end = follow.goal_reached || follow.remaining <= kPathEndTolerance;
     if (at_end && (!server.IsLast() || loop)) {
-      if (server.IsLast()) ++result.laps_completed;
-      const nav::MapSwitch s = server.IsLast() ? server.WrapToFirst(localizer, follower)
-                                               : server.SwitchToNext(localizer, follower);
+      const bool wrap = server.IsLast();
+      if (wrap) ++result.laps_completed;
+      const nav::MapSwitch s =
+          wrap ? server.WrapToFirst(localizer, follower) : server.SwitchToNext(localizer, follower);
+      if (wrap) {
+        // The chain of switch poses carries the maps' drift over the whole loop: spread the
+        // particles over what that drift allows, and let the scans find the robot again.
+        localizer.Initialize(localizer.Estimate(), wrap_sigma_xy, wrap_sigma_theta);
+      }
       result.switches.push_back({stamp, static_cast<int>(s.from), static_cast<int>(s.to),
                                  X_WR.value_or(core::Pose2::Identity()), s.X_MnR});
       if (truth) {

@@ -5,8 +5,8 @@
 // prediction, each scan one measurement update (gated by motion as in playback), and the map
 // switches by eq. (1) when the estimate reaches the end of the current taught path, measured
 // by the path follower's forward projection — the same "how far along" as playback. Nothing
-// commands the robot: the log drove it. A taught route that is a loop — its last path ends back
-// on map 0's, through the chain of switch poses, within route.revisit_radius plus
+// commands the robot: the log drove it. A taught route that is a loop — its last path ends where
+// map 0's began, through the chain of switch poses, within route.revisit_radius plus
 // route.online_drift times its length — goes on in map 0 after its last map, so that a log that
 // drives the loop again and again is localized lap after lap.
 //

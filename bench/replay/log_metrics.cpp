@@ -1,34 +1,80 @@
 #include "bench/replay/log_metrics.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
+#include <unordered_map>
+#include <utility>
 
 #include "bench/engine/local_truth.hpp"
 #include "bench/metrics/metrics_json.hpp"
-#include "core/path_projection.hpp"
 #include "io/json_writer.hpp"
 
 namespace retrace::bench {
 
-LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const nav::TeachBundle& bundle,
-                                   const MetricsConfig& config) {
+namespace {
+
+// Nearest-neighbour distances to a set of points, through a grid of 1 m buckets searched ring by
+// ring outwards.
+class NearestPoint {
+ public:
+  explicit NearestPoint(const std::vector<core::Vec2>& points) : points_(points) {
+    for (std::size_t i = 0; i < points_.size(); ++i) buckets_[Key(Cell(points_[i]))].push_back(i);
+  }
+
+  double Distance(const core::Vec2& p) const {
+    if (points_.empty()) return kMetricNaN;
+    const auto [cx, cy] = Cell(p);
+    double best = std::numeric_limits<double>::infinity();
+    for (long ring = 0;; ++ring) {
+      // Every point in a ring r lies at least (r - 1) * kCell away.
+      if (static_cast<double>(ring - 1) * kCell > best) return best;
+      for (long dx = -ring; dx <= ring; ++dx) {
+        for (long dy = -ring; dy <= ring; ++dy) {
+          if (std::max(std::abs(dx), std::abs(dy)) != ring) continue;
+          const auto it = buckets_.find(Key({cx + dx, cy + dy}));
+          if (it == buckets_.end()) continue;
+          for (std::size_t i : it->second) best = std::min(best, (points_[i] - p).norm());
+        }
+      }
+      if (ring > 100000) return best;  // guards a pathological spread; never reached in practice
+    }
+  }
+
+ private:
+  static constexpr double kCell = 1.0;  // m
+  static std::pair<long, long> Cell(const core::Vec2& p) {
+    return {static_cast<long>(std::floor(p.x() / kCell)),
+            static_cast<long>(std::floor(p.y() / kCell))};
+  }
+  static std::uint64_t Key(std::pair<long, long> c) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.first)) << 32) |
+           static_cast<std::uint32_t>(c.second);
+  }
+  const std::vector<core::Vec2>& points_;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> buckets_;
+};
+
+}  // namespace
+
+LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const TeachTrace& teach) {
   LogLocalizeSeries series;
+  std::vector<core::Vec2> taught;
+  for (const core::Pose2& X_WR : teach.X_WR) taught.push_back(X_WR.translation());
+  const NearestPoint nearest(taught);
   double driven = 0.0;
   std::optional<core::Vec2> previous;
   int map = -1;
-  core::ForwardProgress progress;
   for (const LogLocalizeSample& s : run.samples) {
     // Along the reference, which is continuous; without one along the estimate, which jumps
     // into the next map's frame at a switch.
     const core::Vec2 p = s.X_WR ? s.X_WR->translation() : s.X_MR.translation();
     if (previous && (s.X_WR || s.map == map)) driven += (p - *previous).norm();
     previous = p;
+    map = s.map;
     series.driven_m.push_back(driven);
-    if (s.map != map) {
-      map = s.map;
-      progress = core::ForwardProgress();
-    }
-    if (!s.X_MR_truth) {
+    if (!s.X_MR_truth || !s.X_WR) {
       series.path_distance_m.push_back(kMetricNaN);
       series.localization_error_m.push_back(kMetricNaN);
       series.localization_error_rad.push_back(kMetricNaN);
@@ -37,14 +83,9 @@ LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const nav::Teac
     const PoseError e = Compare(s.X_MR, *s.X_MR_truth);
     series.localization_error_m.push_back(e.distance);
     series.localization_error_rad.push_back(e.angle);
-    const core::Path& path = bundle.maps.at(static_cast<std::size_t>(s.map)).path;
-    const core::Vec2 q = s.X_MR_truth->translation();
-    progress.Advance(path.positions(), path.arc_lengths(), q,
-                     progress.value() + config.match_window);
-    const core::PathProjection here = core::ProjectOntoPath(path.positions(), path.arc_lengths(), q,
-                                                            progress.value() - config.match_window,
-                                                            progress.value() + config.match_window);
-    series.path_distance_m.push_back(here.distance);
+    // Where the robot was, not where it believed it was: the reference against the taught
+    // trajectory, both in the reference's frame.
+    series.path_distance_m.push_back(nearest.Distance(s.X_WR->translation()));
   }
   return series;
 }
@@ -67,6 +108,13 @@ LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLoca
     int lost = 0;
     for (double e : series.localization_error_m) lost += std::isfinite(e) && e > config.lost_error;
     m.lost_fraction = static_cast<double>(lost) / m.localization_error_m.count;
+    std::vector<double> on_route;
+    for (std::size_t i = 0; i < series.localization_error_m.size(); ++i) {
+      if (std::isfinite(series.localization_error_m[i]) && series.path_distance_m[i] <= kOnRoute)
+        on_route.push_back(series.localization_error_m[i]);
+    }
+    m.on_route_fraction = static_cast<double>(on_route.size()) / m.localization_error_m.count;
+    m.localization_error_on_route_m = Summarize(on_route);
   }
   long tested = 0, rejected = 0;
   std::vector<double> times_ms;
@@ -93,6 +141,8 @@ nlohmann::json ToJson(const LogLocalizeMetrics& m) {
           {"localization_error_rad", ToJson(m.localization_error_rad)},
           {"lost_fraction", io::JsonNumber(m.lost_fraction)},
           {"path_distance_m", ToJson(m.path_distance_m)},
+          {"on_route_fraction", io::JsonNumber(m.on_route_fraction)},
+          {"localization_error_on_route_m", ToJson(m.localization_error_on_route_m)},
           {"rejected_fraction", io::JsonNumber(m.rejected_fraction)},
           {"update_time_ms", ToJson(m.update_time_ms)},
           {"real_time_factor", io::JsonNumber(m.real_time_factor)}};

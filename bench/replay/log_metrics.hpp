@@ -6,10 +6,14 @@
 //                                local_truth.hpp) at every scan, as for simulated runs
 //   lost_fraction                of those scans, the share with an error above
 //                                metrics.lost_error
-//   path_distance_m              how far the log's drive was from the taught path (the local
-//                                truth projected on the current map's path): a log is not
-//                                driven by the follower, so large values mean the robot was
-//                                somewhere the maps were not taught
+//   path_distance_m              how far the log's drive was from the taught route: the
+//                                reference's distance to the teaching drive's reference, the
+//                                nearest of all its samples; a log is not driven by the
+//                                follower, so large values mean the robot was somewhere the
+//                                maps were not taught
+//   on_route_fraction            of the scans with a truth, the share within kOnRoute of the
+//                                taught path: where teach and repeat promises to localize
+//   localization_error_on_route_m  the localization error over those scans only
 //   rejected_fraction            beams rejected as dynamic / beams tested, over every update
 //   update_time_ms               thread CPU time of each measurement update
 //   real_time_factor             log seconds per CPU second of the whole run
@@ -25,10 +29,13 @@
 
 namespace retrace::bench {
 
+/// m: a log's drive this close to the taught path is on the taught route.
+inline constexpr double kOnRoute = 1.0;
+
 /// Per scan of the run.
 struct LogLocalizeSeries {
   std::vector<double> driven_m;                ///< along the reference (else the estimate's maps)
-  std::vector<double> path_distance_m;         ///< NaN without truth
+  std::vector<double> path_distance_m;         ///< m to the taught route; NaN without truth
   std::vector<double> localization_error_m;    ///< NaN without truth
   std::vector<double> localization_error_rad;  ///< NaN without truth
 };
@@ -46,13 +53,16 @@ struct LogLocalizeMetrics {
   Summary localization_error_rad;
   double lost_fraction = kMetricNaN;
   Summary path_distance_m;
+  double on_route_fraction = kMetricNaN;
+  Summary localization_error_on_route_m;
   double rejected_fraction = kMetricNaN;
   Summary update_time_ms;
   double real_time_factor = kMetricNaN;
 };
 
-LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const nav::TeachBundle& bundle,
-                                   const MetricsConfig& config);
+/// The series of `run` against the teach trace `teach` (its reference X_WR: without one, the
+/// localization errors and path distances are NaN).
+LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const TeachTrace& teach);
 
 LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLocalizeSeries& series,
                                      const nav::TeachBundle& bundle, const MetricsConfig& config);

@@ -1,0 +1,149 @@
+// A simulated drive recorded as logs (`retrace run --record-log`), read back through both
+// formats, taught and localized with the log commands' engine: the same scans and odometry from
+// CARMEN and MCAP, maps like the live teaching drive's, errors like the live run's.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/engine/scenario.hpp"
+#include "bench/metrics/experiment.hpp"
+#include "bench/replay/log_localize.hpp"
+#include "bench/replay/log_metrics.hpp"
+#include "bench/replay/log_recorder.hpp"
+#include "bench/replay/log_streams.hpp"
+#include "bench/replay/log_teach.hpp"
+#include "logs/sensor_log.hpp"
+#include "tests/support/source_dir.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace retrace::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The small scenario taught and played back once in partial mode, every drive recorded.
+struct Recorded {
+  testing::TempDir tmp;
+  Scenario scenario = LoadScenario(testing::kSource / "scenarios/small.yaml");
+  Experiment experiment;
+
+  Recorded() {
+    ExperimentOptions options;
+    options.repeats = 1;
+    options.tap = [this](const ModeTeach* teach, int run) -> std::unique_ptr<SensorTap> {
+      if (teach == nullptr)
+        return std::make_unique<LogRecorder>(tmp.path(), "teach", scenario.robot);
+      return std::make_unique<LogRecorder>(tmp.path(), "run_" + std::to_string(run),
+                                           scenario.robot);
+    };
+    experiment = RunExperiment(scenario, {MapMode::kPartial}, options);
+  }
+  // The log commands' settings that match the scenario's.
+  LogConfig Config() const {
+    LogConfig config;
+    config.nav = scenario.config.nav;
+    config.metrics = scenario.config.metrics;
+    config.route.revisit_radius = scenario.config.route.revisit_radius;
+    config.route.switch_points = scenario.config.route.switch_points;
+    config.modes = {MapMode::kPartial};
+    return config;
+  }
+};
+
+const Recorded& Drive() {
+  static const Recorded* recorded = new Recorded();
+  return *recorded;
+}
+
+TEST(LogReplay, BothFormatsGiveTheSameScansAndOdometry) {
+  const Recorded& r = Drive();
+  const logs::LogIndex mcap = logs::IndexLog(r.tmp.path() / "teach.mcap");
+  logs::StreamChoice odom_lines;
+  odom_lines.odometry_topic = "ODOM";  // the 50 Hz odometry, as /odom
+  const logs::LogIndex carmen = logs::IndexLog(r.tmp.path() / "teach.log.gz", odom_lines);
+  ASSERT_EQ(mcap.problem, "");
+  ASSERT_EQ(carmen.problem, "");
+  EXPECT_EQ(mcap.scan.scans, carmen.scan.scans);
+  EXPECT_GT(mcap.scan.scans, 1000U);
+  EXPECT_LT(core::Distance(mcap.X_RL, carmen.X_RL), 1e-12);
+
+  ASSERT_EQ(mcap.odometry.size(), carmen.odometry.size());
+  for (std::size_t i = 0; i < mcap.odometry.size(); ++i) {
+    // Stamps: MCAP keeps nanoseconds; poses: x and y exactly, the heading through a quaternion.
+    ASSERT_NEAR(mcap.odometry[i].t, carmen.odometry[i].t, 1e-9) << i;
+    ASSERT_EQ(mcap.odometry[i].pose.x, carmen.odometry[i].pose.x) << i;
+    ASSERT_EQ(mcap.odometry[i].pose.y, carmen.odometry[i].pose.y) << i;
+    ASSERT_NEAR(mcap.odometry[i].pose.theta, carmen.odometry[i].pose.theta, 1e-14) << i;
+  }
+  ASSERT_EQ(mcap.reference.size(), carmen.reference.size());
+  EXPECT_EQ(mcap.reference.back().pose.x, carmen.reference.back().pose.x);
+
+  std::vector<core::LaserScan> a, b;
+  logs::ReadScans(mcap, 0.0, 1e9, [&](const logs::ScanMessage& m, double) { a.push_back(m.scan); });
+  logs::ReadScans(carmen, 0.0, 1e9,
+                  [&](const logs::ScanMessage& m, double) { b.push_back(m.scan); });
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_NEAR(a[i].stamp, b[i].stamp, 1e-9) << i;
+    // sensor_msgs/LaserScan holds its angles as float32.
+    ASSERT_EQ(a[i].angle_min, static_cast<double>(static_cast<float>(b[i].angle_min))) << i;
+    ASSERT_EQ(a[i].angle_increment, static_cast<double>(static_cast<float>(b[i].angle_increment)))
+        << i;
+    ASSERT_EQ(a[i].ranges.size(), b[i].ranges.size()) << i;
+    for (std::size_t j = 0; j < a[i].ranges.size(); ++j) {
+      // Bit for bit where the beam returned; no return stays no return.
+      if (a[i].Valid(j)) {
+        ASSERT_EQ(a[i].ranges[j], b[i].ranges[j]) << i << " " << j;
+      }
+      ASSERT_EQ(a[i].NoReturn(j), b[i].NoReturn(j)) << i << " " << j;
+    }
+  }
+}
+
+TEST(LogReplay, TeachingFromTheLogMakesTheLiveDrivesMaps) {
+  const Recorded& r = Drive();
+  const logs::LogIndex index = logs::IndexLog(r.tmp.path() / "teach.mcap");
+  const LogConfig config = r.Config();
+  const LogStreams streams = PrepareLogStreams(index, config, false, std::nullopt);
+  const LogTeachResult taught = RunLogTeach(index, streams, config, {});
+  ASSERT_EQ(taught.modes.size(), 1U);
+  const ModeTeach& live = r.experiment.modes.front().teach;
+  const ModeTeach& log = taught.modes.front();
+  ASSERT_EQ(log.bundle.maps.size(), live.bundle.maps.size());
+  // The same switch point: the live drive measures it along the route (the teacher's progress),
+  // the log along the path driven, which the teacher's wobble makes about 2 % longer.
+  for (std::size_t k = 0; k < live.bundle.maps.size(); ++k) {
+    EXPECT_LT(core::Distance(log.bundle.maps[k].X_MS, live.bundle.maps[k].X_MS), 0.6) << k;
+    EXPECT_NEAR(log.bundle.maps[k].path.Length(), live.bundle.maps[k].path.Length(), 0.6) << k;
+  }
+}
+
+TEST(LogReplay, LocalizingTheRunLogMatchesTheLiveRun) {
+  const Recorded& r = Drive();
+  const ModeResult& live = r.experiment.modes.front();
+  const double live_rms = live.run_metrics.front().localization_error_m.rms;
+  for (const char* file : {"run_0.mcap", "run_0.log.gz"}) {
+    const logs::LogIndex index = logs::IndexLog(r.tmp.path() / file);
+    const LogConfig config = r.Config();
+    const LogStreams streams = PrepareLogStreams(index, config, false, std::nullopt);
+    const LogLocalizeResult run = RunLogLocalize(index, streams, live.teach, config, {});
+    const LogLocalizeMetrics m = ComputeLogMetrics(run, ComputeLogSeries(run, live.teach.trace),
+                                                   live.teach.bundle, config.metrics);
+    EXPECT_EQ(m.switches, 1) << file;
+    EXPECT_TRUE(m.has_truth) << file;
+    EXPECT_LT(m.localization_error_m.rms, 2.0 * live_rms + 0.05) << file << " live " << live_rms;
+    EXPECT_LT(m.localization_error_m.max, 0.5) << file;
+    EXPECT_GT(m.on_route_fraction, 0.95) << file;
+    EXPECT_GT(m.real_time_factor, 1.0) << file;
+    ASSERT_TRUE(run.snapshot.has_value()) << file;
+    EXPECT_TRUE(run.snapshot->pedestrian.empty()) << file;  // a log knows no pedestrians
+  }
+}
+
+}  // namespace
+}  // namespace retrace::bench

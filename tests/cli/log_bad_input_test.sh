@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# `retrace log-info`, `log-teach` and `log-localize` on bad logs and options: each case must print
+# exactly one line on stderr that names the file (and the record) or the option, exit with code 2
+# and leave no output folder (nor its staging folder) behind.
+# Usage: log_bad_input_test.sh <retrace binary> <source dir>
+set -uo pipefail
+retrace="$1"
+src="$2"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+
+expect_bad() {  # expect_bad <name> <expected substring> <command> <args...>
+  local name="$1" want="$2" command="$3"
+  shift 3
+  local out=()
+  [ "$command" != log-info ] && out=(--out "$tmp/out")
+  "$retrace" "$command" "$@" "${out[@]}" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" &&
+    [ ! -e "$tmp/out" ] && [ ! -e "$tmp/out.tmp" ]; then
+    pass=$((pass + 1))
+  else
+    fail=$((fail + 1))
+    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
+    cat "$tmp/stderr"
+  fi
+}
+
+# A real recorded drive to damage: the small scenario's teaching drive.
+"$retrace" teach "$src/scenarios/small.yaml" --mode partial --out "$tmp/sim" \
+  --record-log "$tmp/logs" >/dev/null 2>&1 || { echo "FAIL: could not record a log"; exit 1; }
+mcap="$tmp/logs/teach.mcap"
+carmen="$tmp/logs/teach.log.gz"
+"$retrace" log-teach "$mcap" --mode partial --switch-points 20 --out "$tmp/taught" >/dev/null ||
+  { echo "FAIL: could not teach the recorded log"; exit 1; }
+teach="$tmp/taught/partial/teach"
+
+size=$(stat -c %s "$mcap")
+head -c $((size / 2)) "$mcap" >"$tmp/truncated.mcap"
+# A byte flipped in the middle of the data: a chunk that fails to decompress or its CRC.
+cp "$mcap" "$tmp/corrupt.mcap"
+printf '\xff\xff\xff\xff' | dd of="$tmp/corrupt.mcap" bs=1 seek=$((size / 3)) conv=notrunc status=none
+# CARMEN lines: time going backwards, a NaN range.
+printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nODOM 1 0 0 0 0 0 2.0 h 2.0\nODOM 2 0 0 0 0 0 1.5 h 1.5\n' >"$tmp/backwards.log"
+printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 nan 1.0 0 0 0 0 0 0 1.0 h 1.0\n' >"$tmp/nan.log"
+printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 2.0 h 2.0\nODOM 0 0 0 0 0 0 2.0 h 2.0\n' >"$tmp/noreference.log"
+printf '\x00\x01\x02binary' >"$tmp/binary.bin"
+: >"$tmp/empty.log"
+
+expect_bad missing "$tmp/missing.mcap: no such file" log-info "$tmp/missing.mcap"
+expect_bad empty "empty file" log-info "$tmp/empty.log"
+expect_bad binary "not a log retrace reads" log-info "$tmp/binary.bin"
+expect_bad truncated "truncated.mcap" log-teach "$tmp/truncated.mcap"
+expect_bad corrupt-chunk "corrupt.mcap" log-teach "$tmp/corrupt.mcap"
+expect_bad reference-topic "--reference-topic '/nope' is not in the log" log-teach "$mcap" --reference-topic /nope
+expect_bad corrupt-chunk-data "corrupt.mcap" log-localize "$tmp/corrupt.mcap" --teach "$teach"
+expect_bad no-scan-topic "no sensor_msgs/msg/LaserScan topic" log-teach "$src/tests/data/rosbag2/talker_mcap"
+expect_bad not-a-scan-topic "--scan-topic '/odom' holds no laser scans" log-teach "$mcap" --scan-topic /odom
+expect_bad unknown-topic "--scan-topic '/front' is not in the log" log-localize "$mcap" --teach "$teach" --scan-topic /front
+expect_bad backwards "backwards.log: message 3 on 'ODOM'" log-teach "$tmp/backwards.log"
+expect_bad nan-range "nan.log" log-info "$tmp/nan.log"
+expect_bad consistent-without-reference "consistent needs a reference" log-teach "$tmp/noreference.log" --mode consistent
+expect_bad online-without-switching "\`online\` switching needs a map mode that switches maps" log-teach "$mcap" --mode consistent
+expect_bad switch-beyond "beyond the driven path" log-teach "$mcap" --mode partial --switch-points 20,500
+expect_bad switch-order "must be strictly increasing" log-teach "$mcap" --switch-points 30,20
+expect_bad switch-word "route.switch_points" log-teach "$mcap" --switch-points sometimes
+expect_bad from-negative "--from: must be a time >= 0 s" log-teach "$mcap" --from -1
+expect_bad to-before-from "--to: must be later than --from" log-teach "$mcap" --from 50 --to 10
+expect_bad empty-window "no scan with odometry" log-localize "$mcap" --teach "$teach" --from 5000
+expect_bad teach-missing "no such teach folder" log-localize "$mcap" --teach "$tmp/nothing"
+expect_bad initial-pose "--initial-pose: must be x,y,yaw_deg" log-localize "$mcap" --teach "$teach" --initial-pose 1,2
+expect_bad reference-file "missing.tum" log-localize "$mcap" --teach "$teach" --reference "$tmp/missing.tum"
+expect_bad route-file "route.file: does not apply to a log" log-teach "$mcap" --set route.file=x.txt
+expect_bad repeats "playback: only initial_sigma_xy" log-localize "$mcap" --teach "$teach" --set playback.repeats=3
+expect_bad unknown-key "particle" log-localize "$mcap" --teach "$teach" --set nav.localizer.particle=100
+expect_bad config-missing "missing.yaml" log-teach "$mcap" --config "$tmp/missing.yaml"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,243 @@
+#include "logs/sensor_log.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "logs/carmen_writer.hpp"
+#include "logs/log_source.hpp"
+#include "logs/mcap_writer.hpp"
+#include "logs/ros_messages.hpp"
+#include "tests/support/source_dir.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace retrace::logs {
+// A namespace per file, not an anonymous one: the test files are compiled as one unity source.
+namespace sensor_log_test {
+
+namespace fs = std::filesystem;
+
+// A drive along x at 1 m/s for 5 s: odometry at 50 Hz (drifting 1 % long), scans at 10 Hz, the
+// truth and a LiDAR 0.2 m ahead of the base.
+const core::Pose2 kMount(0.2, 0.0, 0.0);
+core::Pose2 Truth(double t) { return {t, 0.5 * std::sin(t), 0.1 * t}; }
+core::Pose2 Odometry(double t) { return {1.01 * t, 0.5 * std::sin(t), 0.1 * t}; }
+core::LaserScan Scan(double t) {
+  core::LaserScan scan;
+  scan.stamp = t;
+  scan.angle_min = -1.5;
+  scan.angle_increment = 0.01;
+  scan.range_min = 0.1;
+  scan.range_max = 20.0;
+  for (int i = 0; i < 301; ++i) scan.ranges.push_back(3.0f + 0.001f * static_cast<float>(i));
+  scan.ranges[7] = std::numeric_limits<float>::infinity();
+  return scan;
+}
+
+fs::path WriteCarmen(const fs::path& file) {
+  CarmenWriter w(file);
+  for (int k = 0; k <= 250; ++k) {
+    const double t = 0.02 * k;
+    w.WriteOdometry(t, Odometry(t), 1.0, 0.1);
+    w.WriteTruePose(t, Truth(t), Odometry(t));
+    if (k % 5 == 0) w.WriteLaser(Scan(t), Odometry(t), kMount, 1.0, 0.1);
+  }
+  w.Close();
+  return file;
+}
+
+// An MCAP bag as `retrace run --record-log` writes one, with `scan_topics` LaserScan topics and,
+// if `odometry_topic`, a nav_msgs/Odometry topic (else tf only).
+fs::path WriteMcap(const fs::path& file, std::vector<std::string> scan_topics = {"/scan"},
+                   bool odometry_topic = true) {
+  McapWriter w(file, McapCompression::kZstd);
+  std::vector<std::uint16_t> scans;
+  for (const std::string& topic : scan_topics)
+    scans.push_back(w.AddChannel(topic, "sensor_msgs/msg/LaserScan"));
+  const std::uint16_t odom = w.AddChannel("/odom", "nav_msgs/msg/Odometry");
+  const std::uint16_t tf = w.AddChannel("/tf", "tf2_msgs/msg/TFMessage");
+  const std::uint16_t tf_static = w.AddChannel("/tf_static", "tf2_msgs/msg/TFMessage");
+  const std::uint16_t truth = w.AddChannel("/ground_truth", "geometry_msgs/msg/PoseStamped");
+  // The mount through a chain: base_link -> laser_mount -> laser.
+  TfMessage mount{{{0.0, "base_link", "laser_mount", core::Pose2(0.1, 0.0, 0.0)},
+                   {0.0, "laser_mount", "laser", core::Pose2(0.1, 0.0, 0.0)}}};
+  w.Write(tf_static, 0, EncodeTfMessage(mount));
+  for (int k = 0; k <= 250; ++k) {
+    const double t = 0.02 * k;
+    const auto ns = static_cast<std::int64_t>(std::llround(t * 1e9));
+    if (odometry_topic) w.Write(odom, ns, EncodeOdometry({t, "odom", "base_link", Odometry(t)}));
+    w.Write(tf, ns, EncodeTfMessage({{{t, "odom", "base_link", Odometry(t)}}}));
+    w.Write(truth, ns, EncodePoseStamped({t, "world", Truth(t)}));
+    if (k % 5 == 0) {
+      for (std::uint16_t channel : scans) w.Write(channel, ns, EncodeLaserScan({Scan(t), "laser"}));
+    }
+  }
+  w.Close();
+  return file;
+}
+
+std::string IndexError(const fs::path& file, const StreamChoice& choice = {}) {
+  try {
+    const LogIndex index = IndexLog(file, choice);
+    RequireUsable(index);
+  } catch (const core::IoError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void ExpectNear(const core::Pose2& a, const core::Pose2& b, double tol) {
+  EXPECT_NEAR(a.x, b.x, tol);
+  EXPECT_NEAR(a.y, b.y, tol);
+  EXPECT_NEAR(core::AngleDiff(a.theta, b.theta), 0.0, tol);
+}
+
+TEST(SensorLog, CarmenStreamsAreFoundAndRead) {
+  testing::TempDir tmp;
+  const LogIndex index = IndexLog(WriteCarmen(tmp.path() / "drive.log.gz"));
+  EXPECT_EQ(index.problem, "");
+  EXPECT_EQ(index.format, LogFormat::kCarmen);
+  EXPECT_EQ(index.scan_topic, "ROBOTLASER1");
+  EXPECT_EQ(index.scan.scans, 51U);
+  EXPECT_EQ(index.scan.beams, 301U);
+  EXPECT_EQ(index.scan.angle_increment, 0.01);
+  EXPECT_NEAR(index.scan.field_of_view(), 3.0, 1e-12);
+  // The laser lines carry the robot's pose exactly at each scan: that is the odometry.
+  EXPECT_NE(index.odometry_source.find("ROBOTLASER1"), std::string::npos);
+  ASSERT_EQ(index.odometry.size(), 51U);
+  ExpectNear(index.odometry[10].pose, Odometry(1.0), 1e-9);
+  ASSERT_EQ(index.reference.size(), 251U);
+  ExpectNear(index.reference[100].pose, Truth(2.0), 1e-9);
+  ExpectNear(index.X_RL, kMount, 1e-9);
+  EXPECT_NEAR(index.duration_s(), 5.0, 1e-9);
+
+  std::vector<double> stamps;
+  ReadScans(index, 1.0, 2.0, [&](const ScanMessage& m, double t) {
+    EXPECT_NEAR(t, m.scan.stamp, 1e-9);
+    EXPECT_EQ(m.scan.ranges[100], Scan(0).ranges[100]);  // bit for bit
+    EXPECT_TRUE(m.scan.NoReturn(7));
+    stamps.push_back(m.scan.stamp);
+  });
+  ASSERT_EQ(stamps.size(), 11U);
+  EXPECT_NEAR(stamps.front(), 1.0, 1e-9);
+  EXPECT_NEAR(stamps.back(), 2.0, 1e-9);
+}
+
+TEST(SensorLog, McapStreamsMountChainAndTfOdometry) {
+  testing::TempDir tmp;
+  const LogIndex index = IndexLog(WriteMcap(tmp.path() / "drive.mcap"));
+  EXPECT_EQ(index.problem, "");
+  EXPECT_EQ(index.format, LogFormat::kMcap);
+  EXPECT_EQ(index.scan_topic, "/scan");
+  EXPECT_EQ(index.laser_frame, "laser");
+  EXPECT_EQ(index.base_frame, "base_link");
+  ExpectNear(index.X_RL, core::Pose2(0.2, 0.0, 0.0), 1e-12);  // through laser_mount
+  EXPECT_NE(index.mount_source.find("tf_static"), std::string::npos);
+  EXPECT_NE(index.odometry_source.find("/odom"), std::string::npos);
+  ASSERT_EQ(index.odometry.size(), 251U);
+  ExpectNear(index.odometry[50].pose, Odometry(1.0), 1e-9);
+  EXPECT_NE(index.reference_source.find("/ground_truth"), std::string::npos);
+  ExpectNear(index.reference[250].pose, Truth(5.0), 1e-9);
+
+  // Without the Odometry topic the odometry comes from tf odom -> base_link.
+  const LogIndex tf = IndexLog(WriteMcap(tmp.path() / "tf.mcap", {"/scan"}, false));
+  EXPECT_EQ(tf.problem, "");
+  EXPECT_EQ(tf.odometry_source, "tf odom -> base_link");
+  ExpectNear(tf.odometry[50].pose, Odometry(1.0), 1e-9);
+  // ... from the frame named with --odom-frame only.
+  StreamChoice other;
+  other.odom_frame = "map";
+  EXPECT_NE(IndexError(tmp.path() / "tf.mcap", other).find("no odometry"), std::string::npos);
+}
+
+TEST(SensorLog, SeveralScanTopicsNeedAChoice) {
+  testing::TempDir tmp;
+  const fs::path bag = WriteMcap(tmp.path() / "two.mcap", {"/front", "/rear"});
+  const std::string error = IndexError(bag);
+  EXPECT_NE(error.find("several topics hold laser scans"), std::string::npos) << error;
+  EXPECT_NE(error.find("/front, /rear"), std::string::npos) << error;
+  EXPECT_NE(error.find("--scan-topic"), std::string::npos) << error;
+  // The log is still described.
+  EXPECT_EQ(IndexLog(bag).topics.size(), 6U);
+
+  StreamChoice choice;
+  choice.scan_topic = "/rear";
+  EXPECT_EQ(IndexError(bag, choice), "");
+  choice.scan_topic = "/odom";
+  EXPECT_NE(IndexError(bag, choice).find("holds no laser scans"), std::string::npos);
+  choice.scan_topic = "/nope";
+  EXPECT_NE(IndexError(bag, choice).find("is not in the log"), std::string::npos);
+}
+
+TEST(SensorLog, TimeGoingBackwardsIsRefusedNamingTheMessage) {
+  testing::TempDir tmp;
+  const fs::path file = tmp.path() / "back.log";
+  {
+    CarmenWriter w(file);
+    w.WriteOdometry(1.0, core::Pose2(), 0.0, 0.0);
+    w.WriteOdometry(2.0, core::Pose2(1, 0, 0), 0.0, 0.0);
+    w.WriteOdometry(1.5, core::Pose2(2, 0, 0), 0.0, 0.0);
+    w.WriteLaser(Scan(1.0), core::Pose2(), kMount, 0.0, 0.0);
+    w.Close();
+  }
+  const std::string error = IndexError(file);
+  EXPECT_NE(error.find("back.log: message 3 on 'ODOM'"), std::string::npos) << error;
+  EXPECT_NE(error.find("goes back"), std::string::npos) << error;
+}
+
+TEST(SensorLog, FormatsAreDetectedByContent) {
+  testing::TempDir tmp;
+  EXPECT_EQ(DetectLogFormat(WriteCarmen(tmp.path() / "a.bin")), LogFormat::kCarmen);
+  EXPECT_EQ(DetectLogFormat(WriteMcap(tmp.path() / "a.log")), LogFormat::kMcap);
+  const fs::path bags = testing::kSource / "tests/data/rosbag2";
+  EXPECT_EQ(DetectLogFormat(bags / "talker_sqlite3/talker.db3"), LogFormat::kSqlite);
+  EXPECT_EQ(DetectLogFormat(bags / "talker_mcap"), LogFormat::kRosbag2);
+  // A rosbag2 folder of either storage gives the same messages.
+  for (const char* folder : {"talker_mcap", "talker_sqlite3"}) {
+    const std::unique_ptr<MessageSource> source = OpenLog(bags / folder);
+    RawMessage m;
+    int n = 0;
+    while (source->Next(m)) n += m.topic == "/topic";
+    EXPECT_EQ(n, 10) << folder;
+  }
+  const auto error = [](const fs::path& p) {
+    try {
+      DetectLogFormat(p);
+    } catch (const core::IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error(tmp.Write("empty.log", "")).find("empty file"), std::string::npos);
+  EXPECT_NE(error(tmp.Write("binary.bin", std::string("\x00\x01\x02zz", 5))).find("not a log"),
+            std::string::npos);
+  fs::create_directories(tmp.path() / "folder");
+  EXPECT_NE(error(tmp.path() / "folder").find("without metadata.yaml"), std::string::npos);
+  EXPECT_NE(error(tmp.path() / "missing.mcap").find("no such file"), std::string::npos);
+}
+
+TEST(SensorLog, ABagWithoutScansIsDescribedButNotUsable) {
+  const LogIndex index = IndexLog(testing::kSource / "tests/data/rosbag2/talker_mcap");
+  EXPECT_EQ(index.topics.size(), 2U);
+  EXPECT_NE(index.problem.find("no sensor_msgs/msg/LaserScan topic"), std::string::npos);
+  EXPECT_THROW(RequireUsable(index), core::IoError);
+}
+
+TEST(SensorLog, PoseAtInterpolatesInsideAndRefusesOutside) {
+  const std::vector<StampedPose> poses = {{1.0, core::Pose2(0, 0, 0)},
+                                          {2.0, core::Pose2(2, 0, 1.0)}};
+  EXPECT_FALSE(PoseAt(poses, 0.999).has_value());
+  EXPECT_FALSE(PoseAt(poses, 2.001).has_value());
+  ExpectNear(*PoseAt(poses, 1.0), poses[0].pose, 0.0);
+  ExpectNear(*PoseAt(poses, 2.0), poses[1].pose, 0.0);
+  ExpectNear(*PoseAt(poses, 1.25), core::Pose2(0.5, 0, 0.25), 1e-12);
+  EXPECT_FALSE(PoseAt({}, 1.0).has_value());
+  EXPECT_DOUBLE_EQ(PathLength(poses), 2.0);
+}
+
+}  // namespace sensor_log_test
+}  // namespace retrace::logs
