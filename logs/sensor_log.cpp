@@ -27,6 +27,9 @@ constexpr std::string_view kCarmenLasers[] = {"FLASER",    "ROBOTLASER1", "RAWLA
 
 bool IsCarmen(const RawMessage& m) { return m.encoding == "carmen"; }
 
+// A used stream may have at most this share of its messages stamped before the one before them.
+constexpr double kMaxBackwardsFraction = 0.01;
+
 std::string Quote(std::string_view s) { return "'" + std::string(s) + "'"; }
 
 // Runs `decode` and prefixes its error with the log, the message's number and its topic.
@@ -72,29 +75,64 @@ struct Gathered {
   std::map<std::string, std::vector<StampedPose>, std::less<>> poses;        // reference topics
   std::map<std::string, std::optional<core::Pose2>, std::less<>> carmen_mount;  // per laser
   CarmenLaserDefaults carmen_defaults;
+  // Messages stamped before the one before them in their stream (a scan topic's geometry or a
+  // pose stream): how many were dropped, and the first as an error. A few are dropped (the
+  // Intel Research Lab log's laser lines step back 4 times in 910); a stream that does it often
+  // has a broken clock and is refused, if it is used.
+  struct Backwards {
+    std::uint64_t dropped = 0;
+    std::string first;
+  };
+  std::map<const void*, Backwards> backwards;
+
+  // Throws if `stream` (`kept` messages kept) went back too often, else notes what was dropped.
+  void RequireForward(const void* stream, std::uint64_t kept, std::string_view topic,
+                      LogIndex& index) const {
+    const auto it = backwards.find(stream);
+    if (it == backwards.end()) return;
+    const std::uint64_t dropped = it->second.dropped;
+    if (dropped > kMaxBackwardsFraction * static_cast<double>(dropped + kept)) {
+      throw core::IoError(it->second.first + "; " + std::to_string(dropped) + " of " +
+                          std::to_string(dropped + kept) + " messages go back");
+    }
+    const std::string note = std::to_string(dropped) + " of " + std::to_string(dropped + kept) +
+                             " messages on " + Quote(topic) +
+                             " were stamped before the one before them and are not used";
+    // The scans and the odometry of a CARMEN laser line are one message.
+    if (std::find(index.notes.begin(), index.notes.end(), note) == index.notes.end())
+      index.notes.push_back(note);
+  }
 };
 
-// Appends a pose to its stream, refusing a stamp earlier than the stream's last: a log whose
-// clock runs backwards cannot be interpolated (equal stamps are kept, the last one wins).
+std::string WentBack(const std::string& log, std::uint64_t number, std::string_view topic,
+                     double stamp, double before) {
+  return log + ": message " + std::to_string(number) + " on " + Quote(topic) + ": its stamp " +
+         core::FormatNumber(stamp) + " s goes back before " + core::FormatNumber(before) +
+         " s of the one before in the stream (a clock that runs backwards cannot be "
+         "interpolated)";
+}
+
+// Appends a pose to its stream, or drops it (counted) if it is stamped before the stream's last
+// (equal stamps are kept, the last one wins).
 void AddPose(std::vector<StampedPose>& stream, double stamp, const core::Pose2& pose,
-             const std::string& log, std::uint64_t number, std::string_view topic) {
+             const std::string& log, std::uint64_t number, std::string_view topic, Gathered& g) {
   if (!stream.empty() && stamp < stream.back().t) {
-    throw core::IoError(log + ": message " + std::to_string(number) + " on " + Quote(topic) +
-                        ": its stamp " + core::FormatNumber(stamp) + " s goes back before " +
-                        core::FormatNumber(stream.back().t) + " s of the one before");
+    Gathered::Backwards& b = g.backwards[&stream];
+    if (b.dropped++ == 0) b.first = WentBack(log, number, topic, stamp, stream.back().t);
+    return;
   }
   stream.push_back({stamp, pose});
 }
 
-// Counts a scan of message `number` into its topic's geometry (taken from the first scan),
-// refusing one stamped before the scan before it.
-void AddScan(ScanGeometry& g, const core::LaserScan& scan, const std::string& log,
-             std::uint64_t number, std::string_view topic) {
+// Counts a scan of message `number` into its topic's geometry (taken from the first scan), or
+// drops it as AddPose does.
+void AddScan(ScanGeometry& geometry, const core::LaserScan& scan, const std::string& log,
+             std::uint64_t number, std::string_view topic, Gathered& gathered) {
+  ScanGeometry& g = geometry;
   if (g.scans > 0 && scan.stamp < g.last_stamp) {
-    throw core::IoError(log + ": message " + std::to_string(number) + " on " + Quote(topic) +
-                        ": the scan's stamp " + core::FormatNumber(scan.stamp) +
-                        " s goes back before " + core::FormatNumber(g.last_stamp) +
-                        " s of the scan before");
+    Gathered::Backwards& b = gathered.backwards[&g];
+    if (b.dropped++ == 0) b.first = WentBack(log, number, topic, scan.stamp, g.last_stamp);
+    return;
   }
   if (g.scans == 0) {
     g.beams = scan.size();
@@ -159,6 +197,8 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   if (index.scan_topic.empty())
     throw core::IoError(log +
                         ": no sensor_msgs/msg/LaserScan topic: nothing to map or localize with");
+  g.RequireForward(&g.scans[index.scan_topic], g.scans[index.scan_topic].scans, index.scan_topic,
+                   index);
   index.scan = g.scans[index.scan_topic];
   index.laser_frame = g.scan_frame[index.scan_topic];
 
@@ -166,6 +206,8 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
       Choose(log, "odometry (nav_msgs/msg/Odometry)", "--odometry-topic", choice.odometry_topic,
              Keys(g.odometry), index);
   if (!odometry_topic.empty()) {
+    g.RequireForward(&g.odometry[odometry_topic], g.odometry[odometry_topic].size(), odometry_topic,
+                     index);
     index.odometry = std::move(g.odometry[odometry_topic]);
     index.base_frame = g.odometry_child[odometry_topic];
     index.odometry_source = odometry_topic + " (nav_msgs/msg/Odometry)";
@@ -184,6 +226,7 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
           log + ": no odometry: no nav_msgs/msg/Odometry topic and no tf transform " + "from " +
           Quote(choice.odom_frame) + (base.empty() ? std::string() : " to " + Quote(base)));
     }
+    g.RequireForward(&it->second, it->second.size(), "tf", index);
     index.odometry = std::move(it->second);
     index.base_frame = base;
     index.odometry_source = "tf " + choice.odom_frame + " -> " + base;
@@ -193,6 +236,8 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
       Choose(log, "poses (geometry_msgs/msg/PoseStamped)", "--reference-topic",
              choice.reference_topic, Keys(g.poses), index);
   if (!reference_topic.empty()) {
+    g.RequireForward(&g.poses[reference_topic], g.poses[reference_topic].size(), reference_topic,
+                     index);
     index.reference = std::move(g.poses[reference_topic]);
     index.reference_source = reference_topic + " (geometry_msgs/msg/PoseStamped)";
   }
@@ -231,6 +276,8 @@ void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
     throw core::IoError(log + ": no laser messages (FLASER, ROBOTLASER1, RAWLASER1..4, RLASER): " +
                         "nothing to map or localize with");
   }
+  g.RequireForward(&g.scans[index.scan_topic], g.scans[index.scan_topic].scans, index.scan_topic,
+                   index);
   index.scan = g.scans[index.scan_topic];
   index.laser_frame = "laser";
   index.base_frame = "base_link";
@@ -247,12 +294,14 @@ void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
              ? std::string(": no ODOM lines and ") + index.scan_topic + " lines carry no robot pose"
              : " in " + Quote(odometry) + " lines"));
   }
+  g.RequireForward(&g.odometry[odometry], g.odometry[odometry].size(), odometry, index);
   index.odometry = std::move(g.odometry[odometry]);
   index.odometry_source =
       odometry == "ODOM" ? "ODOM lines" : "the robot pose of the " + odometry + " lines";
 
   const std::string reference = choice.reference_topic.empty() ? "TRUEPOS" : choice.reference_topic;
   if (g.poses.contains(reference)) {
+    g.RequireForward(&g.poses[reference], g.poses[reference].size(), reference, index);
     index.reference = std::move(g.poses[reference]);
     index.reference_source = reference + " lines";
   } else if (!choice.reference_topic.empty()) {
@@ -287,21 +336,21 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     } else if (IsCarmenLaser(m.type)) {
       const CarmenLaser laser =
           Decoded(log, number, m.topic, [&] { return ParseCarmenLaser(line, g.carmen_defaults); });
-      AddScan(g.scans[std::string(m.topic)], laser.scan.scan, log, number, m.topic);
+      AddScan(g.scans[std::string(m.topic)], laser.scan.scan, log, number, m.topic, g);
       if (laser.X_OR) {
         AddPose(g.odometry[std::string(m.topic)], laser.scan.scan.stamp, *laser.X_OR, log, number,
-                m.topic);
+                m.topic, g);
         auto& mount = g.carmen_mount[std::string(m.topic)];
         if (!mount && laser.X_OL) mount = laser.X_OR->Inverse() * *laser.X_OL;
       }
     } else if (m.type == "ODOM") {
       const OdometryMessage odom =
           Decoded(log, number, m.topic, [&] { return ParseCarmenOdometry(line); });
-      AddPose(g.odometry["ODOM"], odom.stamp, odom.pose, log, number, m.topic);
+      AddPose(g.odometry["ODOM"], odom.stamp, odom.pose, log, number, m.topic, g);
     } else if (m.type == "TRUEPOS") {
       const PoseStampedMessage truth =
           Decoded(log, number, m.topic, [&] { return ParseCarmenTruePose(line); });
-      AddPose(g.poses["TRUEPOS"], truth.stamp, truth.pose, log, number, m.topic);
+      AddPose(g.poses["TRUEPOS"], truth.stamp, truth.pose, log, number, m.topic, g);
     }
     return;
   }
@@ -310,11 +359,11 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     const ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeLaserScan(m.data); });
     ScanGeometry& geometry = g.scans[std::string(m.topic)];
     if (geometry.scans == 0) g.scan_frame[std::string(m.topic)] = scan.frame_id;
-    AddScan(geometry, scan.scan, log, number, m.topic);
+    AddScan(geometry, scan.scan, log, number, m.topic, g);
   } else if (m.type == kOdometryType) {
     const OdometryMessage odom =
         Decoded(log, number, m.topic, [&] { return DecodeOdometry(m.data); });
-    AddPose(g.odometry[std::string(m.topic)], odom.stamp, odom.pose, log, number, m.topic);
+    AddPose(g.odometry[std::string(m.topic)], odom.stamp, odom.pose, log, number, m.topic, g);
     g.odometry_child.try_emplace(std::string(m.topic), odom.child_frame_id);
   } else if (m.type == kTfType) {
     const TfMessage tf = Decoded(log, number, m.topic, [&] { return DecodeTfMessage(m.data); });
@@ -323,13 +372,13 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
       if (is_static) {
         g.tf_static[t.child] = t;
       } else if (t.parent == choice.odom_frame) {
-        AddPose(g.tf_odometry[t.child], t.stamp, t.X_PC, log, number, m.topic);
+        AddPose(g.tf_odometry[t.child], t.stamp, t.X_PC, log, number, m.topic, g);
       }
     }
   } else if (m.type == kPoseType) {
     const PoseStampedMessage pose =
         Decoded(log, number, m.topic, [&] { return DecodePoseStamped(m.data); });
-    AddPose(g.poses[std::string(m.topic)], pose.stamp, pose.pose, log, number, m.topic);
+    AddPose(g.poses[std::string(m.topic)], pose.stamp, pose.pose, log, number, m.topic, g);
   }
 }
 
@@ -393,6 +442,7 @@ void ReadScans(const LogIndex& index, double from_s, double to_s,
   CarmenLaserDefaults carmen_defaults;
   RawMessage m;
   std::uint64_t number = 0;
+  std::optional<double> last_stamp;
   while (source->Next(m)) {
     ++number;
     if (IsCarmen(m) && m.type == "PARAM") {
@@ -404,13 +454,14 @@ void ReadScans(const LogIndex& index, double from_s, double to_s,
     const double t = index.Since(m.log_time_ns);
     if (t < from_s) continue;
     if (t > to_s) break;
-    if (IsCarmen(m)) {
-      const CarmenLaser laser = Decoded(index.name, number, m.topic,
-                                        [&] { return ParseCarmenLaser(Text(m), carmen_defaults); });
-      on_scan(laser.scan, t);
-    } else {
-      on_scan(Decoded(index.name, number, m.topic, [&] { return DecodeLaserScan(m.data); }), t);
-    }
+    const ScanMessage scan =
+        IsCarmen(m) ? Decoded(index.name, number, m.topic,
+                              [&] { return ParseCarmenLaser(Text(m), carmen_defaults).scan; })
+                    : Decoded(index.name, number, m.topic, [&] { return DecodeLaserScan(m.data); });
+    // As in IndexLog: a scan stamped before the one before it is not used.
+    if (last_stamp && scan.scan.stamp < *last_stamp) continue;
+    last_stamp = scan.scan.stamp;
+    on_scan(scan, t);
   }
 }
 

@@ -15,6 +15,8 @@
 // A topic is found automatically when it is the only one of its type; otherwise StreamChoice
 // names it. Stamps are the messages' own (header stamps; CARMEN: the ipc timestamp), in s;
 // times given by the user (--from, --to) count in s from the log's first message (its log time).
+// A message stamped before the one before it in its stream is dropped; a used stream in which
+// more than 1 % of the messages do that has a broken clock and is refused (IndexLog's problem).
 //
 // A log is read in two passes, so that a long one is streamed, never held whole: IndexLog reads
 // everything but the scans into memory (poses are small), ReadScans then streams the scans.
@@ -107,7 +109,8 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice 
 void RequireUsable(const LogIndex& index);
 
 /// Calls `on_scan(scan, log_time_s)` for every scan of `index.scan_topic` whose log time (s since
-/// the log's first message) lies in [from_s, to_s], in log order. Throws core::IoError naming the
+/// the log's first message) lies in [from_s, to_s], in log order, but for a scan stamped before
+/// the one before it (IndexLog drops those too). Throws core::IoError naming the
 /// log and the message for a scan that cannot be decoded.
 void ReadScans(const LogIndex& index, double from_s, double to_s,
                const std::function<void(const ScanMessage&, double)>& on_scan);

@@ -46,6 +46,6 @@ check bench/compare '*' 'bench/(output|suite|sweep|replay|cli|worldgen)/|logs/|C
 check bench/worldgen '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli)/|nav/|viz/|logs/|CLI/" "world generation depends on core, io and sim only"
 check bench/replay '*' 'bench/(output|suite|sweep|compare|cli|worldgen)/|CLI/' \
   "replay depends on the engine, metrics, logs and viz only"
-check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim and nav kernels only"
+check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim, nav and logs kernels only"
 [ $fail -eq 0 ] && echo "include rules: ok"
 exit $fail

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "bench/replay/log_localize.hpp"
 #include "bench/replay/log_metrics.hpp"
@@ -58,6 +59,15 @@ struct Recorded {
 const Recorded& Drive() {
   static const Recorded* recorded = new Recorded();
   return *recorded;
+}
+
+TEST(LogReplay, RecordingDoesNotChangeTheDrive) {
+  const Recorded& r = Drive();
+  const TeachResult plain = RunTeachDrive(r.scenario, {MapMode::kPartial});
+  const TeachTrace& recorded = r.experiment.modes.front().teach.trace;
+  ASSERT_EQ(plain.modes.front().trace.X_WR.size(), recorded.X_WR.size());
+  EXPECT_EQ(plain.modes.front().trace.X_WR.back(), recorded.X_WR.back());
+  EXPECT_EQ(plain.modes.front().trace.X_OR.back(), recorded.X_OR.back());
 }
 
 TEST(LogReplay, BothFormatsGiveTheSameScansAndOdometry) {

@@ -45,7 +45,7 @@ head -c $((size / 2)) "$mcap" >"$tmp/truncated.mcap"
 cp "$mcap" "$tmp/corrupt.mcap"
 printf '\xff\xff\xff\xff' | dd of="$tmp/corrupt.mcap" bs=1 seek=$((size / 3)) conv=notrunc status=none
 # CARMEN lines: time going backwards, a NaN range.
-printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nODOM 1 0 0 0 0 0 2.0 h 2.0\nODOM 2 0 0 0 0 0 1.5 h 1.5\n' >"$tmp/backwards.log"
+printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nODOM 1 0 0 0 0 0 2.0 h 2.0\nODOM 2 0 0 0 0 0 1.5 h 1.5\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 2.0 h 2.0\n' >"$tmp/backwards.log"
 printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 nan 1.0 0 0 0 0 0 0 1.0 h 1.0\n' >"$tmp/nan.log"
 printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 2.0 h 2.0\nODOM 0 0 0 0 0 0 2.0 h 2.0\n' >"$tmp/noreference.log"
 printf '\x00\x01\x02binary' >"$tmp/binary.bin"
@@ -61,7 +61,7 @@ expect_bad corrupt-chunk-data "corrupt.mcap" log-localize "$tmp/corrupt.mcap" --
 expect_bad no-scan-topic "no sensor_msgs/msg/LaserScan topic" log-teach "$src/tests/data/rosbag2/talker_mcap"
 expect_bad not-a-scan-topic "--scan-topic '/odom' holds no laser scans" log-teach "$mcap" --scan-topic /odom
 expect_bad unknown-topic "--scan-topic '/front' is not in the log" log-localize "$mcap" --teach "$teach" --scan-topic /front
-expect_bad backwards "backwards.log: message 3 on 'ODOM'" log-teach "$tmp/backwards.log"
+expect_bad backwards "backwards.log: message 3 on 'ODOM'" log-teach "$tmp/backwards.log" --odometry-topic ODOM
 expect_bad nan-range "nan.log" log-info "$tmp/nan.log"
 expect_bad consistent-without-reference "consistent needs a reference" log-teach "$tmp/noreference.log" --mode consistent
 expect_bad online-without-switching "\`online\` switching needs a map mode that switches maps" log-teach "$mcap" --mode consistent

@@ -184,7 +184,12 @@ TEST(SensorLog, TimeGoingBackwardsIsRefusedNamingTheMessage) {
     w.WriteLaser(Scan(1.0), core::Pose2(), kMount, 0.0, 0.0);
     w.Close();
   }
-  const std::string error = IndexError(file);
+  // The laser lines carry the odometry: the ODOM lines are not used, and their clock may jitter
+  // (the Intel Research Lab log's does).
+  EXPECT_EQ(IndexError(file), "");
+  StreamChoice odom;
+  odom.odometry_topic = "ODOM";
+  const std::string error = IndexError(file, odom);
   EXPECT_NE(error.find("back.log: message 3 on 'ODOM'"), std::string::npos) << error;
   EXPECT_NE(error.find("goes back"), std::string::npos) << error;
 }
