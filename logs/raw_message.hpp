@@ -3,6 +3,7 @@
 // every log reader — CARMEN, MCAP, rosbag2 SQLite — is a MessageSource that hands out its
 // messages one by one in storage order, so that a long log is streamed, never held whole.
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -18,6 +19,9 @@ struct RawMessage {
   std::int64_t log_time_ns = 0;        ///< when the recorder received it (ns since the epoch)
   std::span<const std::uint8_t> data;  ///< the serialized message (a CARMEN line without '\n')
 };
+
+/// A log time in ns from seconds (rounded to the nearest nanosecond).
+inline std::int64_t LogTimeNs(double s) { return std::llround(s * 1e9); }
 
 /// A log's messages in storage order.
 class MessageSource {

@@ -14,6 +14,7 @@
 #include "bench/cli/compare_command.hpp"
 #include "bench/cli/log_info_command.hpp"
 #include "bench/cli/log_localize_command.hpp"
+#include "bench/cli/log_simulate_command.hpp"
 #include "bench/cli/log_teach_command.hpp"
 #include "bench/cli/merge_command.hpp"
 #include "bench/cli/run_command.hpp"
@@ -131,6 +132,13 @@ int main(int argc, char** argv) {
       "Localize a recorded log in a teach folder's partial maps, measured against its reference");
   bench::AddLogLocalizeOptions(log_localize_cmd, &log_localize);
 
+  bench::LogSimulateOptions log_simulate;
+  CLI::App* log_simulate_cmd = app.add_subcommand(
+      "log-simulate",
+      "Drive a log's reference again in the simulator, in its consistent map, with its LiDAR: "
+      "the same log with simulated scans");
+  bench::AddLogSimulateOptions(log_simulate_cmd, &log_simulate);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -158,6 +166,7 @@ int main(int argc, char** argv) {
     if (*log_info_cmd) return bench::RunLogInfoCommand(log_info);
     if (*log_teach_cmd) return bench::RunLogTeachCommand(log_teach, command_line);
     if (*log_localize_cmd) return bench::RunLogLocalizeCommand(log_localize, command_line);
+    if (*log_simulate_cmd) return bench::RunLogSimulateCommand(log_simulate);
     if (*render_cmd) {
       const auto files = bench::RenderResults(render_dir);
       std::cout << files.size() << " figures in " << render_dir.string() << "\n";

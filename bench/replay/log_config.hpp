@@ -10,6 +10,7 @@
 //                        along the driven path from --from; route.revisit_radius, switch_window,
 //                        online_drift as in a scenario; route.file and route.points do not apply
 //   sim.odometry         the odometry error model of --synthetic-odometry
+//   sim.lidar.noise      log-simulate: the simulated LiDAR's noise (the geometry is the log's)
 //   nav                  the navigation stack (mapper, scan_matcher, localizer, follower ...)
 //   playback             initial_sigma_xy, initial_sigma_yaw_deg: the localizer's start
 //   metrics              the local-truth matching of the localization error
@@ -25,16 +26,30 @@
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/trace.hpp"
 #include "io/config_override.hpp"
+#include "sim/lidar.hpp"
 #include "sim/odometry.hpp"
 
 namespace retrace::bench {
 
+/// `sim.lidar` for a log: only the noise applies (`retrace log-simulate`); the geometry is the
+/// log's.
+struct LogLidarConfig {
+  sim::LidarNoiseConfig noise;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("noise", noise);
+  }
+};
+
 struct LogSimConfig {
   sim::OdometryConfig odometry;
+  LogLidarConfig lidar;
 
   template <class V>
   void Reflect(V& v) {
     v("odometry", odometry);
+    v("lidar", lidar);
   }
   void Validate() const { odometry.Validate(); }
 };

@@ -5,6 +5,7 @@
 
 #include "logs/carmen_writer.hpp"
 #include "logs/mcap_writer.hpp"
+#include "logs/raw_message.hpp"
 #include "logs/ros_messages.hpp"
 
 namespace retrace::bench {
@@ -15,8 +16,6 @@ constexpr const char* kOdomFrame = "odom";
 constexpr const char* kBaseFrame = "base_link";
 constexpr const char* kLaserFrame = "laser";
 constexpr const char* kWorldFrame = "world";
-
-std::int64_t Nanoseconds(double s) { return std::llround(s * 1e9); }
 
 }  // namespace
 
@@ -58,7 +57,7 @@ void LogRecorder::OnOdometry(double time, const core::Pose2& X_OR, const core::P
   f.carmen.WriteOdometry(time, X_OR, tv_, rv_);
   f.carmen.WriteTruePose(time, X_WR, X_OR);
 
-  const std::int64_t ns = Nanoseconds(time);
+  const std::int64_t ns = logs::LogTimeNs(time);
   if (!f.static_written) {
     f.static_written = true;
     logs::TfMessage mount{{{time, kBaseFrame, kLaserFrame, robot_.X_RL}}};
@@ -73,7 +72,7 @@ void LogRecorder::OnOdometry(double time, const core::Pose2& X_OR, const core::P
 void LogRecorder::OnScan(const core::LaserScan& scan, const core::Pose2& X_OR, const core::Pose2&) {
   Files& f = *files_;
   f.carmen.WriteLaser(scan, X_OR, robot_.X_RL, tv_, rv_);
-  f.mcap.Write(f.scan, Nanoseconds(scan.stamp), logs::EncodeLaserScan({scan, kLaserFrame}));
+  f.mcap.Write(f.scan, logs::LogTimeNs(scan.stamp), logs::EncodeLaserScan({scan, kLaserFrame}));
 }
 
 void LogRecorder::OnEnd() {

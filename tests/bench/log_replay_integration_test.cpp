@@ -13,11 +13,14 @@
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
+#include "bench/output/results_io.hpp"
 #include "bench/replay/log_localize.hpp"
 #include "bench/replay/log_metrics.hpp"
 #include "bench/replay/log_recorder.hpp"
+#include "bench/replay/log_simulate.hpp"
 #include "bench/replay/log_streams.hpp"
 #include "bench/replay/log_teach.hpp"
+#include "core/errors.hpp"
 #include "logs/sensor_log.hpp"
 #include "tests/support/source_dir.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -61,7 +64,7 @@ const Recorded& Drive() {
   return *recorded;
 }
 
-TEST(LogReplay, RecordingDoesNotChangeTheDrive) {
+void RecordingDoesNotChangeTheDrive() {
   const Recorded& r = Drive();
   const TeachResult plain = RunTeachDrive(r.scenario, {MapMode::kPartial});
   const TeachTrace& recorded = r.experiment.modes.front().teach.trace;
@@ -70,7 +73,7 @@ TEST(LogReplay, RecordingDoesNotChangeTheDrive) {
   EXPECT_EQ(plain.modes.front().trace.X_OR.back(), recorded.X_OR.back());
 }
 
-TEST(LogReplay, BothFormatsGiveTheSameScansAndOdometry) {
+void BothFormatsGiveTheSameScansAndOdometry() {
   const Recorded& r = Drive();
   const logs::LogIndex mcap = logs::IndexLog(r.tmp.path() / "teach.mcap");
   logs::StreamChoice odom_lines;
@@ -115,7 +118,7 @@ TEST(LogReplay, BothFormatsGiveTheSameScansAndOdometry) {
   }
 }
 
-TEST(LogReplay, TeachingFromTheLogMakesTheLiveDrivesMaps) {
+void TeachingFromTheLogMakesTheLiveDrivesMaps() {
   const Recorded& r = Drive();
   const logs::LogIndex index = logs::IndexLog(r.tmp.path() / "teach.mcap");
   const LogConfig config = r.Config();
@@ -133,7 +136,7 @@ TEST(LogReplay, TeachingFromTheLogMakesTheLiveDrivesMaps) {
   }
 }
 
-TEST(LogReplay, LocalizingTheRunLogMatchesTheLiveRun) {
+void LocalizingTheRunLogMatchesTheLiveRun() {
   const Recorded& r = Drive();
   const ModeResult& live = r.experiment.modes.front();
   const double live_rms = live.run_metrics.front().localization_error_m.rms;
@@ -153,6 +156,59 @@ TEST(LogReplay, LocalizingTheRunLogMatchesTheLiveRun) {
     ASSERT_TRUE(run.snapshot.has_value()) << file;
     EXPECT_TRUE(run.snapshot->pedestrian.empty()) << file;  // a log knows no pedestrians
   }
+}
+
+void SimulatedScansOfTheLogLocalizeInItsConsistentMap() {
+  const Recorded& r = Drive();
+  const logs::LogIndex index = logs::IndexLog(r.tmp.path() / "run_0.mcap");
+  LogConfig config = r.Config();
+  config.modes = {MapMode::kConsistent};
+  const LogStreams streams = PrepareLogStreams(index, config, false, std::nullopt);
+  // The world: the consistent map taught from the recorded teaching drive.
+  const logs::LogIndex teach_log = logs::IndexLog(r.tmp.path() / "teach.mcap");
+  const LogTeachResult taught =
+      RunLogTeach(teach_log, PrepareLogStreams(teach_log, config, false, std::nullopt), config, {});
+  const fs::path world = r.tmp.path() / "consistent";
+  WriteTeachFolder(world, taught.modes.front());
+
+  const fs::path simulated = r.tmp.path() / "simulated.mcap";
+  const LogSimulation sim =
+      SimulateLog(index, streams, taught.modes.front(), world, config, {}, simulated);
+  EXPECT_EQ(sim.scans, index.scan.scans);
+  const logs::LogIndex sim_index = logs::IndexLog(simulated);
+  ASSERT_EQ(sim_index.problem, "");
+  EXPECT_EQ(sim_index.scan.beams, index.scan.beams);
+  EXPECT_NEAR(sim_index.scan.angle_min, index.scan.angle_min, 1e-6);
+  // The odometry from the first scan on (the log's starts a tick or two before it).
+  EXPECT_NEAR(static_cast<double>(sim_index.odometry.size()),
+              static_cast<double>(index.odometry.size()), 5.0);
+
+  // Localized in the consistent map, the simulated scans give errors like the recorded ones.
+  const LogStreams sim_streams = PrepareLogStreams(sim_index, config, false, std::nullopt);
+  const LogLocalizeResult run =
+      RunLogLocalize(sim_index, sim_streams, taught.modes.front(), config, {});
+  const LogLocalizeMetrics m =
+      ComputeLogMetrics(run, ComputeLogSeries(run, taught.modes.front().trace),
+                        taught.modes.front().bundle, config.metrics);
+  EXPECT_LT(m.localization_error_m.rms, 0.15);
+  EXPECT_LT(m.rejected_fraction, 0.05);  // nobody walks in the simulated world
+
+  // A world of several maps is refused.
+  EXPECT_THROW(SimulateLog(index, streams, r.experiment.modes.front().teach, world, config, {},
+                           r.tmp.path() / "refused.mcap"),
+               core::ConfigError);
+}
+
+// Two tests, not five: each test is a process of its own, and each would record the drive again.
+TEST(LogReplay, RecordedDriveReadsBackAndTeachesLikeTheLiveOne) {
+  RecordingDoesNotChangeTheDrive();
+  BothFormatsGiveTheSameScansAndOdometry();
+  TeachingFromTheLogMakesTheLiveDrivesMaps();
+}
+
+TEST(LogReplay, RecordedAndResimulatedRunsLocalizeLikeTheLiveOne) {
+  LocalizingTheRunLogMatchesTheLiveRun();
+  SimulatedScansOfTheLogLocalizeInItsConsistentMap();
 }
 
 }  // namespace

@@ -38,6 +38,8 @@ carmen="$tmp/logs/teach.log.gz"
 "$retrace" log-teach "$mcap" --mode partial --switch-points 20 --out "$tmp/taught" >/dev/null ||
   { echo "FAIL: could not teach the recorded log"; exit 1; }
 teach="$tmp/taught/partial/teach"
+"$retrace" log-teach "$mcap" --mode consistent --switch-points auto --out "$tmp/taught_c" >/dev/null ||
+  { echo "FAIL: could not teach the consistent map"; exit 1; }
 
 size=$(stat -c %s "$mcap")
 head -c $((size / 2)) "$mcap" >"$tmp/truncated.mcap"
@@ -78,6 +80,8 @@ expect_bad route-file "route.file: does not apply to a log" log-teach "$mcap" --
 expect_bad repeats "playback: only initial_sigma_xy" log-localize "$mcap" --teach "$teach" --set playback.repeats=3
 expect_bad unknown-key "particle" log-localize "$mcap" --teach "$teach" --set nav.localizer.particle=100
 expect_bad config-missing "missing.yaml" log-teach "$mcap" --config "$tmp/missing.yaml"
+expect_bad simulate-partial-world "--teach: the world is the map of a teach folder of one map" log-simulate "$mcap" --teach "$teach"
+expect_bad simulate-no-reference "no reference to drive" log-simulate "$tmp/noreference.log" --teach "$tmp/taught_c/consistent/teach"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
