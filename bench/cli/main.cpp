@@ -12,6 +12,7 @@
 #include "bench/cli/bench_command.hpp"
 #include "bench/cli/campus_command.hpp"
 #include "bench/cli/compare_command.hpp"
+#include "bench/cli/log_compare_command.hpp"
 #include "bench/cli/log_info_command.hpp"
 #include "bench/cli/log_localize_command.hpp"
 #include "bench/cli/log_simulate_command.hpp"
@@ -139,6 +140,11 @@ int main(int argc, char** argv) {
       "the same log with simulated scans");
   bench::AddLogSimulateOptions(log_simulate_cmd, &log_simulate);
 
+  bench::LogCompareOptions log_compare;
+  CLI::App* log_compare_cmd = app.add_subcommand(
+      "log-compare", "Put log-localize results side by side: one table, one figure of errors");
+  bench::AddLogCompareOptions(log_compare_cmd, &log_compare);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -167,6 +173,7 @@ int main(int argc, char** argv) {
     if (*log_teach_cmd) return bench::RunLogTeachCommand(log_teach, command_line);
     if (*log_localize_cmd) return bench::RunLogLocalizeCommand(log_localize, command_line);
     if (*log_simulate_cmd) return bench::RunLogSimulateCommand(log_simulate);
+    if (*log_compare_cmd) return bench::RunLogCompareCommand(log_compare);
     if (*render_cmd) {
       const auto files = bench::RenderResults(render_dir);
       std::cout << files.size() << " figures in " << render_dir.string() << "\n";

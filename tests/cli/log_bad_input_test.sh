@@ -80,6 +80,9 @@ expect_bad route-file "route.file: does not apply to a log" log-teach "$mcap" --
 expect_bad repeats "playback: only initial_sigma_xy" log-localize "$mcap" --teach "$teach" --set playback.repeats=3
 expect_bad unknown-key "particle" log-localize "$mcap" --teach "$teach" --set nav.localizer.particle=100
 expect_bad config-missing "missing.yaml" log-teach "$mcap" --config "$tmp/missing.yaml"
+expect_bad compare-one "a comparison needs at least two log-localize folders" log-compare "$tmp/taught"
+expect_bad compare-not-localize "metrics.json" log-compare "$tmp/taught" "$tmp/taught_c"
+expect_bad compare-labels "--labels: gives 3 labels for 2 folders" log-compare "$tmp/taught" "$tmp/taught_c" --labels a,b,c
 expect_bad simulate-partial-world "--teach: the world is the map of a teach folder of one map" log-simulate "$mcap" --teach "$teach"
 expect_bad simulate-no-reference "no reference to drive" log-simulate "$tmp/noreference.log" --teach "$tmp/taught_c/consistent/teach"
 
