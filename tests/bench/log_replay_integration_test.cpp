@@ -21,6 +21,7 @@
 #include "bench/replay/log_streams.hpp"
 #include "bench/replay/log_teach.hpp"
 #include "core/errors.hpp"
+#include "io/config_override.hpp"
 #include "logs/sensor_log.hpp"
 #include "tests/support/source_dir.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -30,10 +31,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The small scenario taught and played back once in partial mode, every drive recorded.
+// The small scenario's room, most of a lap (20 m, a switch at 10 m) to keep the sanitizer build
+// quick, taught and played back once in partial mode, every drive recorded.
 struct Recorded {
   testing::TempDir tmp;
-  Scenario scenario = LoadScenario(testing::kSource / "scenarios/small.yaml");
+  Scenario scenario =
+      LoadScenario(testing::kSource / "scenarios/small.yaml",
+                   {io::ParseOverride("route.points=[[1, 1], [9, 1], [9, 5], [1, 5]]"),
+                    io::ParseOverride("route.switch_points=[10]")});
   Experiment experiment;
 
   Recorded() {
@@ -82,7 +87,7 @@ void BothFormatsGiveTheSameScansAndOdometry() {
   ASSERT_EQ(mcap.problem, "");
   ASSERT_EQ(carmen.problem, "");
   EXPECT_EQ(mcap.scan.scans, carmen.scan.scans);
-  EXPECT_GT(mcap.scan.scans, 1000U);
+  EXPECT_GT(mcap.scan.scans, 500U);
   EXPECT_LT(core::Distance(mcap.X_RL, carmen.X_RL), 1e-12);
 
   ASSERT_EQ(mcap.odometry.size(), carmen.odometry.size());
@@ -131,7 +136,8 @@ void TeachingFromTheLogMakesTheLiveDrivesMaps() {
   // The same switch point: the live drive measures it along the route (the teacher's progress),
   // the log along the path driven, which the teacher's wobble makes about 2 % longer.
   for (std::size_t k = 0; k < live.bundle.maps.size(); ++k) {
-    EXPECT_LT(core::Distance(log.bundle.maps[k].X_MS, live.bundle.maps[k].X_MS), 0.6) << k;
+    EXPECT_LT(core::Distance(log.bundle.maps[k].X_MS, live.bundle.maps[k].X_MS), 0.6)
+        << k << ": " << log.bundle.maps[k].X_MS << " vs " << live.bundle.maps[k].X_MS;
     EXPECT_NEAR(log.bundle.maps[k].path.Length(), live.bundle.maps[k].path.Length(), 0.6) << k;
   }
 }

@@ -30,12 +30,13 @@ expect_bad() {  # expect_bad <name> <expected substring> <command> <args...>
   fi
 }
 
-# A real recorded drive to damage: the small scenario's teaching drive.
+# A real recorded drive to damage: the small scenario's teaching drive, shortened to 12 m.
 "$retrace" teach "$src/scenarios/small.yaml" --mode partial --out "$tmp/sim" \
+  --set 'route.points=[[1, 1], [9, 1], [9, 5]]' --set 'route.switch_points=[6]' \
   --record-log "$tmp/logs" >/dev/null 2>&1 || { echo "FAIL: could not record a log"; exit 1; }
 mcap="$tmp/logs/teach.mcap"
 carmen="$tmp/logs/teach.log.gz"
-"$retrace" log-teach "$mcap" --mode partial --switch-points 20 --out "$tmp/taught" >/dev/null ||
+"$retrace" log-teach "$mcap" --mode partial --switch-points 6 --out "$tmp/taught" >/dev/null ||
   { echo "FAIL: could not teach the recorded log"; exit 1; }
 teach="$tmp/taught/partial/teach"
 "$retrace" log-teach "$mcap" --mode consistent --switch-points auto --out "$tmp/taught_c" >/dev/null ||
@@ -67,8 +68,8 @@ expect_bad backwards "backwards.log: message 3 on 'ODOM'" log-teach "$tmp/backwa
 expect_bad nan-range "nan.log" log-info "$tmp/nan.log"
 expect_bad consistent-without-reference "consistent needs a reference" log-teach "$tmp/noreference.log" --mode consistent
 expect_bad online-without-switching "\`online\` switching needs a map mode that switches maps" log-teach "$mcap" --mode consistent
-expect_bad switch-beyond "beyond the driven path" log-teach "$mcap" --mode partial --switch-points 20,500
-expect_bad switch-order "must be strictly increasing" log-teach "$mcap" --switch-points 30,20
+expect_bad switch-beyond "beyond the driven path" log-teach "$mcap" --mode partial --switch-points 6,500
+expect_bad switch-order "must be strictly increasing" log-teach "$mcap" --switch-points 8,6
 expect_bad switch-word "route.switch_points" log-teach "$mcap" --switch-points sometimes
 expect_bad from-negative "--from: must be a time >= 0 s" log-teach "$mcap" --from -1
 expect_bad to-before-from "--to: must be later than --from" log-teach "$mcap" --from 50 --to 10

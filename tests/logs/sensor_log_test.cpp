@@ -182,6 +182,7 @@ TEST(SensorLog, TimeGoingBackwardsIsRefusedNamingTheMessage) {
     w.WriteOdometry(2.0, core::Pose2(1, 0, 0), 0.0, 0.0);
     w.WriteOdometry(1.5, core::Pose2(2, 0, 0), 0.0, 0.0);
     w.WriteLaser(Scan(1.0), core::Pose2(), kMount, 0.0, 0.0);
+    w.WriteLaser(Scan(2.0), core::Pose2(1, 0, 0), kMount, 0.0, 0.0);
     w.Close();
   }
   // The laser lines carry the odometry: the ODOM lines are not used, and their clock may jitter
@@ -192,6 +193,31 @@ TEST(SensorLog, TimeGoingBackwardsIsRefusedNamingTheMessage) {
   const std::string error = IndexError(file, odom);
   EXPECT_NE(error.find("back.log: message 3 on 'ODOM'"), std::string::npos) << error;
   EXPECT_NE(error.find("goes back"), std::string::npos) << error;
+  EXPECT_NE(error.find("1 of 3 messages go back"), std::string::npos) << error;
+}
+
+TEST(SensorLog, AFewStampsGoingBackAreDroppedAndNoted) {
+  testing::TempDir tmp;
+  const fs::path file = tmp.path() / "jitter.log";
+  {
+    CarmenWriter w(file);
+    for (int k = 0; k < 200; ++k) {
+      // One laser line in 200 is stamped 0.05 s before the one before it.
+      const double t = k == 100 ? 0.1 * 99 - 0.05 : 0.1 * k;
+      w.WriteLaser(Scan(t), core::Pose2(0.1 * k, 0, 0), kMount, 1.0, 0.0);
+    }
+    w.Close();
+  }
+  const LogIndex index = IndexLog(file);
+  EXPECT_EQ(index.problem, "");
+  EXPECT_EQ(index.scan.scans, 199U);
+  EXPECT_EQ(index.odometry.size(), 199U);
+  ASSERT_EQ(index.notes.size(), 1U);
+  EXPECT_NE(index.notes[0].find("1 of 200 messages on 'ROBOTLASER1'"), std::string::npos)
+      << index.notes[0];
+  std::size_t scans = 0;
+  ReadScans(index, 0.0, 1e9, [&](const ScanMessage&, double) { ++scans; });
+  EXPECT_EQ(scans, 199U);
 }
 
 TEST(SensorLog, FormatsAreDetectedByContent) {
