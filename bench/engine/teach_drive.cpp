@@ -17,15 +17,7 @@ namespace retrace::bench {
 
 namespace {
 
-// One mode's recorder, fed from the shared drive.
-struct ModeRecorder {
-  MapMode mode;
-  nav::TeachRecorder recorder;
-  std::size_t next_switch = 0;
-};
-
-}  // namespace
-
+// Splits the poses a finished recorder was given into its `map_count` maps.
 std::vector<TeachMapTrace> MapTraces(const nav::TeachRecorder& recorder, std::size_t map_count,
                                      const std::vector<double>& time,
                                      const std::vector<core::Pose2>& X_WR) {
@@ -40,6 +32,50 @@ std::vector<TeachMapTrace> MapTraces(const nav::TeachRecorder& recorder, std::si
     if (!X_WR.empty()) map.X_WR.push_back(X_WR[i]);
   }
   return maps;
+}
+
+}  // namespace
+
+std::vector<ModeRecorder> MakeModeRecorders(
+    const std::vector<MapMode>& modes, const NavConfig& nav, const nav::RobotGeometry& robot,
+    const std::optional<nav::OnlineSwitchingConfig>& online) {
+  std::vector<ModeRecorder> recorders;
+  recorders.reserve(modes.size());
+  for (MapMode mode : modes) {
+    std::optional<nav::ScanMatcherConfig> matcher;
+    if (mode == MapMode::kScanMatched) matcher = nav.scan_matcher;
+    recorders.push_back({mode, nav::TeachRecorder(nav.mapper, robot, matcher,
+                                                  SwitchesMaps(mode) ? online : std::nullopt)});
+  }
+  return recorders;
+}
+
+void SignalSwitches(std::vector<ModeRecorder>& recorders, const std::vector<double>& switch_points,
+                    double progress) {
+  for (ModeRecorder& r : recorders) {
+    if (!SwitchesMaps(r.mode)) continue;
+    while (r.next_switch < switch_points.size() && progress >= switch_points[r.next_switch]) {
+      r.recorder.CloseMap();
+      ++r.next_switch;
+    }
+  }
+}
+
+std::vector<ModeTeach> FinishModeRecorders(std::vector<ModeRecorder>& recorders,
+                                           const TeachTrace& trace, const std::vector<double>& time,
+                                           const std::vector<core::Pose2>& X_WR) {
+  std::vector<ModeTeach> teaches;
+  for (ModeRecorder& r : recorders) {
+    ModeTeach m;
+    m.mode = r.mode;
+    m.match_counts = r.recorder.match_counts();
+    m.bundle = r.recorder.Finish();
+    m.online_switches = r.recorder.online_switches();
+    m.trace = trace;
+    m.trace.maps = MapTraces(r.recorder, m.bundle.maps.size(), time, X_WR);
+    teaches.push_back(std::move(m));
+  }
+  return teaches;
 }
 
 void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<MapMode>& modes) {
@@ -74,14 +110,8 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
     online = nav::OnlineSwitchingConfig{config.route.revisit_radius, config.route.switch_window,
                                         config.route.online_drift};
   }
-  std::vector<ModeRecorder> recorders;
-  recorders.reserve(modes.size());
-  for (MapMode mode : modes) {
-    std::optional<nav::ScanMatcherConfig> matcher;
-    if (mode == MapMode::kScanMatched) matcher = config.nav.scan_matcher;
-    recorders.push_back({mode, nav::TeachRecorder(config.nav.mapper, scenario.robot, matcher,
-                                                  SwitchesMaps(mode) ? online : std::nullopt)});
-  }
+  std::vector<ModeRecorder> recorders =
+      MakeModeRecorders(modes, config.nav, scenario.robot, online);
   // The odometry ticks, for the per-map traces.
   std::vector<double> tick_time;
   std::vector<core::Pose2> tick_X_WR;
@@ -110,15 +140,9 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
             " m along the route");
       }
       command = teacher.Command(X_WR, stepper.control_dt());
-      // The operator's switch signal, given as the teacher's progress passes a switch point.
-      for (ModeRecorder& r : recorders) {
-        if (!SwitchesMaps(r.mode) || online) continue;
-        while (r.next_switch < switch_points.size() &&
-               teacher.Progress() >= switch_points[r.next_switch]) {
-          r.recorder.CloseMap();
-          ++r.next_switch;
-        }
-      }
+      // The operator's switch signal, given as the teacher's progress passes a switch point
+      // (none are listed with online switching).
+      SignalSwitches(recorders, switch_points, teacher.Progress());
       for (const std::string& name : events.Fire(simulator.time(), teacher.Progress(), simulator)) {
         result.events.push_back(core::FormatNumber(simulator.time()) + " " + name);
       }
@@ -143,16 +167,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   if (tap != nullptr) tap->OnEnd();
   result.collisions = stepper.collisions();
   result.duration_s = simulator.time();
-  for (ModeRecorder& r : recorders) {
-    ModeTeach m;
-    m.mode = r.mode;
-    m.match_counts = r.recorder.match_counts();
-    m.bundle = r.recorder.Finish();
-    m.online_switches = r.recorder.online_switches();
-    m.trace = trace;
-    m.trace.maps = MapTraces(r.recorder, m.bundle.maps.size(), tick_time, tick_X_WR);
-    result.modes.push_back(std::move(m));
-  }
+  result.modes = FinishModeRecorders(recorders, trace, tick_time, tick_X_WR);
   result.cpu_time_s = ThreadCpuSeconds() - cpu_start;
   return result;
 }

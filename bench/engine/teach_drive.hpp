@@ -9,6 +9,7 @@
 //               map at every switch point (the paper's §5.4 remedy)
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,12 +45,30 @@ struct TeachResult {
 /// `modes` switches maps (a consistent or single map alone).
 void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<MapMode>& modes);
 
-/// Splits the poses a finished recorder was given into its `map_count` maps: per map the
-/// instants, the recorder's pose in the map and the truth `X_WR` at the same instants (one entry
-/// per OnPose call, `time` and `X_WR` in the same order; `X_WR` may be empty: no truth).
-std::vector<TeachMapTrace> MapTraces(const nav::TeachRecorder& recorder, std::size_t map_count,
-                                     const std::vector<double>& time,
-                                     const std::vector<core::Pose2>& X_WR);
+/// One map mode's teach recorder, fed from a drive (the simulator's or a log's).
+struct ModeRecorder {
+  MapMode mode = MapMode::kPartial;
+  nav::TeachRecorder recorder;
+  std::size_t next_switch = 0;  ///< the next listed switch point to signal
+};
+
+/// The recorders of `modes` for one drive: scan matching for scan_matched, `online` switching
+/// (if given) for the modes that switch maps.
+std::vector<ModeRecorder> MakeModeRecorders(
+    const std::vector<MapMode>& modes, const NavConfig& nav, const nav::RobotGeometry& robot,
+    const std::optional<nav::OnlineSwitchingConfig>& online);
+
+/// The operator's switch signal: closes the map of every recorder that switches maps once per
+/// switch point (m, increasing) that `progress` (m) has reached.
+void SignalSwitches(std::vector<ModeRecorder>& recorders, const std::vector<double>& switch_points,
+                    double progress);
+
+/// Finishes every recorder into its mode's teach: the bundle, and the drive's `trace` with the
+/// per-map traces — the poses the recorder was given, at the instants `time`, beside the truth
+/// `X_WR` (one entry per OnPose call, in order; `X_WR` may be empty: no truth).
+std::vector<ModeTeach> FinishModeRecorders(std::vector<ModeRecorder>& recorders,
+                                           const TeachTrace& trace, const std::vector<double>& time,
+                                           const std::vector<core::Pose2>& X_WR);
 
 /// Drives the route with the teacher and builds the bundles of `modes`; `tap` (optional) gets
 /// a copy of the sensor stream. Throws like

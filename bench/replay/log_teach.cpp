@@ -11,12 +11,6 @@ namespace retrace::bench {
 
 namespace {
 
-struct ModeRecorder {
-  MapMode mode;
-  nav::TeachRecorder recorder;
-  std::size_t next_switch = 0;
-};
-
 // One scan of the window with the poses it is taught at.
 struct ScanPoses {
   core::Pose2 X_OR;
@@ -93,15 +87,8 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
     online_config = nav::OnlineSwitchingConfig{
         config.route.revisit_radius, config.route.switch_window, config.route.online_drift};
   }
-  std::vector<ModeRecorder> recorders;
-  recorders.reserve(modes.size());
-  for (MapMode mode : modes) {
-    std::optional<nav::ScanMatcherConfig> matcher;
-    if (mode == MapMode::kScanMatched) matcher = config.nav.scan_matcher;
-    recorders.push_back(
-        {mode, nav::TeachRecorder(config.nav.mapper, streams.robot, matcher,
-                                  SwitchesMaps(mode) ? online_config : std::nullopt)});
-  }
+  std::vector<ModeRecorder> recorders =
+      MakeModeRecorders(modes, config.nav, streams.robot, online_config);
 
   TeachTrace trace;
   std::optional<core::Pose2> X_RW_start;  // the consistent map's origin: the first reference pose
@@ -123,14 +110,7 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
     if (last_position) result.driven_m += (position - *last_position).norm();
     last_position = position;
 
-    for (ModeRecorder& r : recorders) {
-      if (!SwitchesMaps(r.mode)) continue;
-      while (r.next_switch < result.switch_points.size() &&
-             result.driven_m >= result.switch_points[r.next_switch]) {
-        r.recorder.CloseMap();
-        ++r.next_switch;
-      }
-    }
+    SignalSwitches(recorders, result.switch_points, result.driven_m);
     trace.time.push_back(m.scan.stamp);
     trace.X_OR.push_back(poses->X_OR);
     if (poses->X_WR) trace.X_WR.push_back(*poses->X_WR);
@@ -152,16 +132,7 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
                                                        ArcLengthText(result.driven_m) + ")");
   }
 
-  for (ModeRecorder& r : recorders) {
-    ModeTeach teach;
-    teach.mode = r.mode;
-    teach.match_counts = r.recorder.match_counts();
-    teach.bundle = r.recorder.Finish();
-    teach.online_switches = r.recorder.online_switches();
-    teach.trace = trace;
-    teach.trace.maps = MapTraces(r.recorder, teach.bundle.maps.size(), trace.time, trace.X_WR);
-    result.modes.push_back(std::move(teach));
-  }
+  result.modes = FinishModeRecorders(recorders, trace, trace.time, trace.X_WR);
   result.cpu_time_s = ThreadCpuSeconds() - cpu_start;
   return result;
 }
