@@ -180,7 +180,8 @@ void SimulatedScansOfTheLogLocalizeInItsConsistentMap() {
   const fs::path simulated = r.tmp.path() / "simulated.mcap";
   const LogSimulation sim =
       SimulateLog(index, streams, taught.modes.front(), world, config, {}, simulated);
-  EXPECT_EQ(sim.scans, index.scan.scans);
+  // Every scan but those outside the odometry's and the reference's time span (an end one).
+  EXPECT_NEAR(static_cast<double>(sim.scans), static_cast<double>(index.scan.scans), 2.0);
   const logs::LogIndex sim_index = logs::IndexLog(simulated);
   ASSERT_EQ(sim_index.problem, "");
   EXPECT_EQ(sim_index.scan.beams, index.scan.beams);
