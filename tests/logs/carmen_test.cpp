@@ -15,6 +15,7 @@
 #include "core/pose2.hpp"
 #include "logs/carmen_reader.hpp"
 #include "logs/carmen_writer.hpp"
+#include "tests/support/io_error_of.hpp"
 #include "tests/support/special_values.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -51,16 +52,7 @@ std::vector<Line> ReadAll(const fs::path& file) {
   return lines;
 }
 
-// The IoError message of `f`, or "" if it does not throw one.
-template <class F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const core::IoError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::IoErrorOf;
 
 // A line of `n` ranges in CARMEN's old FLASER format.
 std::string Flaser(std::size_t n, double range = 1.5) {
@@ -232,32 +224,33 @@ using CarmenWriterTest = retrace::testing::TempDirTest;
 
 TEST_F(CarmenWriterTest, RefusesWhatWouldNotReadBack) {
   CarmenWriter writer(tmp_.path() / "a.log");
-  EXPECT_NE(ErrorOf([&] { writer.WriteOdometry(kNaN, core::Pose2(), 0, 0); }).find("non-finite"),
+  EXPECT_NE(IoErrorOf([&] { writer.WriteOdometry(kNaN, core::Pose2(), 0, 0); }).find("non-finite"),
             std::string::npos);
   core::Pose2 bad;
   bad.x = kInf;
-  EXPECT_NE(ErrorOf([&] { writer.WriteTruePose(1.0, bad, core::Pose2()); }).find("non-finite"),
+  EXPECT_NE(IoErrorOf([&] { writer.WriteTruePose(1.0, bad, core::Pose2()); }).find("non-finite"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { writer.WriteParam("a name", "1"); }).find("one word"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { writer.WriteParam("name", ""); }).find("one word"), std::string::npos);
+  EXPECT_NE(IoErrorOf([&] { writer.WriteParam("a name", "1"); }).find("one word"),
+            std::string::npos);
+  EXPECT_NE(IoErrorOf([&] { writer.WriteParam("name", ""); }).find("one word"), std::string::npos);
   core::LaserScan scan;
   scan.range_max = kInf;
-  EXPECT_NE(ErrorOf([&] {
+  EXPECT_NE(IoErrorOf([&] {
               writer.WriteLaser(scan, core::Pose2(), core::Pose2(), 0, 0);
             }).find("range_max"),
             std::string::npos);
   writer.Close();
-  EXPECT_NE(ErrorOf([&] { writer.WriteOdometry(1.0, core::Pose2(), 0, 0); }).find("closed"),
+  EXPECT_NE(IoErrorOf([&] { writer.WriteOdometry(1.0, core::Pose2(), 0, 0); }).find("closed"),
             std::string::npos);
 }
 
 TEST_F(CarmenWriterTest, ReportsFilesItCannotCreateOrWrite) {
   const std::string missing_folder =
-      ErrorOf([&] { CarmenWriter writer(tmp_.path() / "no_such_folder" / "a.log"); });
+      IoErrorOf([&] { CarmenWriter writer(tmp_.path() / "no_such_folder" / "a.log"); });
   EXPECT_NE(missing_folder.find("cannot create file"), std::string::npos) << missing_folder;
   EXPECT_NE(missing_folder.find("a.log"), std::string::npos) << missing_folder;
   ASSERT_TRUE(fs::exists("/dev/full")) << "Linux has /dev/full: a device that is always full";
-  const std::string full = ErrorOf([] {
+  const std::string full = IoErrorOf([] {
     CarmenWriter writer("/dev/full");
     for (int i = 0; i < 1000; ++i) writer.WriteOdometry(i, core::Pose2(i, i, 0.0), 0, 0);
     writer.Close();
@@ -339,11 +332,11 @@ TEST(CarmenParse, ParamsOverrideTheOldLaserGeometry) {
   EXPECT_EQ(rear.scan.scan.angle_increment, core::DegToRad(135.0));  // fov / (n - 1)
   EXPECT_EQ(rear.scan.scan.range_max, 30.0);
 
-  const std::string bad_fov = ErrorOf([&] { ApplyCarmenParam("laser_front_laser_fov", "0", d); });
+  const std::string bad_fov = IoErrorOf([&] { ApplyCarmenParam("laser_front_laser_fov", "0", d); });
   EXPECT_NE(bad_fov.find("laser_front_laser_fov"), std::string::npos) << bad_fov;
-  EXPECT_NE(ErrorOf([&] { ApplyCarmenParam("robot_front_laser_max", "nan", d); }), "");
-  EXPECT_NE(ErrorOf([&] { ApplyCarmenParam("robot_front_laser_max", "-1", d); }), "");
-  EXPECT_NE(ErrorOf([&] { ApplyCarmenParam("laser_front_laser_flipped", "yes", d); }), "");
+  EXPECT_NE(IoErrorOf([&] { ApplyCarmenParam("robot_front_laser_max", "nan", d); }), "");
+  EXPECT_NE(IoErrorOf([&] { ApplyCarmenParam("robot_front_laser_max", "-1", d); }), "");
+  EXPECT_NE(IoErrorOf([&] { ApplyCarmenParam("laser_front_laser_flipped", "yes", d); }), "");
 }
 
 TEST(CarmenParse, ParamLinesOfEveryVintage) {
@@ -357,9 +350,9 @@ TEST(CarmenParse, ParamLinesOfEveryVintage) {
             (P{"laser_front_laser_dev", "/dev/ttyS0"}));
   EXPECT_EQ(ParseCarmenParam("PARAM robot_allow_rear_motion on 12.5 host 0.3"),
             (P{"robot_allow_rear_motion", "on"}));
-  EXPECT_NE(ErrorOf([] { ParseCarmenParam("PARAM lonely"); }).find("name and a value"),
+  EXPECT_NE(IoErrorOf([] { ParseCarmenParam("PARAM lonely"); }).find("name and a value"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { ParseCarmenParam("ODOM 0 0 0 0 0 0 1 h 1"); }).find("PARAM"),
+  EXPECT_NE(IoErrorOf([] { ParseCarmenParam("ODOM 0 0 0 0 0 0 1 h 1"); }).find("PARAM"),
             std::string::npos);
 }
 
@@ -414,7 +407,9 @@ TEST(CarmenParse, RobotLaserAndRawLaserCarryTheirGeometry) {
 }
 
 TEST(CarmenParse, BadLinesThrowShortClearErrors) {
-  const auto error = [](std::string_view line) { return ErrorOf([&] { ParseCarmenLaser(line); }); };
+  const auto error = [](std::string_view line) {
+    return IoErrorOf([&] { ParseCarmenLaser(line); });
+  };
   // A count beyond the line's fields, and one that would allocate terabytes.
   EXPECT_NE(error("FLASER 200 1 2 3 0 0 0 0 0 0 1 h 1").find("num_readings 200 is larger than"),
             std::string::npos)
@@ -449,16 +444,17 @@ TEST(CarmenParse, BadLinesThrowShortClearErrors) {
   EXPECT_NE(error("ODOM 1 2 3 4 5 6 1 h 1").find("not a CARMEN laser line"), std::string::npos);
   EXPECT_NE(error("").find("not a CARMEN laser line"), std::string::npos);
 
-  EXPECT_NE(ErrorOf([] { ParseCarmenOdometry("ODOM 1 2 3"); }).find("expected 10 fields"),
+  EXPECT_NE(IoErrorOf([] { ParseCarmenOdometry("ODOM 1 2 3"); }).find("expected 10 fields"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] {
+  EXPECT_NE(IoErrorOf([] {
               ParseCarmenOdometry("ODOM 1 2 NaN 0 0 0 1 h 1");
             }).find("pose theta 'NaN' is not finite"),
             std::string::npos);
-  EXPECT_NE(
-      ErrorOf([] { ParseCarmenOdometry("FLASER 0 0 0 0 0 0 0 1 h 1"); }).find("ODOM line expected"),
-      std::string::npos);
-  EXPECT_NE(ErrorOf([] {
+  EXPECT_NE(IoErrorOf([] {
+              ParseCarmenOdometry("FLASER 0 0 0 0 0 0 0 1 h 1");
+            }).find("ODOM line expected"),
+            std::string::npos);
+  EXPECT_NE(IoErrorOf([] {
               ParseCarmenTruePose("TRUEPOS 1 2 3 4 5 six 1 h 1");
             }).find("odometry pose theta 'six' is not a number"),
             std::string::npos);
@@ -512,15 +508,15 @@ TEST_F(CarmenReaderTest, LocationNamesFileAndLine) {
 }
 
 TEST_F(CarmenReaderTest, RefusesEmptyMissingAndFolderInputs) {
-  const std::string empty = ErrorOf([&] { CarmenReader r(tmp_.Write("empty.log", "")); });
+  const std::string empty = IoErrorOf([&] { CarmenReader r(tmp_.Write("empty.log", "")); });
   EXPECT_NE(empty.find("no CARMEN messages"), std::string::npos) << empty;
   EXPECT_NE(empty.find("empty.log"), std::string::npos) << empty;
   const std::string comments =
-      ErrorOf([&] { CarmenReader r(tmp_.Write("comments.log", "# only\n\n# comments\n")); });
+      IoErrorOf([&] { CarmenReader r(tmp_.Write("comments.log", "# only\n\n# comments\n")); });
   EXPECT_NE(comments.find("no CARMEN messages"), std::string::npos) << comments;
-  const std::string missing = ErrorOf([&] { CarmenReader r(tmp_.path() / "missing.log"); });
+  const std::string missing = IoErrorOf([&] { CarmenReader r(tmp_.path() / "missing.log"); });
   EXPECT_NE(missing.find("cannot open file"), std::string::npos) << missing;
-  const std::string folder = ErrorOf([&] { CarmenReader r(tmp_.path()); });
+  const std::string folder = IoErrorOf([&] { CarmenReader r(tmp_.path()); });
   EXPECT_NE(folder.find("folder"), std::string::npos) << folder;
 }
 
@@ -531,7 +527,7 @@ TEST_F(CarmenReaderTest, StopsAtAHugeLineWithoutNewline) {
   CarmenReader reader(file);
   RawMessage m;
   ASSERT_TRUE(reader.Next(m));
-  const std::string error = ErrorOf([&] { reader.Next(m); });
+  const std::string error = IoErrorOf([&] { reader.Next(m); });
   EXPECT_NE(error.find("huge.log: line 2 is longer than 1 MiB"), std::string::npos) << error;
 }
 
@@ -549,7 +545,7 @@ TEST_F(CarmenReaderTest, ReportsATruncatedGzipFile) {
   ASSERT_GT(bytes.size(), 10000U);
   const fs::path cut = tmp_.Write("cut.log.gz", bytes.substr(0, bytes.size() / 2));
   std::size_t read = 0;
-  const std::string error = ErrorOf([&] {
+  const std::string error = IoErrorOf([&] {
     CarmenReader reader(cut);
     RawMessage m;
     while (reader.Next(m)) ++read;
@@ -579,7 +575,7 @@ TEST_F(CarmenReaderTest, ReportsCorruptGzipData) {
   std::string bytes = tmp_.Read(file);
   for (std::size_t i = bytes.size() / 3; i < bytes.size() / 3 + 64; ++i) bytes[i] ^= 0x5a;
   const fs::path bad = tmp_.Write("bad.log.gz", bytes);
-  const std::string error = ErrorOf([&] {
+  const std::string error = IoErrorOf([&] {
     CarmenReader reader(bad);
     RawMessage m;
     while (reader.Next(m)) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "tests/support/io_error_of.hpp"
 
 namespace retrace::logs {
 // A namespace per file, not an anonymous one: the test files are compiled as one unity source.
@@ -16,16 +17,7 @@ namespace cdr_test {
 
 using Buffer = std::vector<std::uint8_t>;
 
-// The IoError message of `f`, or "" if it did not throw one.
-template <typename F>
-std::string ErrorOf(F f) {
-  try {
-    f();
-  } catch (const core::IoError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::IoErrorOf;
 
 TEST(CdrReader, ReadsLittleEndianPrimitivesAlignedAfterTheHeader) {
   const Buffer b = {
@@ -146,29 +138,29 @@ TEST(CdrWriter, RoundTripsEveryType) {
 }
 
 TEST(CdrReader, RefusesAnythingButPlainCdr) {
-  EXPECT_NE(ErrorOf([] {
+  EXPECT_NE(IoErrorOf([] {
               CdrReader r(Buffer{0x00, 0x03, 0x00, 0x00});
             }).find("unsupported CDR encapsulation 0x00 0x03 (parameter-list CDR)"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] {
+  EXPECT_NE(IoErrorOf([] {
               CdrReader r(Buffer{0x00, 0x07, 0x00, 0x00});
             }).find("(XCDR2)"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] {
+  EXPECT_NE(IoErrorOf([] {
               CdrReader r(Buffer{0x01, 0x01, 0x00, 0x00});
             }).find("only plain CDR, little or big endian"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] {
+  EXPECT_NE(IoErrorOf([] {
               CdrReader r(Buffer{0x00, 0x01});
             }).find("encapsulation header"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { CdrReader r(Buffer{}); }).find("truncated"), std::string::npos);
+  EXPECT_NE(IoErrorOf([] { CdrReader r(Buffer{}); }).find("truncated"), std::string::npos);
 }
 
 TEST(CdrReader, RefusesAStringLengthBeyondTheBuffer) {
   const Buffer b = {0x00, 0x01, 0x00, 0x00, 0x10, 0x00, 0x00, 0x00, 'a', 'b', 0x00};
   CdrReader r(b);
-  EXPECT_EQ(ErrorOf([&] { r.ReadString(); }),
+  EXPECT_EQ(IoErrorOf([&] { r.ReadString(); }),
             "string length 16 at byte 0 beyond the end (3 bytes left)");
 }
 
@@ -176,31 +168,31 @@ TEST(CdrReader, RefusesAHugeSequenceCountBeforeAllocating) {
   const Buffer b = {0x00, 0x01, 0x00, 0x00, 0xFF, 0xFF, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00};
   {
     CdrReader r(b);
-    EXPECT_EQ(ErrorOf([&] { r.ReadFloat32Sequence(); }),
+    EXPECT_EQ(IoErrorOf([&] { r.ReadFloat32Sequence(); }),
               "sequence of 4294967295 elements at byte 0 needs at least 17179869180 bytes, 4 left");
   }
   {
     CdrReader r(b);
-    EXPECT_NE(ErrorOf([&] { r.ReadFloat64Sequence(); }).find("4294967295 elements"),
+    EXPECT_NE(IoErrorOf([&] { r.ReadFloat64Sequence(); }).find("4294967295 elements"),
               std::string::npos);
   }
   {
     CdrReader r(b);
-    EXPECT_NE(ErrorOf([&] { r.ReadSequenceLength(0); }).find("4294967295 elements"),
+    EXPECT_NE(IoErrorOf([&] { r.ReadSequenceLength(0); }).find("4294967295 elements"),
               std::string::npos);
   }
 }
 
 TEST(CdrReader, RefusesTruncatedPrimitivesAndBadBools) {
   const Buffer b = {0x00, 0x01, 0x00, 0x00, 0x02, 0x00, 0x00};
-  EXPECT_EQ(ErrorOf([&] { CdrReader(b).ReadBool(); }), "bool of value 2 at byte 0");
-  EXPECT_EQ(ErrorOf([&] { CdrReader(b).ReadUint32(); }),
+  EXPECT_EQ(IoErrorOf([&] { CdrReader(b).ReadBool(); }), "bool of value 2 at byte 0");
+  EXPECT_EQ(IoErrorOf([&] { CdrReader(b).ReadUint32(); }),
             "truncated: needs 4 bytes at byte 0, 3 left");
-  EXPECT_EQ(ErrorOf([&] { CdrReader(b).ReadFloat64(); }),
+  EXPECT_EQ(IoErrorOf([&] { CdrReader(b).ReadFloat64(); }),
             "truncated: needs 8 bytes at byte 0, 3 left");
   CdrReader r(b);
   r.ReadUint8();
-  EXPECT_EQ(ErrorOf([&] { r.ReadUint32(); }), "truncated: needs 3 bytes at byte 1, 2 left");
+  EXPECT_EQ(IoErrorOf([&] { r.ReadUint32(); }), "truncated: needs 3 bytes at byte 1, 2 left");
 }
 
 TEST(CdrReader, EveryPrefixOfAMessageIsRefused) {
@@ -211,7 +203,7 @@ TEST(CdrReader, EveryPrefixOfAMessageIsRefused) {
   const Buffer& full = w.data();
   for (std::size_t n = 0; n < full.size(); ++n) {
     const Buffer prefix(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(n));
-    EXPECT_NE(ErrorOf([&] {
+    EXPECT_NE(IoErrorOf([&] {
                 CdrReader r(prefix);
                 r.ReadString();
                 r.ReadFloat64();

@@ -11,6 +11,7 @@
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "logs/cdr.hpp"
+#include "tests/support/io_error_of.hpp"
 
 namespace retrace::logs {
 // A namespace per file, not an anonymous one: the test files are compiled as one unity source.
@@ -20,15 +21,7 @@ using Buffer = std::vector<std::uint8_t>;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-template <typename F>
-std::string ErrorOf(F f) {
-  try {
-    f();
-  } catch (const core::IoError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::IoErrorOf;
 
 bool Contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
@@ -52,7 +45,7 @@ template <typename Decode>
 void ExpectEveryPrefixRefused(const Buffer& full, Decode decode, const std::string& type) {
   for (std::size_t n = 0; n < full.size(); ++n) {
     const Buffer prefix(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(n));
-    const std::string error = ErrorOf([&] { decode(prefix); });
+    const std::string error = IoErrorOf([&] { decode(prefix); });
     EXPECT_TRUE(Contains(error, type + ": ")) << "prefix " << n << ": '" << error << "'";
   }
 }
@@ -125,7 +118,7 @@ TEST(LaserScanCodec, ChecksAngleMaxToHalfAnIncrement) {
   EXPECT_NEAR(ok.scan.range_max, 5.6, 1e-6);
   // A driver that writes angle_min + n * increment (one beam too far) is refused.
   const std::string error =
-      ErrorOf([&] { DecodeLaserScan(HandBuiltScan(0.0f, 0.5f, 0.1f, ranges)); });
+      IoErrorOf([&] { DecodeLaserScan(HandBuiltScan(0.0f, 0.5f, 0.1f, ranges)); });
   EXPECT_TRUE(Contains(error,
                        "sensor_msgs/msg/LaserScan: angle_max 0.5 does not match "
                        "angle_min + (n - 1) * angle_increment = 0.4"))
@@ -133,7 +126,7 @@ TEST(LaserScanCodec, ChecksAngleMaxToHalfAnIncrement) {
   EXPECT_TRUE(Contains(error, "for n = 5 ranges")) << error;
   // Clockwise scanners have a negative increment.
   EXPECT_NO_THROW(DecodeLaserScan(HandBuiltScan(1.0f, 0.6f, -0.1f, ranges)));
-  EXPECT_NE(ErrorOf([&] { DecodeLaserScan(HandBuiltScan(0.0f, 0.4f, kNaN, ranges)); }), "");
+  EXPECT_NE(IoErrorOf([&] { DecodeLaserScan(HandBuiltScan(0.0f, 0.4f, kNaN, ranges)); }), "");
   // An empty scan has nothing to check.
   EXPECT_NO_THROW(DecodeLaserScan(HandBuiltScan(0.0f, 3.0f, 0.1f, {})));
 }
@@ -181,9 +174,9 @@ TEST(LaserScanCodec, RefusesMalformedMessages) {
   w.WriteString("");
   for (int i = 0; i < 7; ++i) w.WriteFloat32(0.0f);
   w.WriteUint32(0xFFFFFFFFu);
-  EXPECT_TRUE(Contains(ErrorOf([&] { DecodeLaserScan(w.data()); }),
+  EXPECT_TRUE(Contains(IoErrorOf([&] { DecodeLaserScan(w.data()); }),
                        "sensor_msgs/msg/LaserScan: sequence of 4294967295 elements"));
-  EXPECT_TRUE(Contains(ErrorOf([] {
+  EXPECT_TRUE(Contains(IoErrorOf([] {
                          DecodeLaserScan(Buffer{0x00, 0x03, 0x00, 0x00});
                        }),
                        "sensor_msgs/msg/LaserScan: unsupported CDR encapsulation"));
@@ -254,7 +247,7 @@ TEST(TfMessageCodec, RoundTripsSeveralTransforms) {
 
 TEST(TfMessageCodec, RefusesAHugeTransformCount) {
   const Buffer b = {0x00, 0x01, 0x00, 0x00, 0xFF, 0xFF, 0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0, 0};
-  EXPECT_EQ(ErrorOf([&] { DecodeTfMessage(b); }),
+  EXPECT_EQ(IoErrorOf([&] { DecodeTfMessage(b); }),
             "tf2_msgs/msg/TFMessage: sequence of 4294967295 elements at byte 0 needs at least "
             "309237645240 bytes, 8 left");
 }
@@ -285,16 +278,16 @@ Buffer PoseWithQuaternion(double x, double y, double z, double w) {
 }
 
 TEST(PoseStampedCodec, RefusesZeroAndNonFiniteQuaternions) {
-  EXPECT_EQ(ErrorOf([] { DecodePoseStamped(PoseWithQuaternion(0, 0, 0, 0)); }),
+  EXPECT_EQ(IoErrorOf([] { DecodePoseStamped(PoseWithQuaternion(0, 0, 0, 0)); }),
             "geometry_msgs/msg/PoseStamped: quaternion (0, 0, 0, 0) has (near) zero norm");
-  EXPECT_EQ(ErrorOf([] { DecodePoseStamped(PoseWithQuaternion(0, 0, 1e-12, 0)); }),
+  EXPECT_EQ(IoErrorOf([] { DecodePoseStamped(PoseWithQuaternion(0, 0, 1e-12, 0)); }),
             "geometry_msgs/msg/PoseStamped: quaternion (0, 0, 1e-12, 0) has (near) zero norm");
-  EXPECT_TRUE(Contains(ErrorOf([] {
+  EXPECT_TRUE(Contains(IoErrorOf([] {
                          DecodePoseStamped(
                              PoseWithQuaternion(0, 0, std::numeric_limits<double>::infinity(), 1));
                        }),
                        "has a non-finite component"));
-  EXPECT_TRUE(Contains(ErrorOf([] { DecodePoseStamped(PoseWithQuaternion(0, kNaN, 0, 1)); }),
+  EXPECT_TRUE(Contains(IoErrorOf([] { DecodePoseStamped(PoseWithQuaternion(0, kNaN, 0, 1)); }),
                        "has a non-finite component"));
   // Huge components are scaled first, not squared into infinity.
   const PoseStampedMessage huge = DecodePoseStamped(PoseWithQuaternion(0, 0, 1e200, 1e200));
@@ -308,7 +301,7 @@ TEST(YawFromQuaternion, MatchesTheZyxYawForUnitAndScaledQuaternions) {
 }
 
 TEST(YawFromQuaternion, RefusesTinyNormsAndKeepsHugeOnes) {
-  EXPECT_NE(ErrorOf([] { YawFromQuaternion(0, 0, 1e-300, 1e-300); }), "");
+  EXPECT_NE(IoErrorOf([] { YawFromQuaternion(0, 0, 1e-300, 1e-300); }), "");
   EXPECT_NEAR(YawFromQuaternion(1e200, 0, 0, 0), core::WrapAngle(0.0), 1e-12);  // roll of pi
   EXPECT_NEAR(YawFromQuaternion(0, 0, 1e308, -1e308), -core::kPi / 2, 1e-12);
   EXPECT_NEAR(std::abs(YawFromQuaternion(0, 0, 1e200, 0)), core::kPi, 1e-12);
@@ -326,11 +319,11 @@ TEST(RosTime, ConvertsStampsBothWays) {
   EXPECT_EQ(carry.sec, 3);
   EXPECT_EQ(carry.nanosec, 0u);
   EXPECT_EQ(ToRosTime(1585866235.5).nanosec, 500'000'000u);
-  EXPECT_TRUE(Contains(ErrorOf([] { ToRosTime(3e9); }), "outside the int32 seconds"));
-  EXPECT_TRUE(Contains(ErrorOf([] { ToRosTime(kNaN); }), "not finite"));
+  EXPECT_TRUE(Contains(IoErrorOf([] { ToRosTime(3e9); }), "outside the int32 seconds"));
+  EXPECT_TRUE(Contains(IoErrorOf([] { ToRosTime(kNaN); }), "not finite"));
   ScanMessage late = SampleScan();
   late.scan.stamp = 1e10;
-  EXPECT_TRUE(Contains(ErrorOf([&] { EncodeLaserScan(late); }), "outside the int32 seconds"));
+  EXPECT_TRUE(Contains(IoErrorOf([&] { EncodeLaserScan(late); }), "outside the int32 seconds"));
 }
 
 TEST(RosMessageDefinition, ListsTheFieldsThenEachDependencyOnce) {
