@@ -23,17 +23,26 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+// Blanks are ' ', '\t', '\r', '\v' and '\f' (all at or below ' ').
+bool IsBlank(char c) {
+  return static_cast<unsigned char>(c) <= ' ' &&
+         (c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f');
+}
 
-// Splits at spaces and tabs into `out` (cleared first), keeping views into `line`.
+// Splits at blanks into `out` (cleared first), keeping views into `line`.
 void Tokenize(std::string_view line, std::vector<std::string_view>& out) {
   out.clear();
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && IsBlank(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !IsBlank(line[i])) ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
+  const char* p = line.data();
+  const char* const end = p + line.size();
+  while (p != end) {
+    while (p != end && IsBlank(*p)) ++p;
+    const char* start = p;
+    while (p != end && static_cast<unsigned char>(*p) > ' ') ++p;
+    while (p != end && !IsBlank(*p)) {  // other control characters belong to the token
+      ++p;
+      while (p != end && static_cast<unsigned char>(*p) > ' ') ++p;
+    }
+    if (p > start) out.emplace_back(start, static_cast<std::size_t>(p - start));
   }
 }
 
@@ -103,7 +112,10 @@ std::optional<std::int64_t> SecondsToNs(std::string_view token) {
 // The fields of one line being decoded, with the checks every field gets.
 class Fields {
  public:
-  explicit Fields(std::string_view line) { Tokenize(line, tokens_); }
+  // The token list is reused from line to line (a scan line has a thousand fields and more).
+  explicit Fields(std::string_view line) : tokens_(Buffer()) { Tokenize(line, tokens_); }
+  Fields(const Fields&) = delete;
+  Fields& operator=(const Fields&) = delete;
 
   std::size_t size() const { return tokens_.size(); }
   std::string_view name() const { return tokens_.empty() ? std::string_view{} : tokens_[0]; }
@@ -169,7 +181,11 @@ class Fields {
   }
 
  private:
-  std::vector<std::string_view> tokens_;
+  static std::vector<std::string_view>& Buffer() {
+    thread_local std::vector<std::string_view> buffer;
+    return buffer;
+  }
+  std::vector<std::string_view>& tokens_;
 };
 
 void RequireName(const Fields& f, std::string_view expected) {
@@ -194,7 +210,12 @@ void ReadRanges(const Fields& f, std::size_t first, std::size_t n, double max_ra
                 core::LaserScan& scan) {
   scan.ranges.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const double r = f.Number(first + i, "range " + std::to_string(i));
+    // The field's name is spelled out only when it fails (this loop reads every range).
+    const std::optional<double> parsed =
+        first + i < f.size() ? ToDouble(f[first + i]) : std::optional<double>{};
+    const double r = parsed && std::isfinite(*parsed)
+                         ? *parsed
+                         : f.Number(first + i, "range " + std::to_string(i));
     scan.ranges[i] = r >= max_range ? static_cast<float>(kInf)
                      : r <= 0.0     ? static_cast<float>(-kInf)
                                     : static_cast<float>(r);

@@ -38,10 +38,44 @@ double KldBound(int k, double epsilon, double z) {
   return km1 / (2.0 * epsilon) * b * b * b;
 }
 
+// The particles in the sums of eq. (9) (DynamicRejectionConfig::particles): those of positive
+// prior weight with their weights when there are at most `count`, else a stratified sample of
+// `count` drawn by prior weight (the comb at (k + 1/2) / count), each distinct particle weighted
+// by how often it was drawn.
+void StratifiedSample(std::span<const core::Pose2> X, std::span<const double> prior, int count,
+                      std::vector<core::Pose2>* sample_X, std::vector<double>* sample_w) {
+  double total = 0.0;
+  std::size_t positive = 0;
+  for (const double w : prior) {
+    total += w;
+    positive += w > 0.0 ? 1 : 0;
+  }
+  sample_X->clear();
+  sample_w->clear();
+  if (positive <= static_cast<std::size_t>(count) || !(total > 0.0)) {
+    sample_X->assign(X.begin(), X.end());
+    sample_w->assign(prior.begin(), prior.end());
+    return;
+  }
+  std::vector<double> normalized(prior.begin(), prior.end());
+  for (double& w : normalized) w /= total;
+  const std::vector<std::size_t> drawn =
+      LowVarianceResampleWithOffset(normalized, static_cast<std::size_t>(count), 0.5);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {  // indices come in increasing order
+    if (k > 0 && drawn[k] == drawn[k - 1]) {
+      sample_w->back() += 1.0;
+    } else {
+      sample_X->push_back(X[drawn[k]]);
+      sample_w->push_back(1.0);
+    }
+  }
+}
+
 }  // namespace
 
 void DynamicRejectionConfig::Validate() const {
   core::RequireInRange("chi", chi, 0.0, 1.0);
+  core::RequireIntInRange("particles", particles, 1, 1'000'000);
   ValidateNested("beam_model", beam_model);
 }
 
@@ -206,8 +240,11 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
     // happens to explain an unmapped return as a hit would otherwise veto its rejection).
     std::vector<double> prior(n);
     for (std::size_t j = 0; j < n; ++j) prior[j] = injected_[j] != 0 ? 0.0 : particles_[j].weight;
-    TestDynamicBeams(*beam_model_, *caster_, X_ML, prior, scan, tested, config_.rejection.chi,
-                     RayCastMethod::kSphereTracing, &result);
+    std::vector<core::Pose2> sample_X;
+    std::vector<double> sample_w;
+    StratifiedSample(X_ML, prior, config_.rejection.particles, &sample_X, &sample_w);
+    TestDynamicBeams(*beam_model_, *caster_, sample_X, sample_w, scan, tested,
+                     config_.rejection.chi, RayCastMethod::kSphereTracing, &result);
     dynamic = std::move(result.dynamic);
   }
   std::vector<double> xs, ys;

@@ -25,15 +25,23 @@
 namespace retrace::nav {
 
 /// Dynamic scan point rejection (eq. 7-9).
+///
+/// The sums of eq. (9) are expectations over the belief. With more particles than `particles`,
+/// they run over a stratified sample of that many drawn by prior weight at the quantiles
+/// (k + 1/2) / K of the cumulative weights (no random numbers), each distinct particle weighted
+/// by how often it was drawn: the ray casts, most of an update's cost, no longer grow with the
+/// particle count.
 struct DynamicRejectionConfig {
   bool enabled = true;
-  double chi = 0.9;  ///< a beam is dynamic when its short-reading ratio exceeds chi
+  double chi = 0.9;     ///< a beam is dynamic when its short-reading ratio exceeds chi
+  int particles = 100;  ///< particles in the sums of eq. (9) (a stratified sample; >= 1)
   BeamModelConfig beam_model;
 
   template <class V>
   void Reflect(V& v) {
     v("enabled", enabled);
     v("chi", chi);
+    v("particles", particles);
     v("beam_model", beam_model);
   }
   /// Throws core::ConfigError naming the key (e.g. "chi", "beam_model.sigma_hit").

@@ -110,8 +110,9 @@ void RawRead(benchmark::State& state, const fs::path& file) {
 }
 
 // What a log command reads: the first pass (all poses, the scans' geometry) and the second (every
-// scan decoded).
-void IndexAndScans(benchmark::State& state, const fs::path& file) {
+// scan decoded). `content` is the same log uncompressed: its size per second is the rate of the
+// log's content (bytes_per_second counts the bytes on disk).
+void IndexAndScans(benchmark::State& state, const fs::path& file, const fs::path& content) {
   for (auto _ : state) {
     const retrace::logs::LogIndex index = retrace::logs::IndexLog(file);
     std::size_t beams = 0;
@@ -122,16 +123,27 @@ void IndexAndScans(benchmark::State& state, const fs::path& file) {
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(fs::file_size(file)));
+  state.counters["content_bytes_per_second"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * static_cast<double>(fs::file_size(content)),
+      benchmark::Counter::kIsRate, benchmark::Counter::kIs1024);
 }
 
 void BM_LogReadMcap(benchmark::State& s) { RawRead(s, GetLogFiles().mcap_none); }
 void BM_LogReadMcapZstd(benchmark::State& s) { RawRead(s, GetLogFiles().mcap_zstd); }
 void BM_LogReadCarmen(benchmark::State& s) { RawRead(s, GetLogFiles().carmen_plain); }
 void BM_LogReadCarmenGzip(benchmark::State& s) { RawRead(s, GetLogFiles().carmen_gz); }
-void BM_LogDecodeMcap(benchmark::State& s) { IndexAndScans(s, GetLogFiles().mcap_none); }
-void BM_LogDecodeMcapZstd(benchmark::State& s) { IndexAndScans(s, GetLogFiles().mcap_zstd); }
-void BM_LogDecodeCarmen(benchmark::State& s) { IndexAndScans(s, GetLogFiles().carmen_plain); }
-void BM_LogDecodeCarmenGzip(benchmark::State& s) { IndexAndScans(s, GetLogFiles().carmen_gz); }
+void BM_LogDecodeMcap(benchmark::State& s) {
+  IndexAndScans(s, GetLogFiles().mcap_none, GetLogFiles().mcap_none);
+}
+void BM_LogDecodeMcapZstd(benchmark::State& s) {
+  IndexAndScans(s, GetLogFiles().mcap_zstd, GetLogFiles().mcap_none);
+}
+void BM_LogDecodeCarmen(benchmark::State& s) {
+  IndexAndScans(s, GetLogFiles().carmen_plain, GetLogFiles().carmen_plain);
+}
+void BM_LogDecodeCarmenGzip(benchmark::State& s) {
+  IndexAndScans(s, GetLogFiles().carmen_gz, GetLogFiles().carmen_plain);
+}
 BENCHMARK(BM_LogReadMcap)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LogReadMcapZstd)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LogReadCarmen)->Unit(benchmark::kMillisecond);

@@ -89,6 +89,53 @@ TEST(Localizer, RejectionKeepsErrorLowWithThirtyPercentOfBeamsBlocked) {
   EXPECT_GT(recall, 0.5);
 }
 
+// Rejection ON on the ten drives of the test above, with eq. (9)'s sums over `sample` particles.
+struct RejectionScore {
+  double mean_error = 0.0;  // m, over the seeds
+  double precision = 0.0;
+  double recall = 0.0;
+};
+
+RejectionScore ScoreRejection(int sample) {
+  const int kSeeds = 10;
+  RejectionScore score;
+  int tp = 0, fp = 0, fn = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    LocalizerConfig config = TestConfig();
+    config.rejection.particles = sample;
+    Drive drive(static_cast<std::uint64_t>(100 + seed));
+    Localizer loc(config, TestRobot(),
+                  core::Rng(static_cast<std::uint64_t>(seed)).Split("localizer"));
+    loc.SetMap(drive.map);
+    loc.Initialize(drive.X_WR, 0.05, 0.02);
+    const RunResult r = DriveAndLocalize(loc, drive, 60, true, 5);
+    score.mean_error += r.mean_position_error / kSeeds;
+    tp += r.tp;
+    fp += r.fp;
+    fn += r.fn;
+  }
+  score.precision = tp / static_cast<double>(tp + fp);
+  score.recall = tp / static_cast<double>(tp + fn);
+  return score;
+}
+
+TEST(Localizer, RejectionOnAStratifiedSampleMatchesAllParticles) {
+  const int all = TestConfig().particles;
+  const RejectionScore full = ScoreRejection(all);
+  const RejectionScore sampled = ScoreRejection(TestConfig().rejection.particles);
+  const RejectionScore few = ScoreRejection(10);
+  std::printf(
+      "[ report ] eq. (9) over all %d particles: error %.4f m, precision %.3f, recall %.3f; over "
+      "%d: %.4f m, %.3f, %.3f; over 10: %.4f m, %.3f, %.3f\n",
+      all, full.mean_error, full.precision, full.recall, TestConfig().rejection.particles,
+      sampled.mean_error, sampled.precision, sampled.recall, few.mean_error, few.precision,
+      few.recall);
+  ASSERT_LT(TestConfig().rejection.particles, all);  // the default samples
+  EXPECT_NEAR(sampled.recall, full.recall, 0.02);
+  EXPECT_NEAR(sampled.precision, full.precision, 0.02);
+  EXPECT_NEAR(sampled.mean_error, full.mean_error, 0.01);
+}
+
 TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
   const int kSeeds = 10;
   int recovered = 0, injected_any = 0, ok_without = 0;
