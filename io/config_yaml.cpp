@@ -207,8 +207,11 @@ void ApplyOverride(YAML::Node& root, const ConfigOverride& o) {
     const bool last = i + 1 == keys.size();
     if (cur.IsSequence()) {
       if (!IsIndex(keys[i])) OverrideFail(o, "'" + keys[i] + "' addresses a list: use an index");
-      const std::size_t k = std::stoul(keys[i]);
-      if (k >= cur.size()) {
+      // Digits only (IsIndex); more of them than any list holds are out of range, not an error
+      // of the number conversion.
+      std::size_t k = 0;
+      const auto [end, ec] = std::from_chars(keys[i].data(), keys[i].data() + keys[i].size(), k);
+      if (ec != std::errc() || end != keys[i].data() + keys[i].size() || k >= cur.size()) {
         OverrideFail(o, "list index " + keys[i] + " out of range (the list has " +
                             std::to_string(cur.size()) + " elements)");
       }

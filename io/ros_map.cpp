@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <opencv2/core.hpp>
+#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <system_error>
@@ -14,8 +15,10 @@
 #include "core/check.hpp"
 #include "core/config.hpp"
 #include "core/errors.hpp"
+#include "core/limits.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
+#include "io/internal/image_header.hpp"
 #include "io/read_file.hpp"
 
 namespace retrace::io {
@@ -49,6 +52,12 @@ class PgmParser {
     if (width == 0 || height == 0) {
       Fail("PGM header gives an empty image (" + std::to_string(width) + " x " +
            std::to_string(height) + ")");
+    }
+    if (width > core::kMaxMapCells || height > core::kMaxMapCells ||
+        width * height > core::kMaxMapCells) {
+      Fail("PGM header declares " + std::to_string(width) + " x " + std::to_string(height) +
+           " pixels; retrace's limit for a map is " +
+           std::to_string(core::kMaxMapCells / 1'000'000) + " million cells");
     }
     if (maxval == 0 || maxval > 255) {
       Fail("PGM maxval " + std::to_string(maxval) +
@@ -169,6 +178,13 @@ class PgmParser {
 // Any other format: PNG and whatever else OpenCV decodes (as map_server accepts any image
 // SDL_image reads).
 DecodedImage DecodeWithOpenCv(const std::string& bytes, const std::filesystem::path& path) {
+  // OpenCV's own messages would be a second line beside retrace's one: its errors come back as
+  // exceptions or an empty image, and are reported from here.
+  static const bool silenced = [] {
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+    return true;
+  }();
+  (void)silenced;
   cv::Mat mat;
   try {
     const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8UC1,
@@ -206,9 +222,9 @@ DecodedImage DecodeWithOpenCv(const std::string& bytes, const std::filesystem::p
 DecodedImage ReadImage(const std::filesystem::path& path) {
   const std::string bytes = ReadFileBytes(path);
   if (bytes.empty()) throw core::IoError(path.string() + ": the image file is empty");
-  if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '2')) {
-    return PgmParser(bytes, path).Parse();
-  }
+  // The declared size and structure are checked before any decoder allocates for them.
+  const internal::ImageHeader header = internal::CheckImageHeader(bytes, path);
+  if (header.format == internal::ImageFormat::kPgm) return PgmParser(bytes, path).Parse();
   return DecodeWithOpenCv(bytes, path);
 }
 
@@ -241,6 +257,16 @@ float PixelLogOdds(int sum, int colours, bool opaque, const RosMapMetadata& meta
 
 core::OccupancyGrid ImageToGrid(const DecodedImage& image, const RosMapMetadata& meta,
                                 const std::filesystem::path& image_path) {
+  for (const double extent : {meta.origin[0] + image.width * meta.resolution,
+                              meta.origin[1] + image.height * meta.resolution}) {
+    if (!(std::abs(extent) <= core::kMaxCoordinate)) {
+      throw core::IoError(image_path.string() + ": the map reaches " + core::FormatNumber(extent) +
+                          " m from the origin (" + std::to_string(image.width) + " x " +
+                          std::to_string(image.height) + " cells of " +
+                          core::FormatNumber(meta.resolution) + " m); retrace's limit is " +
+                          core::FormatNumber(core::kMaxCoordinate) + " m");
+    }
+  }
   core::OccupancyGrid grid(image.width, image.height, meta.resolution,
                            core::Vec2(meta.origin[0], meta.origin[1]));
   const bool has_alpha = image.channels == 2 || image.channels == 4;
@@ -290,7 +316,9 @@ RosMapMetadata ParseMetadata(const YAML::Node& root, const std::string& source) 
 
 void RosMapMetadata::Validate() const {
   if (image.empty()) throw core::ConfigError("image", "must name an image file");
-  core::RequirePositive("resolution", resolution);
+  core::RequireWorldLength("resolution", resolution);
+  core::RequireCoordinate("origin", origin[0]);
+  core::RequireCoordinate("origin", origin[1]);
   if (negate != 0 && negate != 1) {
     throw core::ConfigError("negate", "must be 0 or 1, got " + std::to_string(negate));
   }

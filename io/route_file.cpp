@@ -2,12 +2,14 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/config.hpp"
 #include "core/errors.hpp"
+#include "core/quaternion.hpp"
 #include "io/atomic_file.hpp"
 #include "io/internal/text_lines.hpp"
 
@@ -37,10 +39,10 @@ std::vector<NumberLine> ReadNumberLines(const std::filesystem::path& path) {
 }
 
 double YawOf(const NumberLine& l, const std::filesystem::path& path) {
-  const double qx = l.values[3], qy = l.values[4], qz = l.values[5], qw = l.values[6];
-  const double n2 = qx * qx + qy * qy + qz * qz + qw * qw;
-  if (!(n2 > 1e-18)) FailAt(path, l.line, "the quaternion is zero");
-  return std::atan2(2.0 * (qw * qz + qx * qy) / n2, 1.0 - 2.0 * (qy * qy + qz * qz) / n2);
+  const std::optional<double> yaw =
+      core::QuaternionYaw(l.values[3], l.values[4], l.values[5], l.values[6]);
+  if (!yaw) FailAt(path, l.line, "the quaternion is zero or not finite");
+  return *yaw;
 }
 
 }  // namespace

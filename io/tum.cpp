@@ -2,10 +2,12 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/quaternion.hpp"
 #include "io/atomic_file.hpp"
 #include "io/internal/text_lines.hpp"
 
@@ -40,13 +42,9 @@ std::vector<StampedPose> ReadTum(const std::filesystem::path& path) {
       internal::FailAt(path, l.line,
                        "expected 8 numbers (t x y z qx qy qz qw), got " + std::to_string(v.size()));
     }
-    const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
-    const double norm = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
-    if (!(norm > 1e-9)) internal::FailAt(path, l.line, "the quaternion is zero");
-    // Yaw of the normalised quaternion (z-y-x Euler angles).
-    const double yaw = std::atan2(2.0 * (qw * qz + qx * qy) / (norm * norm),
-                                  1.0 - 2.0 * (qy * qy + qz * qz) / (norm * norm));
-    poses.push_back({v[0], core::Pose2(v[1], v[2], yaw)});
+    const std::optional<double> yaw = core::QuaternionYaw(v[4], v[5], v[6], v[7]);
+    if (!yaw) internal::FailAt(path, l.line, "the quaternion is zero or not finite");
+    poses.push_back({v[0], core::Pose2(v[1], v[2], *yaw)});
   }
   return poses;
 }

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "core/config.hpp"
 #include "core/errors.hpp"
+#include "core/quaternion.hpp"
 #include "logs/cdr.hpp"
 
 namespace retrace::logs {
@@ -211,25 +213,14 @@ RosTime ToRosTime(double stamp) {
 }
 
 double YawFromQuaternion(double x, double y, double z, double w) {
-  const std::array<double, 4> q = {x, y, z, w};
-  const auto describe = [&q] {
-    return "quaternion (" + Num(q[0]) + ", " + Num(q[1]) + ", " + Num(q[2]) + ", " + Num(q[3]) +
-           ")";
-  };
-  double m = 0.0;
-  for (double c : q) {
-    if (!std::isfinite(c)) throw core::IoError(describe() + " has a non-finite component");
-    m = std::max(m, std::abs(c));
+  const std::optional<double> yaw = core::QuaternionYaw(x, y, z, w);
+  if (!yaw) {
+    const bool finite =
+        std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(w);
+    throw core::IoError("quaternion (" + Num(x) + ", " + Num(y) + ", " + Num(z) + ", " + Num(w) +
+                        ")" + (finite ? " has (near) zero norm" : " has a non-finite component"));
   }
-  // Scaled by the largest component, the squared norm lies in [1, 4]: no overflow or underflow.
-  const double sx = x / (m > 0.0 ? m : 1.0), sy = y / (m > 0.0 ? m : 1.0),
-               sz = z / (m > 0.0 ? m : 1.0), sw = w / (m > 0.0 ? m : 1.0);
-  const double n2 = sx * sx + sy * sy + sz * sz + sw * sw;
-  if (!(m * std::sqrt(n2) >= 1e-9)) throw core::IoError(describe() + " has (near) zero norm");
-  // The yaw of the normalised quaternion; numerator and denominator both carry the factor 1/n2,
-  // which atan2 does not need.
-  const double yaw = std::atan2(2.0 * (sw * sz + sx * sy), sw * sw + sx * sx - sy * sy - sz * sz);
-  return core::WrapAngle(yaw);
+  return *yaw;
 }
 
 ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr) {

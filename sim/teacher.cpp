@@ -8,6 +8,7 @@
 #include "core/angle.hpp"
 #include "core/check.hpp"
 #include "core/errors.hpp"
+#include "core/limits.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -55,14 +56,26 @@ void ValidateRoute(const std::vector<core::Vec2>& route) {
     throw core::ConfigError("route",
                             "needs at least 2 points, got " + std::to_string(route.size()));
   }
+  if (static_cast<std::int64_t>(route.size()) > core::kMaxRoutePoints) {
+    throw core::ConfigError("route", "has " + std::to_string(route.size()) +
+                                         " points; retrace's limit is " +
+                                         std::to_string(core::kMaxRoutePoints));
+  }
+  double length = 0.0;
   for (std::size_t i = 0; i < route.size(); ++i) {
     const std::string key = "route[" + std::to_string(i) + "]";
-    if (!std::isfinite(route[i].x()) || !std::isfinite(route[i].y())) {
-      throw core::ConfigError(key, "must be finite");
-    }
-    if (i > 0 && (route[i] - route[i - 1]).norm() < kMinSegment) {
+    core::RequirePoint(key, route[i]);
+    if (i == 0) continue;
+    const double segment = (route[i] - route[i - 1]).norm();
+    if (segment < kMinSegment) {
       throw core::ConfigError(key, "repeats the previous point (segments must be >= 1 mm long)");
     }
+    length += segment;
+  }
+  if (length > core::kMaxRouteLength) {
+    throw core::ConfigError(
+        "route", "is " + core::FormatNumber(std::round(length)) + " m long; retrace's limit is " +
+                     std::to_string(static_cast<long long>(core::kMaxRouteLength)) + " m");
   }
 }
 

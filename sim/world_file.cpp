@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/limits.hpp"
 #include "io/config_yaml.hpp"
 #include "io/ros_map.hpp"
 #include "sim/grid_edges.hpp"
@@ -45,37 +46,44 @@ std::vector<Vec2> BoxRing(const BoxConfig& b) {
 }
 
 void BoxConfig::Validate() const {
-  if (!center.allFinite()) throw core::ConfigError("center", "must be finite");
-  core::RequirePositive("size", std::min(size.x(), size.y()));
-  core::RequirePositive("size", std::max(size.x(), size.y()));  // rejects an infinite extent
+  core::RequirePoint("center", center);
+  core::RequireWorldLength("size", size.x());
+  core::RequireWorldLength("size", size.y());
   core::RequireFinite("yaw", yaw);
 }
 
 void CircleConfig::Validate() const {
-  if (!center.allFinite()) throw core::ConfigError("center", "must be finite");
-  core::RequirePositive("radius", radius);
+  core::RequirePoint("center", center);
+  core::RequireWorldLength("radius", radius);
 }
 
 void PolygonConfig::Validate() const {
   if (points.size() < 3) {
-    throw core::ConfigError("points", "a polygon needs at least 3 points, got " +
-                                          std::to_string(points.size()));
+    throw core::ConfigError(
+        "points", "a polygon needs at least 3 points, got " + std::to_string(points.size()));
   }
-  if (std::abs(SignedArea(points)) < 1e-9) throw core::ConfigError("points", "polygon has zero area");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    core::RequirePoint("points[" + std::to_string(i) + "]", points[i]);
+  }
+  if (std::abs(SignedArea(points)) < 1e-9)
+    throw core::ConfigError("points", "polygon has zero area");
 }
 
 void WallConfig::Validate() const {
   if (points.size() < 2) {
-    throw core::ConfigError("points", "a wall needs at least 2 points, got " +
-                                          std::to_string(points.size()));
+    throw core::ConfigError("points",
+                            "a wall needs at least 2 points, got " + std::to_string(points.size()));
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    core::RequirePoint("points[" + std::to_string(i) + "]", points[i]);
   }
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     if ((points[i + 1] - points[i]).norm() < 1e-9) {
-      throw core::ConfigError("points", "points " + std::to_string(i) + " and " +
-                                            std::to_string(i + 1) + " coincide");
+      throw core::ConfigError(
+          "points", "points " + std::to_string(i) + " and " + std::to_string(i + 1) + " coincide");
     }
   }
-  core::RequirePositive("thickness", thickness);
+  core::RequireWorldLength("thickness", thickness);
 }
 
 void MapImportConfig::Validate() const {
@@ -101,13 +109,15 @@ StaticGeometry BuildGeometry(const WorldConfig& config, const std::filesystem::p
     geometry.AddEdges(edges, std::move(mask));
   }
   if (geometry.empty()) {
-    throw core::WorldError("the world has no static geometry: add boxes, circles, polygons, "
-                           "walls or maps");
+    throw core::WorldError(
+        "the world has no static geometry: add boxes, circles, polygons, "
+        "walls or maps");
   }
   return geometry;
 }
 
-World LoadWorld(const std::filesystem::path& file, const std::vector<io::ConfigOverride>& overrides) {
+World LoadWorld(const std::filesystem::path& file,
+                const std::vector<io::ConfigOverride>& overrides) {
   World world;
   world.source = file;
   world.config = io::LoadConfigFile<WorldConfig>(file, overrides);

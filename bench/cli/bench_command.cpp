@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 
+#include "bench/cli/cli_checks.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/suite/baseline.hpp"
@@ -94,8 +95,7 @@ std::string VerdictLine(const SuiteSpec& spec, const SuiteReport& report,
   if (!selection.empty()) selection += ")";
   const std::string work =
       std::to_string(spec.entries.size()) + (spec.entries.size() == 1 ? " entry" : " entries") +
-      selection + ", " +
-      std::to_string(results.teaching_drives) + " teaching drives, " +
+      selection + ", " + std::to_string(results.teaching_drives) + " teaching drives, " +
       std::to_string(results.playback_runs) + " playback runs, " + Seconds(wall_time_s);
   std::string line = "suite " + spec.name + ": ";
   if (updated) {
@@ -138,7 +138,7 @@ void AddBenchOptions(CLI::App* command, BenchOptions* options) {
   command->add_flag("--update-baseline", options->update_baseline,
                     "Record the results as the suite's baseline instead of judging them");
   command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   command->add_option("--out", options->out, "Report folder (default: results/bench/<suite name>)");
   command->add_option("--set", options->overrides,
                       "Override a scenario key in every entry: a.b.c=value (repeatable)");
@@ -159,8 +159,10 @@ int RunBenchCommand(const BenchOptions& options) {
   }
 
   if (options.update_baseline && !options.only.empty()) {
-    throw core::ConfigError("", "--only cannot be combined with --update-baseline: a baseline "
-                                "covers the whole suite", true);
+    throw core::ConfigError("",
+                            "--only cannot be combined with --update-baseline: a baseline "
+                            "covers the whole suite",
+                            true);
   }
 
   // Everything that can be wrong with the input is found here, before anything runs.

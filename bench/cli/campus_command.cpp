@@ -5,6 +5,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "bench/cli/cli_checks.hpp"
 #include "bench/worldgen/campus_generator.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
@@ -111,7 +112,8 @@ void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options) {
       ->required();
   cmd->add_option("--out,-o", options->out, "World file to write (YAML)")->required();
   cmd->add_option("--seed", options->seed,
-                  "Seed of the placement: the same route, settings and seed give the same world");
+                  "Seed of the placement: the same route, settings and seed give the same world")
+      ->check(kSeed);
   cmd->add_option(
       "--config", options->config_file,
       "YAML file with generator settings (CampusConfig in bench/worldgen/campus_generator.hpp)");
@@ -121,7 +123,7 @@ void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options) {
   cmd->add_option(
          "--pedestrians", options->pedestrians,
          "Number of pedestrians, split into wander and loop groups (overrides the settings)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
 }
 
 std::string RunGenerateCampusCommand(const GenerateCampusOptions& options) {

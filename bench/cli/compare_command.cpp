@@ -5,6 +5,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "bench/cli/cli_checks.hpp"
 #include "bench/cli/mode_list.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/compare/comparison_report.hpp"
@@ -58,9 +59,9 @@ void AddCompareOptions(CLI::App* command, CompareOptions* options) {
   command
       ->add_option("--repeats", options->repeats,
                    "Playback runs per mode and seed (default: the scenario's)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   command->add_option("--out", options->out,
                       "Output folder (default: results/compare/<scenario name>)");
   command->add_option("--set", options->overrides,

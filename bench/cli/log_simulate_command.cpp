@@ -4,6 +4,7 @@
 #include <iostream>
 #include <system_error>
 
+#include "bench/cli/cli_checks.hpp"
 #include "bench/cli/log_options.hpp"
 #include "bench/output/results_io.hpp"
 #include "bench/replay/log_simulate.hpp"
@@ -26,7 +27,8 @@ void AddLogSimulateOptions(CLI::App* cmd, LogSimulateOptions* options) {
   cmd->add_option("--config", run.config, "Settings file (YAML), as for log-teach");
   cmd->add_option("--set", run.overrides,
                   "Override a setting, e.g. sim.lidar.noise.sigma0=0.02 (repeatable)");
-  cmd->add_option("--seed", run.seed, "Seed of the LiDAR noise and the synthetic odometry");
+  cmd->add_option("--seed", run.seed, "Seed of the LiDAR noise and the synthetic odometry")
+      ->check(kSeed);
   AddStreamOptions(cmd, &run.streams);
 }
 

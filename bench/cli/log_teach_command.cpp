@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bench/cli/cli_checks.hpp"
 #include "bench/cli/log_options.hpp"
 #include "bench/cli/mode_list.hpp"
 #include "bench/engine/switch_points.hpp"
@@ -70,7 +71,8 @@ void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options) {
   cmd->add_option("--config", options->config,
                   "Settings file (YAML): seed, modes, route, sim.odometry, nav, playback, metrics");
   cmd->add_option("--set", options->overrides, "Override a setting: a.b.c=value (repeatable)");
-  cmd->add_option("--seed", options->seed, "Seed of the synthetic odometry and the localizer");
+  cmd->add_option("--seed", options->seed, "Seed of the synthetic odometry and the localizer")
+      ->check(kSeed);
   cmd->add_flag("!--no-figures", options->figures, "Do not render the figures");
   AddStreamOptions(cmd, &options->streams);
 }

@@ -11,6 +11,7 @@
 
 #include "bench/cli/bench_command.hpp"
 #include "bench/cli/campus_command.hpp"
+#include "bench/cli/cli_checks.hpp"
 #include "bench/cli/compare_command.hpp"
 #include "bench/cli/log_compare_command.hpp"
 #include "bench/cli/log_info_command.hpp"
@@ -71,8 +72,9 @@ int main(int argc, char** argv) {
   world_cmd
       ->add_option("--pixels-per-meter", world.pixels_per_meter,
                    "Image scale (default: 1600 px wide)")
-      ->check(CLI::PositiveNumber);
-  world_cmd->add_option("--seed", world.seed, "Seed for the pedestrians' spawn points");
+      ->check(retrace::bench::kPositive);
+  world_cmd->add_option("--seed", world.seed, "Seed for the pedestrians' spawn points")
+      ->check(retrace::bench::kSeed);
 
   std::filesystem::path render_dir;
   CLI::App* render_cmd = app.add_subcommand(

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "bench/cli/progress.hpp"
+#include "bench/output/staged_folder.hpp"
 #include "bench/sweep/sweep_folder.hpp"
 #include "bench/sweep/sweep_results.hpp"
 #include "bench/sweep/sweep_summary.hpp"
@@ -132,6 +133,7 @@ int RunMergeCommand(const MergeOptions& options, const std::string& command_line
       Fail("case " + std::to_string(id) + " is missing from every shard");
   }
 
+  RequireFolderOrNothing(options.out);
   std::filesystem::create_directories(options.out);
   const SweepFolderLock lock(options.out);
   WriteSortedSweepTable(options.out / "results.csv", schema, rows);

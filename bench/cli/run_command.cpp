@@ -9,6 +9,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bench/cli/cli_checks.hpp"
 #include "bench/cli/mode_list.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/engine/parallel.hpp"
@@ -63,12 +64,12 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
         ->delimiter(',');
   }
   if (phases != RunPhases::kTeachOnly) {
-    command->add_option("--repeats", options->repeats, "Playback runs per mode")
-        ->check(CLI::PositiveNumber);
+    command->add_option("--repeats", options->repeats, "Playback runs per mode")->check(kPositive);
     command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
   }
-  command->add_option("--seed", options->seed, "Scenario seed (overrides the file's)");
+  command->add_option("--seed", options->seed, "Scenario seed (overrides the file's)")
+      ->check(kSeed);
   command->add_option("--out", options->out, "Results folder (default: results/<scenario name>)");
   command->add_option("--set", options->overrides,
                       "Override a scenario key: a.b.c=value (repeatable)");
@@ -83,11 +84,11 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
     command->add_flag("--video", options->video,
                       "Record a video of one playback run per mode: <mode>/runs/<run>/video.mp4");
     command->add_option("--video-run", options->video_run, "The run to record (default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     command
         ->add_option("--video-speed", options->video_speedup,
                      "Seconds of the run per second of video (default 10)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
   }
 }
 
@@ -140,6 +141,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
 
   // One staged folder per mode: a video is written into it while its run drives.
   std::map<MapMode, std::unique_ptr<StagedFolder>> folders;
+  RequireFolderOrNothing(out);
   for (const MapMode mode : config.modes) {
     folders[mode] = std::make_unique<StagedFolder>(out / std::string(core::EnumName(mode)));
   }

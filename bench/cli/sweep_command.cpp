@@ -7,11 +7,13 @@
 #include <map>
 #include <set>
 
+#include "bench/cli/cli_checks.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "bench/metrics/flat_metrics.hpp"
+#include "bench/output/staged_folder.hpp"
 #include "bench/sweep/sweep_folder.hpp"
 #include "bench/sweep/sweep_plan.hpp"
 #include "bench/sweep/sweep_results.hpp"
@@ -136,7 +138,7 @@ void AddSweepOptions(CLI::App* command, SweepOptions* options) {
   command
       ->add_option("--jobs", options->jobs,
                    "Cases run at once, one thread each (default: one per core)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   command->add_option(
       "--out", options->out,
       "Results folder (default: results/sweeps/<name>, or .../<name>/shard-<i>-of-<N>)");
@@ -158,6 +160,7 @@ int RunSweepCommand(const SweepOptions& options, const std::string& command_line
   const std::filesystem::path out =
       options.out.empty() ? DefaultSweepFolder(spec.name, shard) : options.out;
   // A folder of another sweep is an error before anything is written.
+  RequireFolderOrNothing(out);
   InspectFolder(out, plan, shard);
 
   std::filesystem::create_directories(out);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "bench/cli/campus_command.hpp"
+#include "bench/cli/cli_checks.hpp"
 #include "bench/engine/switch_points.hpp"
 #include "bench/output/staged_folder.hpp"
 #include "bench/worldgen/tour_generator.hpp"
@@ -74,12 +75,12 @@ std::string ScenarioText(const std::string& name, std::uint64_t seed, const std:
 void AddGenerateTourOptions(CLI::App* cmd, GenerateTourOptions* options) {
   cmd->add_option("--out,-o", options->out, "Folder to write: route.txt, world.yaml, scenario.yaml")
       ->required();
-  cmd->add_option("--seed", options->seed, "Seed of the tour and its world");
+  cmd->add_option("--seed", options->seed, "Seed of the tour and its world")->check(kSeed);
   cmd->add_option("--set", options->overrides,
                   "Override a tour setting: key=value (length, columns, rows, block_size, "
                   "max_loop_blocks, max_transfer; repeatable)");
   cmd->add_option("--pedestrians", options->pedestrians, "Pedestrians in the world (default 20)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
 }
 
 std::string RunGenerateTourCommand(const GenerateTourOptions& options) {

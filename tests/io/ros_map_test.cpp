@@ -341,6 +341,34 @@ TEST_F(RosMapTest, MalformedPgmHeadersAreIoErrors) {
   }
 }
 
+// Issue 16: declared sizes and structure are checked before a decoder allocates or prints.
+TEST_F(RosMapTest, ImageHeadersAreCheckedBeforeDecoding) {
+  // A binary PPM declaring 25554 x 25425 pixels over 64 bytes (OpenCV allocated 3.9 GB).
+  tmp_.Write("huge.ppm", std::string("P6\n25554 25425\n65535\n") + std::string(64, '\0'));
+  std::string msg = ErrorOf<core::IoError>(WriteYaml("huge.ppm"));
+  EXPECT_NE(msg.find("huge.ppm: Netpbm header declares 25554 x 25425 pixels; retrace's limit"),
+            std::string::npos)
+      << msg;
+  tmp_.Write("huge.pgm", std::string("P5\n20000 20000\n255\n") + std::string(64, '\0'));
+  msg = ErrorOf<core::IoError>(WriteYaml("huge.pgm"));
+  EXPECT_NE(msg.find("huge.pgm: PGM header declares 20000 x 20000 pixels"), std::string::npos)
+      << msg;
+  // A PNG map as retrace writes it, then cut short, then with one data byte flipped.
+  RosMapWriteOptions options;
+  options.image_format = RosMapImageFormat::kPng;
+  WriteRosMap(tmp_.path() / "ok.yaml", PatternGrid(), options);
+  const std::string whole = tmp_.Read(tmp_.path() / "ok.png");
+  EXPECT_EQ(ReadRosMap(tmp_.path() / "ok.yaml").width(), PatternGrid().width());
+  tmp_.Write("cut.png", whole.substr(0, whole.size() - 20));
+  msg = ErrorOf<core::IoError>(WriteYaml("cut.png"));
+  EXPECT_NE(msg.find("cut.png: truncated PNG"), std::string::npos) << msg;
+  std::string flipped = whole;
+  flipped[whole.size() / 2] = static_cast<char>(flipped[whole.size() / 2] ^ 0x55);
+  tmp_.Write("flipped.png", flipped);
+  msg = ErrorOf<core::IoError>(WriteYaml("flipped.png"));
+  EXPECT_NE(msg.find("flipped.png: corrupt PNG: chunk"), std::string::npos) << msg;
+}
+
 TEST_F(RosMapTest, MissingOrUndecodableFilesAreIoErrors) {
   EXPECT_NE(ErrorOf<core::IoError>(tmp_.path() / "nope.yaml").find("cannot open"),
             std::string::npos);
@@ -350,7 +378,9 @@ TEST_F(RosMapTest, MissingOrUndecodableFilesAreIoErrors) {
 
   tmp_.Write("garbage.png", "hello, not an image");
   msg = ErrorOf<core::IoError>(WriteYaml("garbage.png"));
-  EXPECT_NE(msg.find("cannot decode image"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("garbage.png: not a map image retrace reads (PGM, PNG, or PBM/PPM)"),
+            std::string::npos)
+      << msg;
 
   tmp_.Write("empty.pgm", "");
   msg = ErrorOf<core::IoError>(WriteYaml("empty.pgm"));

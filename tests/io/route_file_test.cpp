@@ -123,6 +123,14 @@ TEST_F(RouteFileTest, PathFileIsSevenColumnsWithZeroZ) {
   EXPECT_NEAR(v[6], std::sqrt(0.5), 1e-15);
 }
 
+// Issue 16: a taught path with such a line played back with heading NaN and exit 0.
+TEST_F(RouteFileTest, HugeQuaternionComponentsGiveTheirHeadingNotNan) {
+  const core::Path path =
+      ReadPathFile(tmp_.Write("huge.txt", "1 2 0 0 0 1e200 1e200\n3 2 0 0 0 1e200 1e200\n"));
+  ASSERT_EQ(path.size(), 2u);
+  EXPECT_NEAR(path.front().theta, core::kPi / 2, 1e-12);
+}
+
 TEST_F(RouteFileTest, BadPathFilesAreIoErrors) {
   const std::string where = (tmp_.path() / "bad.txt").string();
   auto error_for = [&](const std::string& text) -> std::string {

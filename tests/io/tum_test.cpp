@@ -102,6 +102,15 @@ TEST_F(TumTest, ReadsYawOfTiltedQuaternion) {
   EXPECT_NEAR(poses[0].pose.theta, yaw, 1e-12);
 }
 
+// Issue 16: squares of 1e200 overflowed, and the heading read as NaN without a word.
+TEST_F(TumTest, HugeQuaternionComponentsGiveTheirHeadingNotNan) {
+  const auto poses = ReadTum(tmp_.Write("huge.tum", "0 1 2 0 0 0 1e200 1e200\n"));
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_NEAR(poses[0].pose.theta, core::kPi / 2, 1e-12);
+  EXPECT_NE(ErrorFor("0 1 2 0 0 0 1e-300 1e-300\n").find(":1: the quaternion is zero"),
+            std::string::npos);
+}
+
 TEST_F(TumTest, MalformedLinesNameFileAndLine) {
   const std::string where = (tmp_.path() / "bad.tum").string();
   std::string msg = ErrorFor("0 0 0 0 0 0 0 1\n# comment\n1 0 0 0 0 0 1\n");
