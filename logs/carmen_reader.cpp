@@ -17,6 +17,7 @@
 
 #include "core/angle.hpp"
 #include "core/errors.hpp"
+#include "core/limits.hpp"
 
 namespace retrace::logs {
 namespace {
@@ -208,6 +209,10 @@ double GuessedIncrement(const CarmenLaserGeometry& g, std::size_t n) {
 // reading conventions of the file comment.
 void ReadRanges(const Fields& f, std::size_t first, std::size_t n, double max_range,
                 core::LaserScan& scan) {
+  if (n > static_cast<std::size_t>(core::kMaxBeams)) {
+    f.Fail("num_readings " + std::to_string(n) + " is more than retrace's limit of " +
+           std::to_string(core::kMaxBeams) + " beams");
+  }
   scan.ranges.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     // The field's name is spelled out only when it fails (this loop reads every range).

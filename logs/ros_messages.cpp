@@ -12,6 +12,7 @@
 
 #include "core/config.hpp"
 #include "core/errors.hpp"
+#include "core/limits.hpp"
 #include "core/quaternion.hpp"
 #include "logs/cdr.hpp"
 
@@ -241,6 +242,10 @@ ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr) {
     m.scan.angle_min = angle_min;
     m.scan.angle_increment = angle_increment;
     const std::size_t n = m.scan.ranges.size();
+    if (n > static_cast<std::size_t>(core::kMaxBeams)) {
+      throw core::IoError("the scan has " + std::to_string(n) + " ranges; retrace's limit is " +
+                          std::to_string(core::kMaxBeams));
+    }
     if (n > 0) {
       const double expected = m.scan.Angle(n - 1);
       // Half an increment, and a little for the float32 rounding of the three angles.

@@ -8,12 +8,12 @@
 #include "core/angle.hpp"
 #include "core/check.hpp"
 #include "core/errors.hpp"
+#include "core/limits.hpp"
 
 namespace retrace::sim {
 namespace {
 
 constexpr double kNoReturn = std::numeric_limits<double>::infinity();
-constexpr int kMaxBeams = 1 << 20;
 
 void RequireProbability(std::string_view key, double p) { core::RequireInRange(key, p, 0.0, 1.0); }
 
@@ -48,7 +48,7 @@ void LidarConfig::Validate() const {
   if (!(fov_deg > 0.0 && fov_deg <= 360.0)) {
     throw core::ConfigError("fov_deg", "must be in (0, 360], got " + core::FormatNumber(fov_deg));
   }
-  core::RequireIntInRange("beams", beams, 2, kMaxBeams);
+  core::RequireIntInRange("beams", beams, 2, core::kMaxBeams);
   core::RequireNonNegative("range_min", range_min);
   core::RequirePositive("range_max", range_max);
   core::RequireGreater("range_max", range_max, "range_min", range_min);
