@@ -3,8 +3,9 @@
 #  - a Release build (GCC, what users run) of the program, the micro benchmarks and the system
 #    tests; runs the system tests and the CI regression suite against its committed baseline
 #    (navigation metrics gated, timing reported);
-#  - an AddressSanitizer + UndefinedBehaviorSanitizer build (Clang) of the program and the unit
-#    and integration tests; runs them.
+#  - an AddressSanitizer + UndefinedBehaviorSanitizer build (Clang) of the program, the unit
+#    and integration tests and the fuzz targets; runs the tests, then every fuzz target for
+#    RETRACE_FUZZ_SECONDS (default 10) seconds.
 # Each test runs once, in the build where it pays. Prints how long each stage took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -43,11 +44,14 @@ stage "AddressSanitizer + UBSan build (Clang: program, unit and integration test
 CC=clang CXX=clang++ scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DRETRACE_SANITIZE=ON \
   -DRETRACE_WERROR=ON -DRETRACE_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON \
-  -DRETRACE_TEST_TIERS="unit;integration"
+  -DRETRACE_TEST_TIERS="unit;integration" -DRETRACE_FUZZ=ON
 
 stage "Unit and integration tests (AddressSanitizer + UBSan)"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|integration'
+
+stage "Fuzzing: every parser's fuzz target for ${RETRACE_FUZZ_SECONDS:-10} s"
+scripts/fuzz.sh build-asan "${RETRACE_FUZZ_SECONDS:-10}"
 
 stage ""
 echo "== all stages: $((SECONDS - start)) s"

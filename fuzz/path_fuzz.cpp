@@ -1,0 +1,10 @@
+// Path files of a teach bundle (io/route_file.hpp): `x y z qx qy qz qw` per line.
+#include "fuzz/fuzz_input.hpp"
+#include "io/route_file.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace retrace;
+  const auto file = fuzz::WriteFile("path.txt", fuzz::AsText(data, size));
+  fuzz::Refusing([&] { io::ReadPathFile(file); });
+  return 0;
+}
