@@ -38,8 +38,8 @@ double KldBound(int k, double epsilon, double z) {
   return km1 / (2.0 * epsilon) * b * b * b;
 }
 
-// The particles in the sums of eq. (9) (DynamicRejectionConfig::particles): those of positive
-// prior weight with their weights when there are at most `count`, else a stratified sample of
+// The particles in the sums of eq. (9) (DynamicRejectionConfig::particles): all with their prior
+// weights when `count` is 0 or there are at most `count` of positive weight, else a sample of
 // `count` drawn by prior weight (the comb at (k + 1/2) / count), each distinct particle weighted
 // by how often it was drawn.
 void StratifiedSample(std::span<const core::Pose2> X, std::span<const double> prior, int count,
@@ -52,7 +52,7 @@ void StratifiedSample(std::span<const core::Pose2> X, std::span<const double> pr
   }
   sample_X->clear();
   sample_w->clear();
-  if (positive <= static_cast<std::size_t>(count) || !(total > 0.0)) {
+  if (count == 0 || positive <= static_cast<std::size_t>(count) || !(total > 0.0)) {
     sample_X->assign(X.begin(), X.end());
     sample_w->assign(prior.begin(), prior.end());
     return;
@@ -75,7 +75,7 @@ void StratifiedSample(std::span<const core::Pose2> X, std::span<const double> pr
 
 void DynamicRejectionConfig::Validate() const {
   core::RequireInRange("chi", chi, 0.0, 1.0);
-  core::RequireIntInRange("particles", particles, 1, 1'000'000);
+  core::RequireIntInRange("particles", particles, 0, 1'000'000);
   ValidateNested("beam_model", beam_model);
 }
 

@@ -26,15 +26,16 @@ namespace retrace::nav {
 
 /// Dynamic scan point rejection (eq. 7-9).
 ///
-/// The sums of eq. (9) are expectations over the belief. With more particles than `particles`,
-/// they run over a stratified sample of that many drawn by prior weight at the quantiles
-/// (k + 1/2) / K of the cumulative weights (no random numbers), each distinct particle weighted
-/// by how often it was drawn: the ray casts, most of an update's cost, no longer grow with the
-/// particle count.
+/// The sums of eq. (9) are expectations over the belief. With `particles` > 0 and more particles
+/// than that, they run over a stratified sample of that many drawn by prior weight at the
+/// quantiles (k + 1/2) / K of the cumulative weights (no random numbers), each distinct particle
+/// weighted by how often it was drawn: the ray casts, most of an update's cost, then no longer
+/// grow with the particle count. Off by default: on the campus, 100 made the localizer jump more
+/// often (docs/METHOD.md).
 struct DynamicRejectionConfig {
   bool enabled = true;
-  double chi = 0.9;     ///< a beam is dynamic when its short-reading ratio exceeds chi
-  int particles = 100;  ///< particles in the sums of eq. (9) (a stratified sample; >= 1)
+  double chi = 0.9;   ///< a beam is dynamic when its short-reading ratio exceeds chi
+  int particles = 0;  ///< particles in the sums of eq. (9): 0 all, else a stratified sample
   BeamModelConfig beam_model;
 
   template <class V>

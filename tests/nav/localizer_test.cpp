@@ -166,7 +166,7 @@ TEST(Localizer, ConfigErrorsNameTheKey) {
   EXPECT_EQ(ValidationErrorKey<RobotGeometry>([](auto& r) { r.radius = 0.0; }), "radius");
   EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.rejection.chi = 1.5; }),
             "rejection.chi");
-  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.rejection.particles = 0; }),
+  EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.rejection.particles = -1; }),
             "rejection.particles");
   EXPECT_EQ(
       ValidationErrorKey<LocalizerConfig>([](auto& c) { c.rejection.beam_model.sigma_hit = 0.0; }),
