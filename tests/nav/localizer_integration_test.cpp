@@ -46,93 +46,81 @@ TEST(Localizer, ConvergesInRoomFromHalfMetreTenDegreesWithinTenUpdates) {
   EXPECT_GE(converged, 19);  // >= 95 %
 }
 
-TEST(Localizer, RejectionKeepsErrorLowWithThirtyPercentOfBeamsBlocked) {
-  const int kSeeds = 10;
-  double mean_on = 0.0, mean_off = 0.0;
-  int tp = 0, fp = 0, fn = 0, tested = 0;
-  int worse = 0;
-  for (int seed = 0; seed < kSeeds; ++seed) {
-    double err[2] = {0.0, 0.0};
-    for (const bool on : {true, false}) {
-      LocalizerConfig config = TestConfig();
-      config.rejection.enabled = on;
-      Drive drive(static_cast<std::uint64_t>(100 + seed));
-      Localizer loc(config, TestRobot(),
-                    core::Rng(static_cast<std::uint64_t>(seed)).Split("localizer"));
-      loc.SetMap(drive.map);
-      loc.Initialize(drive.X_WR, 0.05, 0.02);
-      const RunResult r = DriveAndLocalize(loc, drive, 60, true, 5);
-      err[on ? 0 : 1] = r.mean_position_error;
-      if (on) {
-        tp += r.tp;
-        fp += r.fp;
-        fn += r.fn;
-        tested += r.tested;
-      }
-    }
-    mean_on += err[0] / kSeeds;
-    mean_off += err[1] / kSeeds;
-    worse += err[1] > err[0] ? 1 : 0;
-  }
-  const double precision = tp / static_cast<double>(tp + fp);
-  const double recall = tp / static_cast<double>(tp + fn);
-  std::printf(
-      "[ report ] 30 %% beams blocked: mean position error rejection ON %.3f m, OFF %.3f m "
-      "(OFF worse on %d/%d seeds); %.1f %% of tested beams blocked; mask precision %.3f recall "
-      "%.3f "
-      "(tp %d fp %d fn %d)\n",
-      mean_on, mean_off, worse, kSeeds, 100.0 * (tp + fn) / tested, precision, recall, tp, fp, fn);
-  EXPECT_LT(mean_on, 0.1);
-  EXPECT_GT(mean_off, 1.5 * mean_on);
-  EXPECT_GE(worse, 8);
-  EXPECT_GT(precision, 0.9);
-  EXPECT_GT(recall, 0.5);
-}
-
-// Rejection ON on the ten drives of the test above, with eq. (9)'s sums over `sample` particles.
+// The ten drives with walkers blocking about a third of the beams, localized with `config`.
 struct RejectionScore {
-  double mean_error = 0.0;  // m, over the seeds
-  double precision = 0.0;
-  double recall = 0.0;
+  std::vector<double> errors;  // m, mean position error per drive
+  int tp = 0, fp = 0, fn = 0, tested = 0;
+  double mean_error() const {
+    double sum = 0.0;
+    for (const double e : errors) sum += e;
+    return sum / static_cast<double>(errors.size());
+  }
+  double precision() const { return tp / static_cast<double>(tp + fp); }
+  double recall() const { return tp / static_cast<double>(tp + fn); }
 };
 
-RejectionScore ScoreRejection(int sample) {
+RejectionScore ScoreRejection(const LocalizerConfig& config) {
   const int kSeeds = 10;
   RejectionScore score;
-  int tp = 0, fp = 0, fn = 0;
   for (int seed = 0; seed < kSeeds; ++seed) {
-    LocalizerConfig config = TestConfig();
-    config.rejection.particles = sample;
     Drive drive(static_cast<std::uint64_t>(100 + seed));
     Localizer loc(config, TestRobot(),
                   core::Rng(static_cast<std::uint64_t>(seed)).Split("localizer"));
     loc.SetMap(drive.map);
     loc.Initialize(drive.X_WR, 0.05, 0.02);
     const RunResult r = DriveAndLocalize(loc, drive, 60, true, 5);
-    score.mean_error += r.mean_position_error / kSeeds;
-    tp += r.tp;
-    fp += r.fp;
-    fn += r.fn;
+    score.errors.push_back(r.mean_position_error);
+    score.tp += r.tp;
+    score.fp += r.fp;
+    score.fn += r.fn;
+    score.tested += r.tested;
   }
-  score.precision = tp / static_cast<double>(tp + fp);
-  score.recall = tp / static_cast<double>(tp + fn);
   return score;
 }
 
+TEST(Localizer, RejectionKeepsErrorLowWithThirtyPercentOfBeamsBlocked) {
+  LocalizerConfig off = TestConfig();
+  off.rejection.enabled = false;
+  const RejectionScore on_score = ScoreRejection(TestConfig());
+  const RejectionScore off_score = ScoreRejection(off);
+  int worse = 0;
+  for (std::size_t k = 0; k < on_score.errors.size(); ++k) {
+    worse += off_score.errors[k] > on_score.errors[k] ? 1 : 0;
+  }
+  const double mean_on = on_score.mean_error(), mean_off = off_score.mean_error();
+  std::printf(
+      "[ report ] 30 %% beams blocked: mean position error rejection ON %.3f m, OFF %.3f m "
+      "(OFF worse on %d/%zu seeds); %.1f %% of tested beams blocked; mask precision %.3f recall "
+      "%.3f (tp %d fp %d fn %d)\n",
+      mean_on, mean_off, worse, on_score.errors.size(),
+      100.0 * (on_score.tp + on_score.fn) / on_score.tested, on_score.precision(),
+      on_score.recall(), on_score.tp, on_score.fp, on_score.fn);
+  EXPECT_LT(mean_on, 0.1);
+  EXPECT_GT(mean_off, 1.5 * mean_on);
+  EXPECT_GE(worse, 8);
+  EXPECT_GT(on_score.precision(), 0.9);
+  EXPECT_GT(on_score.recall(), 0.5);
+}
+
 TEST(Localizer, RejectionOnAStratifiedSampleMatchesAllParticlesInTheRoom) {
-  const int all = TestConfig().particles;
   ASSERT_EQ(TestConfig().rejection.particles, 0);  // the default: all particles
-  const RejectionScore full = ScoreRejection(0);
-  const RejectionScore sampled = ScoreRejection(100);
-  const RejectionScore few = ScoreRejection(10);
+  const auto with_sample = [](int sample) {
+    LocalizerConfig config = TestConfig();
+    config.rejection.particles = sample;
+    return ScoreRejection(config);
+  };
+  const RejectionScore full = ScoreRejection(TestConfig());
+  const RejectionScore sampled = with_sample(100);
+  const RejectionScore few = with_sample(10);
   std::printf(
       "[ report ] eq. (9) over all %d particles: error %.4f m, precision %.3f, recall %.3f; over "
       "100: %.4f m, %.3f, %.3f; over 10: %.4f m, %.3f, %.3f\n",
-      all, full.mean_error, full.precision, full.recall, sampled.mean_error, sampled.precision,
-      sampled.recall, few.mean_error, few.precision, few.recall);
-  EXPECT_NEAR(sampled.recall, full.recall, 0.02);
-  EXPECT_NEAR(sampled.precision, full.precision, 0.02);
-  EXPECT_NEAR(sampled.mean_error, full.mean_error, 0.01);
+      TestConfig().particles, full.mean_error(), full.precision(), full.recall(),
+      sampled.mean_error(), sampled.precision(), sampled.recall(), few.mean_error(),
+      few.precision(), few.recall());
+  EXPECT_NEAR(sampled.recall(), full.recall(), 0.02);
+  EXPECT_NEAR(sampled.precision(), full.precision(), 0.02);
+  EXPECT_NEAR(sampled.mean_error(), full.mean_error(), 0.01);
 }
 
 TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
