@@ -32,6 +32,19 @@ std::vector<double> CumulativeArcLength(std::span<const Vec2> points);
 PathProjection ProjectOntoPath(std::span<const Vec2> points, std::span<const double> arc,
                                const Vec2& p, double s_lo, double s_hi);
 
+/// ProjectOntoPath's step for one segment: if the point of segment `i` (from points[i] to
+/// points[i + 1]) closest to p within the arc window [s_lo, s_hi] is closer than `best`, makes
+/// it the best. Segments shorter than 1 nm are skipped.
+void ProjectOntoSegment(std::span<const Vec2> points, std::span<const double> arc, std::size_t i,
+                        const Vec2& p, double s_lo, double s_hi, PathProjection* best);
+
+/// The segments ProjectOntoPath considers for the window [s_lo, s_hi]: i in [first, last).
+struct SegmentRange {
+  std::size_t first = 0;
+  std::size_t last = 0;
+};
+SegmentRange SegmentsInWindow(std::span<const double> arc, double s_lo, double s_hi);
+
 /// A progress (m of arc length) along a polyline that only moves forward.
 class ForwardProgress {
  public:

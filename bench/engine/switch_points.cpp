@@ -9,6 +9,7 @@
 #include "core/check.hpp"
 #include "core/config.hpp"
 #include "core/errors.hpp"
+#include "core/path_index.hpp"
 #include "core/path_projection.hpp"
 
 namespace retrace::bench {
@@ -36,7 +37,8 @@ double SampleStep(double revisit_radius) { return std::clamp(revisit_radius / 8.
 // earlier part of the same stretch lying more than kRevisitLagFactor radii behind. Samples are
 // s_start + i·step and s_end, so CheckSwitchPoints and SuggestSwitchPoints see the same points.
 std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::vector<double>& cum,
-                                    double s_start, double s_end, double revisit_radius) {
+                                    const core::PathIndex& index, double s_start, double s_end,
+                                    double revisit_radius) {
   const double step = SampleStep(revisit_radius);
   const double lag = kRevisitLagFactor * revisit_radius;
   double previous = s_start;
@@ -45,8 +47,8 @@ std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::v
     const bool last = s >= s_end;
     if (last) s = s_end;
     if (s - lag > s_start) {
-      const core::PathProjection earlier = core::ProjectOntoPath(
-          route, cum, RoutePoseAt(route, cum, s).translation(), s_start, s - lag);
+      const core::PathProjection earlier =
+          index.Project(RoutePoseAt(route, cum, s).translation(), s_start, s - lag);
       if (earlier.distance < revisit_radius) return Revisit{s, previous, earlier.s};
     }
     if (last) return std::nullopt;
@@ -108,11 +110,12 @@ std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
     }
   }
 
+  const core::PathIndex index(route, cum, revisit_radius);
   std::vector<std::string> warnings;
   for (std::size_t k = 0; k <= switch_points.size(); ++k) {
     const double s_start = k == 0 ? 0.0 : switch_points[k - 1];
     const double s_end = k == switch_points.size() ? length : switch_points[k];
-    const auto revisit = FirstRevisit(route, cum, s_start, s_end, revisit_radius);
+    const auto revisit = FirstRevisit(route, cum, index, s_start, s_end, revisit_radius);
     if (!revisit) continue;
     std::ostringstream msg;
     msg << "partial map " << k << " (route " << ArcLengthText(s_start) << " to "
@@ -128,9 +131,11 @@ std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
 std::vector<double> SuggestSwitchPoints(const std::vector<Vec2>& route, double revisit_radius) {
   RequireUsable(route, revisit_radius);
   const std::vector<double> cum = CumulativeArcLength(route);
+  const core::PathIndex index(route, cum, revisit_radius);
   std::vector<double> points;
   double s_start = 0.0;
-  while (const auto revisit = FirstRevisit(route, cum, s_start, cum.back(), revisit_radius)) {
+  while (const auto revisit =
+             FirstRevisit(route, cum, index, s_start, cum.back(), revisit_radius)) {
     // The last sample before the revisit: the map ending there is still clean, and it lies at
     // least (lag - step) beyond s_start, so the loop advances.
     points.push_back(revisit->s_before);
