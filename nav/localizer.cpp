@@ -38,6 +38,33 @@ double KldBound(int k, double epsilon, double z) {
   return km1 / (2.0 * epsilon) * b * b * b;
 }
 
+// The belief's spread at a scan's endpoints (m): the prior-weighted RMS distance of the particles
+// from their mean position plus the mean tested range times the RMS heading difference from their
+// circular mean, i.e. how far apart the particles put a typical beam's endpoint.
+double EndpointSpread(std::span<const core::Pose2> X, std::span<const double> prior,
+                      double mean_range) {
+  double total = 0.0, mx = 0.0, my = 0.0, mc = 0.0, ms = 0.0;
+  for (std::size_t j = 0; j < X.size(); ++j) {
+    total += prior[j];
+    mx += prior[j] * X[j].x;
+    my += prior[j] * X[j].y;
+    mc += prior[j] * std::cos(X[j].theta);
+    ms += prior[j] * std::sin(X[j].theta);
+  }
+  if (!(total > 0.0)) return std::numeric_limits<double>::infinity();
+  mx /= total;
+  my /= total;
+  const double mean_theta = std::atan2(ms, mc);
+  double var_xy = 0.0, var_theta = 0.0;
+  for (std::size_t j = 0; j < X.size(); ++j) {
+    const double dx = X[j].x - mx, dy = X[j].y - my;
+    const double dtheta = core::AngleDiff(X[j].theta, mean_theta);
+    var_xy += prior[j] * (dx * dx + dy * dy);
+    var_theta += prior[j] * dtheta * dtheta;
+  }
+  return std::sqrt(var_xy / total) + mean_range * std::sqrt(var_theta / total);
+}
+
 // The particles in the sums of eq. (9) (DynamicRejectionConfig::particles): all with their prior
 // weights when `count` is 0 or there are at most `count` of positive weight, else a sample of
 // `count` drawn by prior weight (the comb at (k + 1/2) / count), each distinct particle weighted
@@ -242,7 +269,11 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
     for (std::size_t j = 0; j < n; ++j) prior[j] = injected_[j] != 0 ? 0.0 : particles_[j].weight;
     std::vector<core::Pose2> sample_X;
     std::vector<double> sample_w;
+    double range_sum = 0.0;
+    for (const int i : tested) range_sum += scan.ranges[static_cast<std::size_t>(i)];
+    out.spread = EndpointSpread(X_ML, prior, range_sum / static_cast<double>(tested.size()));
     StratifiedSample(X_ML, prior, config_.rejection.particles, &sample_X, &sample_w);
+    out.rejection_particles = static_cast<int>(sample_X.size());
     TestDynamicBeams(*beam_model_, *caster_, sample_X, sample_w, scan, tested,
                      config_.rejection.chi, RayCastMethod::kSphereTracing, &result);
     dynamic = std::move(result.dynamic);

@@ -30,8 +30,8 @@ namespace retrace::nav {
 /// than that, they run over a stratified sample of that many drawn by prior weight at the
 /// quantiles (k + 1/2) / K of the cumulative weights (no random numbers), each distinct particle
 /// weighted by how often it was drawn: the ray casts, most of an update's cost, then no longer
-/// grow with the particle count. Off by default: on the campus, 100 made the localizer jump more
-/// often (docs/METHOD.md).
+/// grow with the particle count. Off by default: on the campus, 100 made the localizer get lost
+/// more often, even when used only while the belief was concentrated (docs/METHOD.md).
 struct DynamicRejectionConfig {
   bool enabled = true;
   double chi = 0.9;   ///< a beam is dynamic when its short-reading ratio exceeds chi
@@ -167,12 +167,16 @@ enum class BeamUse : std::uint8_t {
 
 /// Diagnostics of one Update call (no timings: nav has no clock).
 struct LocalizerUpdate {
-  bool ran = false;            ///< false: gated (no motion since the last update) or no usable beam
-  int beams_tested = 0;        ///< selected valid beams
-  int beams_used = 0;          ///< beams in the weights
-  int beams_rejected = 0;      ///< beams classified dynamic
-  std::vector<BeamUse> beams;  ///< per scan beam (size of the scan when ran, else empty)
-  double n_eff = 0.0;          ///< effective sample size after weighting, before resampling
+  bool ran = false;        ///< false: gated (no motion since the last update) or no usable beam
+  int beams_tested = 0;    ///< selected valid beams
+  int beams_used = 0;      ///< beams in the weights
+  int beams_rejected = 0;  ///< beams classified dynamic
+  /// The belief's spread at the scan's endpoints (m): prior-weighted RMS distance of the particles
+  /// from their mean plus the mean tested range times their RMS heading difference (rejection on)
+  double spread = 0.0;
+  int rejection_particles = 0;  ///< distinct particles in the sums of eq. (9) (rejection on)
+  std::vector<BeamUse> beams;   ///< per scan beam (size of the scan when ran, else empty)
+  double n_eff = 0.0;           ///< effective sample size after weighting, before resampling
   bool resampled = false;
   double w_avg = 0.0;  ///< average per-beam likelihood of this update (1/m)
   double w_slow = 0.0;

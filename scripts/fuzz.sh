@@ -8,6 +8,9 @@
 # Usage: scripts/fuzz.sh <build dir> <seconds per target> [target ...]
 #   The build dir must be configured with Clang and -DRETRACE_FUZZ=ON (scripts/test.sh builds
 #   build-asan so); targets default to all of them.
+# Environment: FUZZ_RUNS=N stops a target after N executions (before its time is up);
+#   FUZZ_TIMEOUT (s, default 5) is the time one input may take before it counts as a hang;
+#   FUZZ_JOBS (default: the number of cores) targets run at once.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="$1"
@@ -18,7 +21,7 @@ if [ ${#targets[@]} -eq 0 ]; then
   for f in "$build"/fuzz/fuzz_*; do targets+=("$(basename "$f" | sed 's/^fuzz_//')"); done
 fi
 work="$build/fuzz"
-rm -rf "$work/seeds" "$work/findings" "$work/logs"
+rm -rf "$work/seeds" "$work/findings" "$work/unconfirmed" "$work/logs"
 mkdir -p "$work/seeds" "$work/findings" "$work/logs" "$work/corpus"
 
 # Seeds: the shipped files each parser reads, and a few written here.
@@ -61,16 +64,31 @@ run_one() {  # run_one <target>: one target for $seconds, its stats in logs/<tar
   local t="$1"
   mkdir -p "$work/corpus/$t"
   "$build/fuzz/fuzz_$t" "$work/corpus/$t" "$work/seeds/$t" -dict="$work/keys.dict" \
-    -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
+    -max_total_time="$seconds" -runs="$runs" -timeout="$timeout" -report_slow_units="$timeout" -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$work/findings/$t-" >"$work/logs/$t.txt" 2>&1 || true
   local execs
   execs=$(grep -oE 'stat::number_of_executed_units: [0-9]+' "$work/logs/$t.txt" | grep -oE '[0-9]+$' || echo 0)
   echo "$t $execs"
 }
 export -f run_one
-export build work seconds
-printf '%s\n' "${targets[@]}" | xargs -P "$(nproc)" -I{} bash -c 'run_one {}' | sort >"$work/execs.txt"
+runs="${FUZZ_RUNS:--1}"
+timeout="${FUZZ_TIMEOUT:-5}"
+export build work seconds runs timeout
+printf '%s\n' "${targets[@]}" | xargs -P "${FUZZ_JOBS:-$(nproc)}" -I{} bash -c 'run_one {}' | sort >"$work/execs.txt"
 
+# A hang must reproduce: on a loaded machine an input can take longer than the timeout only
+# because the fuzzer did not get the CPU. Each timeout or slow input runs again alone; one that
+# now finishes within the timeout is kept in unconfirmed/ and reported, but is no finding.
+mkdir -p "$work/unconfirmed"
+for f in "$work"/findings/*-timeout-* "$work"/findings/*-slow-unit-*; do
+  [ -f "$f" ] || continue
+  t=$(basename "$f" | cut -d- -f1)
+  start=$(date +%s%N)
+  if timeout "$timeout" "$build/fuzz/fuzz_$t" "$f" >/dev/null 2>&1; then
+    echo "unconfirmed: $(basename "$f") ran again in $((($(date +%s%N) - start) / 1000000)) ms"
+    mv "$f" "$work/unconfirmed/"
+  fi
+done
 findings=$(find "$work/findings" -type f | wc -l)
 printf '%-18s %12s\n' target executions
 while read -r t n; do printf '%-18s %12s\n' "$t" "$n"; done <"$work/execs.txt"

@@ -81,9 +81,11 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
     io::WriteTum(dir / "est.tum", est);
     io::WriteTum(dir / "reference.tum", reference);
   }
-  io::CsvWriter updates(dir / "updates.csv", {"time", "beams_tested", "beams_rejected", "cpu_ms"});
+  io::CsvWriter updates(dir / "updates.csv", {"time", "beams_tested", "beams_rejected", "spread_m",
+                                              "rejection_particles", "cpu_ms"});
   for (const LocalizerSample& u : run.updates)
-    updates.AddRow({u.time, u.beams_tested, u.beams_rejected, u.cpu_s * 1e3});
+    updates.AddRow(
+        {u.time, u.beams_tested, u.beams_rejected, u.spread, u.rejection_particles, u.cpu_s * 1e3});
   updates.Commit();
   io::CsvWriter events(dir / "events.csv", {"time", "event", "detail"});
   for (const SwitchRecord& s : run.switches) {

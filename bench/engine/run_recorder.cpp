@@ -25,6 +25,8 @@ LocalizerSample Score(const nav::LocalizerUpdate& update, const sim::LidarReadin
   sample.cpu_s = cpu_s;
   sample.beams_tested = update.beams_tested;
   sample.beams_rejected = update.beams_rejected;
+  sample.spread = update.spread;
+  sample.rejection_particles = update.rejection_particles;
   for (std::size_t i = 0; i < update.beams.size(); ++i) {
     if (update.beams[i] == nav::BeamUse::kUnused) continue;
     const bool rejected = update.beams[i] == nav::BeamUse::kRejected;

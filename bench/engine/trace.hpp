@@ -67,10 +67,12 @@ struct LocalizerSample {
   double time = 0.0;
   int beams_tested = 0;
   int beams_rejected = 0;
-  int true_positive = 0;   ///< rejected and hit a pedestrian
-  int false_positive = 0;  ///< rejected, but hit static geometry (or was spurious)
-  int false_negative = 0;  ///< tested, hit a pedestrian, not rejected
-  double cpu_s = 0.0;      ///< thread CPU time of the measurement update (s)
+  int true_positive = 0;        ///< rejected and hit a pedestrian
+  int false_positive = 0;       ///< rejected, but hit static geometry (or was spurious)
+  int false_negative = 0;       ///< tested, hit a pedestrian, not rejected
+  double spread = 0.0;          ///< the belief's spread at the endpoints (m, LocalizerUpdate)
+  int rejection_particles = 0;  ///< distinct particles in the sums of eq. (9)
+  double cpu_s = 0.0;           ///< thread CPU time of the measurement update (s)
 };
 
 /// A map switch done by the map server.

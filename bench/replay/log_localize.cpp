@@ -148,6 +148,8 @@ LogLocalizeResult RunLogLocalize(const logs::LogIndex& index, const LogStreams& 
       u.time = stamp;
       u.beams_tested = update.beams_tested;
       u.beams_rejected = update.beams_rejected;
+      u.spread = update.spread;
+      u.rejection_particles = update.rejection_particles;
       u.cpu_s = ThreadCpuSeconds() - cpu0;
       result.updates.push_back(u);
     }

@@ -53,6 +53,32 @@ TEST(Localizer, NoUpdateWhileStandingStill) {
   EXPECT_TRUE(loc.Update(MakeScan(drive.rects, {}, X_WL, noise)).ran);
 }
 
+TEST(Localizer, ReportsTheBeliefsSpreadAndTheParticlesOfTheRejectionTest) {
+  Drive drive(5);
+  core::Rng noise(6);
+  const Pose2 X_WL = drive.X_WR * TestRobot().X_RL;
+  const auto first_update = [&](double sigma_xy, double sigma_theta, int sample) {
+    LocalizerConfig config = TestConfig();
+    config.rejection.particles = sample;
+    Localizer loc(config, TestRobot(), core::Rng(5));
+    loc.SetMap(drive.map);
+    loc.Initialize(drive.X_WR, sigma_xy, sigma_theta);
+    return loc.Update(MakeScan(drive.rects, {}, X_WL, noise));
+  };
+  // Position only: the spread is the RMS distance from the mean, √2·σ for independent x and y.
+  const LocalizerUpdate tight = first_update(0.05, 0.0, 0);
+  EXPECT_NEAR(tight.spread, 0.05 * std::sqrt(2.0), 0.01);
+  EXPECT_EQ(tight.rejection_particles, TestConfig().particles);
+  // A heading spread adds the mean tested range times its RMS (the room's ranges are metres).
+  const LocalizerUpdate turned = first_update(0.05, 0.1, 0);
+  EXPECT_GT(turned.spread, tight.spread + 0.1);
+  // A sample of 100 drawn by weight: at most 100 distinct particles, and the same spread.
+  const LocalizerUpdate sampled = first_update(0.05, 0.0, 100);
+  EXPECT_LE(sampled.rejection_particles, 100);
+  EXPECT_GT(sampled.rejection_particles, 50);
+  EXPECT_EQ(sampled.spread, tight.spread);
+}
+
 TEST(Localizer, ApplyMapSwitchTransformsEveryParticleByEquationOne) {
   Drive drive(5);
   Localizer loc(TestConfig(), TestRobot(), core::Rng(5));
