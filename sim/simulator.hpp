@@ -114,6 +114,8 @@ class Simulator {
   const core::Pose2& OdometryPose() const { return odometry_.pose(); }
   /// Pedestrians as circles in W now.
   std::vector<DynamicCircle> PedestrianCircles() const { return physics_.PedestrianCircles(); }
+  /// A pedestrian's velocity (W, m/s) by its DynamicCircle id.
+  core::Vec2 PedestrianVelocity(int id) const { return physics_.PedestrianVelocity(id); }
   const Pedestrians& pedestrians() const { return *pedestrians_; }
   /// Every collision so far, in order.
   const std::vector<CollisionEvent>& collisions() const { return collisions_; }

@@ -88,8 +88,8 @@ std::string OutcomeText(const std::array<int, 4>& counts) {
 }  // namespace
 
 const std::vector<ComparedMetric>& ComparedMetrics() {
-  // Table order: does it work, how well does it follow and localize, how repeatable, what it
-  // costs. Maxima are the max over a seed's runs, averaged over seeds.
+  // Table order: does it work, how well does it follow and localize, how repeatable, how it
+  // treats people, what it costs. Maxima are the max over a seed's runs, averaged over seeds.
   static const std::vector<ComparedMetric> kMetrics = {
       {"success_rate", "success_rate", "", "success rate", "fraction", false, false},
       {"tracking_error_m.pooled.rms", "tracking_error_m.pooled.rms", "", "tracking error RMS", "m",
@@ -117,6 +117,20 @@ const std::vector<ComparedMetric>& ComparedMetrics() {
       {"collisions.pedestrian_incidents_robot_driving_per_run",
        "collisions.pedestrian_incidents_robot_driving", "runs",
        "pedestrian collisions, robot driving into them", "incidents per run", false, false},
+      {"social.intimate_time_s", "social.intimate_time_s", "", "time in pedestrians' intimate zone",
+       "s per run", false, false},
+      {"social.personal_time_s", "social.personal_time_s", "", "time in pedestrians' personal zone",
+       "s per run", false, false},
+      {"social.min_ttc_s", "social.min_ttc_s", "", "min time to collision", "s", false, false},
+      {"social.path_efficiency", "social.path_efficiency", "", "path efficiency", "fraction", false,
+       false},
+      {"social.time_efficiency", "social.time_efficiency", "", "time efficiency", "fraction", false,
+       false},
+      {"social.jerk_m_s3.rms", "social.jerk_m_s3.rms", "", "jerk RMS", "m/s³", false, false},
+      {"social.crowd.blocked_per_run", "social.crowd.blocked", "runs",
+       "pedestrians blocked by the robot", "per run", false, false},
+      {"social.crowd.wait_time_s_per_run", "social.crowd.wait_time_s", "runs",
+       "pedestrians' waiting for the robot", "s per run", false, false},
       {"cpu.localizer_update_mean_ms", "cpu.localizer_update_mean_ms", "", "localizer update time",
        "ms", true, false},
   };

@@ -1,5 +1,7 @@
 #include "bench/engine/metrics_config.hpp"
 
+#include "bench/engine/trace.hpp"
+
 namespace retrace::bench {
 
 void MetricsConfig::Validate() const {
@@ -10,6 +12,10 @@ void MetricsConfig::Validate() const {
   core::RequirePositive("collision_speed_window", collision_speed_window);
   core::RequirePositive("match_window", match_window);
   core::RequirePositive("match_fallback_distance", match_fallback_distance);
+  core::RequirePositive("intimate_zone", intimate_zone);
+  core::RequireGreater("personal_zone", personal_zone, "intimate_zone", intimate_zone);
+  core::RequireInRange("personal_zone", personal_zone, 0.0, NearbyPedestrian::kNearbyRange);
+  core::RequirePositive("ttc_horizon", ttc_horizon);
 }
 
 }  // namespace retrace::bench

@@ -16,6 +16,11 @@ struct MetricsConfig {
   double collision_speed_window = 0.2;    ///< s of ground truth the contact speed is taken over
   double match_window = 10.0;            ///< m of arc length behind and ahead of the previous match
   double match_fallback_distance = 3.0;  ///< m, windowed match farther than this: global search
+  /// m between the bodies' edges: Hall's intimate and personal zones, and the social metrics'
+  /// time to collision counted up to ttc_horizon s (farther in time is no collision course)
+  double intimate_zone = 0.45;
+  double personal_zone = 1.2;
+  double ttc_horizon = 10.0;
 
   template <class V>
   void Reflect(V& v) {
@@ -26,10 +31,14 @@ struct MetricsConfig {
     v("collision_speed_window", collision_speed_window);
     v("match_window", match_window);
     v("match_fallback_distance", match_fallback_distance);
+    v("intimate_zone", intimate_zone);
+    v("personal_zone", personal_zone);
+    v("ttc_horizon", ttc_horizon);
   }
   /// Throws core::ConfigError naming the key: station_spacing, lost_error, match_window and
   /// match_fallback_distance and collision_speed_window must be > 0, collision_merge_time and
-  /// collision_driving_speed >= 0.
+  /// collision_driving_speed >= 0; 0 < intimate_zone < personal_zone <= 5 m (the range of the
+  /// pedestrians recorded near the robot), ttc_horizon > 0.
   void Validate() const;
 };
 

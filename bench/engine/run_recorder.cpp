@@ -17,6 +17,26 @@ double PedestrianGap(const sim::Simulator& simulator, const core::Vec2& p_W, dou
   return gap;
 }
 
+// The pedestrians whose edge lies within NearbyPedestrian::kNearbyRange of the robot's, with
+// their velocities and desired speeds, as of sample `sample`.
+void RecordNearby(const sim::Simulator& simulator, const core::Vec2& p_W, double radius, int sample,
+                  std::vector<NearbyPedestrian>* out) {
+  const std::vector<sim::PedestrianStatus>& status = simulator.pedestrians().status();
+  for (const sim::DynamicCircle& c : simulator.PedestrianCircles()) {
+    if ((c.center - p_W).norm() - c.radius - radius > NearbyPedestrian::kNearbyRange) continue;
+    NearbyPedestrian n;
+    n.sample = sample;
+    n.id = c.id;
+    n.position = c.center;
+    n.velocity = simulator.PedestrianVelocity(c.id);
+    n.radius = c.radius;
+    const auto it = std::find_if(status.begin(), status.end(),
+                                 [&](const sim::PedestrianStatus& st) { return st.id == c.id; });
+    n.desired_speed = it != status.end() ? it->desired_speed : 0.0;
+    out->push_back(n);
+  }
+}
+
 // Scores the localizer's dynamic-point mask against which beams really hit a pedestrian.
 LocalizerSample Score(const nav::LocalizerUpdate& update, const sim::LidarReading& reading,
                       double time, double cpu_s) {
@@ -45,6 +65,7 @@ RunRecorder::RunRecorder(int run, std::uint64_t seed, const TeachTrace& teach,
     : teach_(teach), metrics_(metrics), robot_radius_(robot_radius) {
   trace_.run = run;
   trace_.seed = seed;
+  trace_.robot_radius = robot_radius;
   local_truth_.emplace(teach_.maps.at(0), metrics_.match_window, metrics_.match_fallback_distance);
 }
 
@@ -81,6 +102,10 @@ core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const co
   sample.clearance = simulator.StaticClearance(X_WR.translation()) - robot_radius_;
   sample.pedestrian_gap = PedestrianGap(simulator, X_WR.translation(), robot_radius_);
   sample.avoiding = command.modified;
+  if (sample.pedestrian_gap <= NearbyPedestrian::kNearbyRange) {
+    RecordNearby(simulator, X_WR.translation(), robot_radius_,
+                 static_cast<int>(trace_.samples.size()), &trace_.nearby);
+  }
   trace_.samples.push_back(sample);
   return local_truth_->InMap(X_WR);
 }

@@ -61,6 +61,18 @@ struct PlaybackSample {
   bool avoiding = false;        ///< obstacle avoidance changed the follower's command
 };
 
+/// A pedestrian near the robot at one control tick (its edge within kNearbyRange of the robot's),
+/// for the social metrics: proxemic zones, time to collision, how the crowd reacts.
+struct NearbyPedestrian {
+  static constexpr double kNearbyRange = 5.0;  ///< m between the bodies' edges
+  int sample = 0;                              ///< index into RunTrace::samples
+  int id = 0;                                  ///< the pedestrian (sim DynamicCircle id)
+  core::Vec2 position{0, 0};                   ///< W, m
+  core::Vec2 velocity{0, 0};                   ///< W, m/s
+  double radius = 0.0;                         ///< m
+  double desired_speed = 0.0;                  ///< m/s, the speed it walks at when free
+};
+
 /// One localizer measurement update that ran, with the dynamic-point test scored against the
 /// LiDAR's own knowledge of which beams hit a pedestrian.
 struct LocalizerSample {
@@ -94,10 +106,12 @@ struct EventRecord {
 enum class Outcome { kSuccess, kTimeout, kCollision, kLost };
 
 struct RunTrace {
-  int run = 0;             ///< index among the repeats
-  std::uint64_t seed = 0;  ///< the run's own seed
+  int run = 0;                ///< index among the repeats
+  std::uint64_t seed = 0;     ///< the run's own seed
+  double robot_radius = 0.0;  ///< m, the disc the gaps to pedestrians are measured from
   Outcome outcome = Outcome::kTimeout;
   std::vector<PlaybackSample> samples;
+  std::vector<NearbyPedestrian> nearby;  ///< by sample, then by pedestrian id
   std::vector<LocalizerSample> updates;
   std::vector<SwitchRecord> switches;
   std::vector<sim::CollisionEvent> collisions;

@@ -3,6 +3,7 @@
 
 #include "bench/metrics/internal/run_series.hpp"
 #include "bench/metrics/internal/sample_stats.hpp"
+#include "bench/metrics/internal/social.hpp"
 #include "bench/metrics/metrics.hpp"
 
 namespace retrace::bench {
@@ -113,6 +114,7 @@ AggregateMetrics Aggregate(const TeachTrace& teach, const std::vector<RunTrace>&
   }
   a.cpu.real_time_factor =
       a.cpu.cpu_time_s > 0.0 ? a.cpu.sim_time_s / a.cpu.cpu_time_s : kMetricNaN;
+  a.social = AggregateSocial(metrics);
   return a;
 }
 

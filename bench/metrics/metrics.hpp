@@ -78,6 +78,27 @@
 //   real_time_factor = sim_time_s / cpu_time_s. Aggregate: totals, the factor of the totals,
 //   and the update time mean (pooled over all updates) and max.
 //
+// social (Social navigation metrics; between the bodies' edges, i.e. centre distance minus
+//   both radii, the robot a disc of its footprint's circumradius): intimate_time_s /
+//   personal_time_s = time (s; each sample holds until the next) with the nearest pedestrian's
+//   edge closer than intimate_zone (0.45 m) / personal_zone (1.2 m) to the robot's (Hall 1966).
+//   min_ttc_s = min over samples and the pedestrians within 5 m (RunTrace.nearby) of the time
+//   until the two discs touch if the robot kept its commanded velocity (sample.command.v along
+//   its ground-truth heading, turning ignored) and the pedestrian its current velocity: the
+//   smallest t >= 0 with |Δp + Δv t| = r_robot + r_pedestrian; 0 while they overlap; capped at
+//   ttc_horizon (10 s: no collision course counts as 10). path_efficiency = the taught path's
+//   length / path_length_m, time_efficiency = the teaching drive's duration / time_s, both for
+//   successful runs only (NaN otherwise). jerk_m_s3 = Summary of |j| with v, a, j the
+//   successive finite differences of the ground-truth position over the samples (central in
+//   time: v between samples, a and j at the midpoints between those).
+//   crowd: an encounter starts when a pedestrian's edge comes within personal_zone of the
+//   robot's and ends when it is farther than personal_zone + 0.3 m (or out of the 5 m record, or
+//   the run ends). Over it, the pedestrian is blocked if it stood (speed < 0.2 m/s) for 0.5 s or
+//   more in total, yielded if not but walked slower than 0.7 of its desired speed for 0.5 s or
+//   more, and passed otherwise; wait_time_s sums the standing time of all encounters, max_wait_s
+//   is the longest. Aggregate: means over runs (zone times, jerk statistics), min (ttc), means
+//   over successful runs (efficiencies), sums (crowd counts and wait) and max (max wait).
+//
 // Aggregate (AggregateMetrics): success rate and counts per outcome; for each per-run Summary
 //   metric both `pooled` (the statistics of all samples of all runs together: what docs/RESULTS.md
 //   reports) and `run_mean` (each statistic averaged over the runs that have samples; its
@@ -168,6 +189,33 @@ struct CpuStats {
   double real_time_factor = kMetricNaN;  ///< sim_time_s / cpu_time_s; NaN when cpu_time_s <= 0
 };
 
+/// Thresholds of CrowdReaction (see the definitions above).
+inline constexpr double kStopSpeed = 0.2;            ///< m/s: below this a pedestrian stands
+inline constexpr double kYieldSpeedFraction = 0.7;   ///< of its desired speed: slower yields
+inline constexpr double kReactionTime = 0.5;         ///< s of standing or slowing that count
+inline constexpr double kEncounterHysteresis = 0.3;  ///< m beyond personal_zone ends it
+
+/// How the pedestrians that came into the robot's personal zone reacted (encounters).
+struct CrowdReaction {
+  int encounters = 0;
+  int passed = 0;            ///< kept at least kYieldSpeedFraction of their desired speed
+  int yielded = 0;           ///< slowed below that for kReactionTime, without stopping that long
+  int blocked = 0;           ///< stood (below kStopSpeed) for kReactionTime or more: waited
+  double wait_time_s = 0.0;  ///< total time the pedestrians stood during encounters
+  double max_wait_s = 0.0;   ///< the longest one encounter stood
+};
+
+/// Social navigation metrics (definitions at the top of this file).
+struct SocialStats {
+  double intimate_time_s = 0.0;   ///< time with a pedestrian's edge within intimate_zone
+  double personal_time_s = 0.0;   ///< time with a pedestrian's edge within personal_zone
+  double min_ttc_s = kMetricNaN;  ///< min time to collision, capped at ttc_horizon; NaN: no samples
+  double path_efficiency = kMetricNaN;  ///< taught path length / driven length (successful runs)
+  double time_efficiency = kMetricNaN;  ///< taught time / playback time (successful runs)
+  Summary jerk_m_s3;                    ///< |d³p/dt³| of the ground-truth position
+  CrowdReaction crowd;
+};
+
 /// Per-sample series of one run (one entry per PlaybackSample), for metrics and figures.
 struct RunSeries {
   std::vector<double> tracking_error_m;        ///< distance to the taught path
@@ -197,6 +245,7 @@ struct RunMetrics {
   double switch_error_max_rad = kMetricNaN;
   DynamicPointStats dynamic_points;
   CpuStats cpu;
+  SocialStats social;
 };
 
 /// Lateral offsets of the runs at the stations along the taught path.
@@ -244,6 +293,10 @@ struct AggregateMetrics {
   SwitchErrorStats switch_error;
   DynamicPointStats dynamic_points;  ///< totals, ratios of the totals
   CpuStats cpu;                      ///< totals, factor of the totals, updates pooled
+  /// Means over runs of the zone times and of the jerk statistics, the minimum time to
+  /// collision, the efficiencies' means over successful runs, the crowd's reactions summed (max
+  /// wait: the max).
+  SocialStats social;
   // Of the taught maps, the same for every run of the mode: set by the experiment
   // (bench/metrics/experiment.hpp), not by Aggregate.
   MapQualityStats map_quality;

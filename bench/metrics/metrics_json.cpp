@@ -39,6 +39,23 @@ nlohmann::json ToJson(const CpuStats& c) {
           {"real_time_factor", io::JsonNumber(c.real_time_factor)}};
 }
 
+nlohmann::json ToJson(const SocialStats& s) {
+  const CrowdReaction& c = s.crowd;
+  return {{"intimate_time_s", io::JsonNumber(s.intimate_time_s)},
+          {"personal_time_s", io::JsonNumber(s.personal_time_s)},
+          {"min_ttc_s", io::JsonNumber(s.min_ttc_s)},
+          {"path_efficiency", io::JsonNumber(s.path_efficiency)},
+          {"time_efficiency", io::JsonNumber(s.time_efficiency)},
+          {"jerk_m_s3", ToJson(s.jerk_m_s3)},
+          {"crowd",
+           {{"encounters", c.encounters},
+            {"passed", c.passed},
+            {"yielded", c.yielded},
+            {"blocked", c.blocked},
+            {"wait_time_s", io::JsonNumber(c.wait_time_s)},
+            {"max_wait_s", io::JsonNumber(c.max_wait_s)}}}};
+}
+
 nlohmann::json ToJson(const MapQualityStats& q) {
   nlohmann::json per_map = nlohmann::json::array();
   for (const MapQuality& m : q.maps) {
@@ -111,6 +128,7 @@ nlohmann::json ToJson(const RunMetrics& m) {
             {"max_rad", io::JsonNumber(m.switch_error_max_rad)},
             {"switches", std::move(switches)}}},
           {"dynamic_points", ToJson(m.dynamic_points)},
+          {"social", ToJson(m.social)},
           {"cpu", ToJson(m.cpu)}};
 }
 
@@ -157,6 +175,7 @@ nlohmann::json ToJson(const AggregateMetrics& a) {
             {"revisiting_maps", a.switching.revisiting},
             {"switch_travel_m", a.switching.switch_travel_m}}},
           {"scan_matching", MatchCountsJson(a.match_counts)},
+          {"social", ToJson(a.social)},
           {"cpu", ToJson(a.cpu)}};
 }
 

@@ -5,6 +5,7 @@
 #include "bench/metrics/internal/collisions.hpp"
 #include "bench/metrics/internal/run_series.hpp"
 #include "bench/metrics/internal/sample_stats.hpp"
+#include "bench/metrics/internal/social.hpp"
 #include "bench/metrics/metrics.hpp"
 
 namespace retrace::bench {
@@ -70,6 +71,9 @@ RunMetrics ComputeRunMetrics(const TeachTrace& teach, const RunTrace& run,
   m.cpu.sim_time_s = run.sim_time_s;
   m.cpu.cpu_time_s = run.cpu_time_s;
   m.cpu.real_time_factor = run.cpu_time_s > 0.0 ? run.sim_time_s / run.cpu_time_s : kMetricNaN;
+  const double taught_time_s = teach.time.empty() ? 0.0 : teach.time.back() - teach.time.front();
+  m.social =
+      Social(run, index.path.length(), taught_time_s, m.success, m.path_length_m, m.time_s, config);
   return m;
 }
 

@@ -66,6 +66,23 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
                   collisions.c_str(), Cell(a.cpu.real_time_factor, "%.0f").c_str());
     text += line;
   }
+  // How each mode treated the people around it (social metrics, means per run).
+  for (const ModeSummary& m : modes) {
+    if (m.runs == 0) continue;
+    const SocialStats& so = m.aggregate.social;
+    const CrowdReaction& c = so.crowd;
+    text += std::string(core::EnumName(m.mode));
+    text += ": within " + Cell(so.intimate_time_s, "%.1f");
+    text += " s intimate / " + Cell(so.personal_time_s, "%.1f");
+    text += " s personal per run, min TTC " + Cell(so.min_ttc_s, "%.2f");
+    text += " s, efficiency path " + Cell(so.path_efficiency, "%.3f");
+    text += " time " + Cell(so.time_efficiency, "%.3f");
+    text += ", jerk RMS " + Cell(so.jerk_m_s3.rms, "%.2f");
+    text += " m/s3; " + std::to_string(c.encounters) + " encounters: ";
+    text += std::to_string(c.passed) + " passed, " + std::to_string(c.yielded) + " yielded, ";
+    text += std::to_string(c.blocked) + " blocked (waited " + Cell(c.wait_time_s, "%.1f");
+    text += " s)\n";
+  }
   // How the switching modes' maps were cut, judged on the drive's ground truth.
   for (const ModeSummary& m : modes) {
     const SwitchingQuality& q = m.aggregate.switching;

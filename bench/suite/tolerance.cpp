@@ -11,9 +11,9 @@ namespace retrace::bench {
 namespace {
 
 // The metrics where more is better: success, progress, detection quality, speed of the
-// simulation, distance kept from things. Everything else is an error, a count of bad events or
-// a cost, where less is better.
-constexpr std::array<std::string_view, 12> kHigherIsBetter = {"success_rate",
+// simulation, distance and time kept from things, efficiency, pedestrians passing freely.
+// Everything else is an error, a count of bad events or a cost, where less is better.
+constexpr std::array<std::string_view, 16> kHigherIsBetter = {"success_rate",
                                                               "successes",
                                                               "success",
                                                               "mean_progress_m",
@@ -24,7 +24,11 @@ constexpr std::array<std::string_view, 12> kHigherIsBetter = {"success_rate",
                                                               "min_pedestrian_gap_m",
                                                               "repeatability_stations_used",
                                                               "agreement",
-                                                              "matched"};
+                                                              "matched",
+                                                              "min_ttc_s",
+                                                              "path_efficiency",
+                                                              "time_efficiency",
+                                                              "passed"};
 
 // Four significant digits: enough to see a change in a table, short enough to read.
 std::string Short(double v) {
