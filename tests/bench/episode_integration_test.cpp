@@ -4,8 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -178,34 +176,6 @@ TEST(Episode, ASegmentThatRevisitsItselfFailsAsThePaperPredicts) {
   const RunMetrics b = ComputeRunMetrics(single.trace, bad, scenario.config.metrics);
   EXPECT_GT(b.localization_error_m.rms, 2.0 * g.localization_error_m.rms);
   EXPECT_LT(b.progress_m, 0.9 * scenario.route_length);
-}
-
-std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-TEST(Episode, ParallelRunsGiveTheSameFilesAsASerialRun) {
-  const retrace::testing::TempDir tmp;
-  // Two modes of one teaching drive on three threads: runs of both modes interleave.
-  RunOptions serial_run = SmallRun("partial", tmp.path() / "serial", 1);
-  RunOptions parallel_run = SmallRun("partial", tmp.path() / "parallel", 3);
-  serial_run.modes = parallel_run.modes = {"partial", "scan_matched"};
-  // The figures are rendered after the runs and are not what is compared.
-  serial_run.figures = parallel_run.figures = false;
-  ASSERT_EQ(RunRunCommand(serial_run, RunPhases::kAll, "serial"), 0);
-  ASSERT_EQ(RunRunCommand(parallel_run, RunPhases::kAll, "parallel"), 0);
-  for (const char* mode : {"partial", "scan_matched"}) {
-    for (const char* file :
-         {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {
-      const std::filesystem::path rel = std::filesystem::path(mode) / file;
-      SCOPED_TRACE(rel.string());
-      const std::string serial = ReadFile(tmp.path() / "serial" / rel);
-      EXPECT_FALSE(serial.empty());
-      EXPECT_EQ(serial, ReadFile(tmp.path() / "parallel" / rel));
-    }
-  }
-  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "parallel/comparison.json"));
 }
 
 TEST(Scenarios, EveryShippedScenarioLoadsAndValidates) {

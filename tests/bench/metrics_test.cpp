@@ -556,7 +556,7 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   const nlohmann::json r = ToJson(metrics[0]);
   ExpectKeys(r, {"run", "seed", "outcome", "success", "samples", "time_s", "path_length_m",
                  "progress_m", "tracking_error_m", "localization_error_m", "localization_error_rad",
-                 "lost_fraction", "collisions", "switch_error", "dynamic_points", "cpu"});
+                 "lost_fraction", "collisions", "switch_error", "dynamic_points", "social", "cpu"});
   ExpectKeys(r["tracking_error_m"], {"mean", "rms", "p95", "max", "count"});
   ExpectKeys(r["collisions"],
              {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",
@@ -601,7 +601,12 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                  "map_quality",
                  "switching",
                  "scan_matching",
+                 "social",
                  "cpu"});
+  ExpectKeys(a["social"], {"intimate_time_s", "personal_time_s", "min_ttc_s", "path_efficiency",
+                           "time_efficiency", "jerk_m_s3", "crowd"});
+  ExpectKeys(a["social"]["crowd"],
+             {"encounters", "passed", "yielded", "blocked", "wait_time_s", "max_wait_s"});
   ExpectKeys(a["switching"], {"minimum_maps", "revisiting_maps", "switch_travel_m"});
   ExpectKeys(a["outcomes"], {"success", "timeout", "collision", "lost"});
   ExpectKeys(a["map_quality"], {"distortion_m", "agreement", "per_map"});

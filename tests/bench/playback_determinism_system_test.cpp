@@ -8,18 +8,24 @@
 // change explains the difference, and paste the new hashes printed by the failure into the
 // constants below, for GCC and for Clang. System tier: CI checks the GCC pin in the Release
 // build; the Clang pin is checked by `ctest -L system` in a Clang build.
-// (tests/sim/simulator_test.cpp pins the simulator alone.)
+// (tests/sim/simulator_test.cpp pins the simulator alone.) Also: parallel runs write the same
+// files as a serial run.
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
+#include "bench/cli/run_command.hpp"
 #include "bench/engine/playback.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "core/rng.hpp"
 #include "tests/support/source_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 #include "tests/support/trajectory_hash.hpp"
 
 namespace retrace::bench {
@@ -61,6 +67,45 @@ TEST(PlaybackDeterminism, PinnedHashesOfTheSmallScenario) {
       << "new teach hash: 0x" << std::hex << TeachHash(partial.trace);
   EXPECT_EQ(testing::TrajectoryHash(run), kPinnedPlaybackHash)
       << "new playback hash: 0x" << std::hex << testing::TrajectoryHash(run);
+}
+
+// `retrace run` of the small scenario in `mode`, one playback run, `jobs` threads.
+RunOptions SmallRunOptions(const std::string& mode, const std::filesystem::path& out, int jobs) {
+  RunOptions options;
+  options.scenario = kSource / "scenarios/small.yaml";
+  options.modes = {mode};
+  options.repeats = 1;
+  options.out = out;
+  options.jobs = jobs;
+  return options;
+}
+
+std::string ReadWholeFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Episode, ParallelRunsGiveTheSameFilesAsASerialRun) {
+  const retrace::testing::TempDir tmp;
+  // Two modes of one teaching drive on three threads: runs of both modes interleave.
+  RunOptions serial_run = SmallRunOptions("partial", tmp.path() / "serial", 1);
+  RunOptions parallel_run = SmallRunOptions("partial", tmp.path() / "parallel", 3);
+  serial_run.modes = parallel_run.modes = {"partial", "scan_matched"};
+  // The figures are rendered after the runs and are not what is compared.
+  serial_run.figures = parallel_run.figures = false;
+  ASSERT_EQ(RunRunCommand(serial_run, RunPhases::kAll, "serial"), 0);
+  ASSERT_EQ(RunRunCommand(parallel_run, RunPhases::kAll, "parallel"), 0);
+  for (const char* mode : {"partial", "scan_matched"}) {
+    for (const char* file :
+         {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {
+      const std::filesystem::path rel = std::filesystem::path(mode) / file;
+      SCOPED_TRACE(rel.string());
+      const std::string serial = ReadWholeFile(tmp.path() / "serial" / rel);
+      EXPECT_FALSE(serial.empty());
+      EXPECT_EQ(serial, ReadWholeFile(tmp.path() / "parallel" / rel));
+    }
+  }
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "parallel/comparison.json"));
 }
 
 }  // namespace
