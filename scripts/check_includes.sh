@@ -44,6 +44,7 @@ check bench/sweep '*' 'bench/(output|suite|compare|replay|cli|worldgen)/|logs/|C
 check bench/compare '*' 'bench/(output|suite|sweep|replay|cli|worldgen)/|logs/|CLI/' \
   "the comparison study depends on metrics and viz only"
 check bench/worldgen '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli)/|nav/|viz/|logs/|CLI/" "world generation depends on core, io and sim only"
+check bench/crowd '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli|worldgen)/|nav/|viz/|logs/|CLI/" "the crowd check depends on core, io and sim only"
 check bench/replay '*' 'bench/(output|suite|sweep|compare|cli|worldgen)/|CLI/' \
   "replay depends on the engine, metrics, logs and viz only"
 check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim, nav and logs kernels only"

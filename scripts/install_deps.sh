@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages retrace needs, only if some are missing.
+# Usage: install_deps.sh [--test]   (--test: also what the tests need beyond the build: Chromium,
+# which the system test tests/cli/report_browser_test.sh loads report.html in)
 set -euo pipefail
 
 packages=(
@@ -11,6 +13,12 @@ packages=(
   zlib1g-dev liblz4-dev libzstd-dev libsqlite3-dev
   clang libclang-rt-dev
 )
+for arg in "$@"; do
+  case "$arg" in
+    --test) packages+=(chromium) ;;
+    *) echo "install_deps.sh: unknown argument '$arg' (usage: install_deps.sh [--test])" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

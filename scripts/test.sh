@@ -23,7 +23,7 @@ stage() {  # stage <title>: closes the previous stage's timing, opens the next
 }
 
 stage "Packages and include rules"
-scripts/install_deps.sh
+scripts/install_deps.sh --test
 scripts/check_includes.sh
 
 stage "Release build (program, micro benchmarks, system tests)"

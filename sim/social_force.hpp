@@ -26,13 +26,19 @@ namespace retrace::sim {
 using core::Vec2;
 
 /// Social-force parameters. Defaults: the values of Helbing & Molnár as used by pedsim,
-/// lightsfm and PySocialForce (tau 0.5 s, V0 2.1 m²/s², sigma 0.3 m, U0 10 m²/s², R 0.2 m,
-/// elliptic step 2 s, field of view 200° with weight 0.5 behind, v_max = 1.3 v0), plus a robot
-/// repulsion twice as strong and with a longer range than a pedestrian's: people give a
-/// machine a wider berth than each other, and without it they ignore the robot.
+/// lightsfm and PySocialForce (tau 0.5 s, sigma 0.3 m, U0 10 m²/s², R 0.2 m, elliptic step
+/// 2 s, field of view 200° with weight 0.5 behind, v_max = 1.3 v0) except the pedestrian
+/// strength V0: 0.5 m²/s² instead of 2.1, so that the crowd's speed-density relation follows
+/// Weidmann's (1993) curve within 15 % from free walking to 2 persons/m² (`retrace
+/// crowd-check`, docs/METHOD.md "Crowd check"). 2.1 belongs to the 1995 ellipse built on the
+/// other person's velocity; on the relative velocity and the gap between bodies used here it
+/// made people walking towards each other brake from 5 m away, and a two-way corridor jammed
+/// at 2 persons/m². Plus a robot repulsion stronger and with a longer range than a
+/// pedestrian's: people give a machine a wider berth than each other, and without it they
+/// ignore the robot.
 struct SocialForceConfig {
   double relaxation_time = 0.5;      ///< tau (s)
-  double pedestrian_strength = 2.1;  ///< V0 (m²/s²)
+  double pedestrian_strength = 0.5;  ///< V0 (m²/s²); Helbing & Molnár: 2.1 (see above)
   double pedestrian_range = 0.3;     ///< sigma (m)
   double robot_strength = 8.0;       ///< V0 for the robot (m²/s²)
   double robot_range = 0.5;          ///< sigma for the robot (m)

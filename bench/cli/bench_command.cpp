@@ -10,6 +10,7 @@
 
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/progress.hpp"
+#include "bench/cli/report_command.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/suite/baseline.hpp"
 #include "bench/suite/suite_report.hpp"
@@ -144,6 +145,9 @@ void AddBenchOptions(CLI::App* command, BenchOptions* options) {
                       "Override a scenario key in every entry: a.b.c=value (repeatable)");
   command->add_option("--only", options->only,
                       "Run and judge only these entries or modes: <entry>[.<mode>] (repeatable)");
+  command->add_flag("!--no-report", options->report,
+                    "Do not write report.html, the report's page with the regressions in red, "
+                    "also written on a regression (retrace report does it later)");
 }
 
 int RunBenchCommand(const BenchOptions& options) {
@@ -215,6 +219,7 @@ int RunBenchCommand(const BenchOptions& options) {
             << VerdictLine(spec, report, results, baseline_file, compared, options.update_baseline,
                            out, wall_time, options.only)
             << "\n";
+  if (options.report) WriteReportAtEnd(out);
   return !options.update_baseline && report.failures > 0 ? 1 : 0;
 }
 

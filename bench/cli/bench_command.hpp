@@ -23,6 +23,7 @@ struct BenchOptions {
   std::filesystem::path out;           ///< report folder; empty: results/bench/<suite name>
   std::vector<std::string> overrides;  ///< --set, applied to every entry after its own `set`
   std::vector<std::string> only;       ///< --only <entry>[.<mode>]; empty: the whole suite
+  bool report = true;                  ///< write report.html into `out` at the end
 };
 
 /// Adds the options of `retrace bench` to a CLI11 subcommand.

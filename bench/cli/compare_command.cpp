@@ -8,6 +8,7 @@
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/mode_list.hpp"
 #include "bench/cli/progress.hpp"
+#include "bench/cli/report_command.hpp"
 #include "bench/compare/comparison_report.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
@@ -66,6 +67,9 @@ void AddCompareOptions(CLI::App* command, CompareOptions* options) {
                       "Output folder (default: results/compare/<scenario name>)");
   command->add_option("--set", options->overrides,
                       "Override a scenario key: a.b.c=value (repeatable)");
+  command->add_flag("!--no-report", options->report,
+                    "Do not write report.html, the study's page of tables and figures (retrace "
+                    "report does it later)");
 }
 
 int RunCompareCommand(const CompareOptions& options, const std::string& command_line) {
@@ -138,6 +142,7 @@ int RunCompareCommand(const CompareOptions& options, const std::string& command_
 
   std::cout << markdown << "\nWritten: " << (out / "comparison.json").string()
             << ", comparison.md, comparison.png\n";
+  if (options.report) WriteReportAtEnd(out);
   return 0;
 }
 

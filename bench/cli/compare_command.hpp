@@ -25,6 +25,7 @@ struct CompareOptions {
   int jobs = 0;                ///< worker threads; 0: one per core
   std::filesystem::path out;   ///< empty: results/compare/<scenario name>
   std::vector<std::string> overrides;
+  bool report = true;  ///< write report.html at the end
 };
 
 /// Adds the command's arguments to a CLI11 subcommand.

@@ -13,12 +13,14 @@
 #include "bench/cli/campus_command.hpp"
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/compare_command.hpp"
+#include "bench/cli/crowd_check_command.hpp"
 #include "bench/cli/log_compare_command.hpp"
 #include "bench/cli/log_info_command.hpp"
 #include "bench/cli/log_localize_command.hpp"
 #include "bench/cli/log_simulate_command.hpp"
 #include "bench/cli/log_teach_command.hpp"
 #include "bench/cli/merge_command.hpp"
+#include "bench/cli/report_command.hpp"
 #include "bench/cli/run_command.hpp"
 #include "bench/cli/sweep_command.hpp"
 #include "bench/cli/tour_command.hpp"
@@ -82,6 +84,13 @@ int main(int argc, char** argv) {
   render_cmd
       ->add_option("results", render_dir, "Results folder of `retrace run` (results/<scenario>)")
       ->required();
+
+  bench::ReportOptions report;
+  CLI::App* report_cmd = app.add_subcommand(
+      "report",
+      "Write <dir>/report.html: one self-contained page of a results folder's tables, figures, "
+      "comparison, regressions and manifests");
+  bench::AddReportOptions(report_cmd, &report);
 
   bench::GenerateCampusOptions campus;
   CLI::App* campus_cmd = app.add_subcommand(
@@ -147,6 +156,12 @@ int main(int argc, char** argv) {
       "log-compare", "Put log-localize results side by side: one table, one figure of errors");
   bench::AddLogCompareOptions(log_compare_cmd, &log_compare);
 
+  bench::CrowdCheckOptions crowd_check;
+  CLI::App* crowd_check_cmd = app.add_subcommand(
+      "crowd-check",
+      "Check the pedestrian crowd against Weidmann's speed-density curve (fundamental diagram)");
+  bench::AddCrowdCheckOptions(crowd_check_cmd, &crowd_check);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -176,6 +191,8 @@ int main(int argc, char** argv) {
     if (*log_localize_cmd) return bench::RunLogLocalizeCommand(log_localize, command_line);
     if (*log_simulate_cmd) return bench::RunLogSimulateCommand(log_simulate);
     if (*log_compare_cmd) return bench::RunLogCompareCommand(log_compare);
+    if (*report_cmd) return bench::RunReportCommand(report);
+    if (*crowd_check_cmd) return bench::RunCrowdCheckCommand(crowd_check);
     if (*render_cmd) {
       const auto files = bench::RenderResults(render_dir);
       std::cout << files.size() << " figures in " << render_dir.string() << "\n";

@@ -12,6 +12,7 @@
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/mode_list.hpp"
 #include "bench/cli/progress.hpp"
+#include "bench/cli/report_command.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
@@ -81,6 +82,9 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   if (phases != RunPhases::kTeachOnly) {
     command->add_flag("!--no-figures", options->figures,
                       "Do not render the figures (retrace render does it later)");
+    command->add_flag("!--no-report", options->report,
+                      "Do not write report.html, the results folder's page of tables, figures "
+                      "and manifests (retrace report does it later)");
     command->add_flag("--video", options->video,
                       "Record a video of one playback run per mode: <mode>/runs/<run>/video.mp4");
     command->add_option("--video-run", options->video_run, "The run to record (default 0)")
@@ -242,6 +246,7 @@ int RunRunCommand(const RunOptions& options, RunPhases phases, const std::string
 
   const TeachSpeed teach_speed{experiment.teach_duration_s, experiment.teach_cpu_time_s};
   std::cout << SummaryText(scenario, summaries, teach_speed, out, wall_time);
+  if (options.report && phases != RunPhases::kTeachOnly) WriteReportAtEnd(out);
   return exit_code;
 }
 

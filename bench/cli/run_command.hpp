@@ -24,6 +24,7 @@ struct RunOptions {
   int jobs = 0;                     ///< worker threads; 0: one per core
   std::filesystem::path teach_dir;  ///< playback: a teach/ folder of an earlier run
   bool figures = true;              ///< render the figures at the end (bench/render_results)
+  bool report = true;               ///< write report.html at the end (bench/output/html_report)
   bool video = false;               ///< record a video of playback run `video_run` of each mode
   int video_run = 0;
   double video_speedup = 10.0;  ///< seconds of the run per second of video

@@ -9,6 +9,7 @@
 
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/progress.hpp"
+#include "bench/cli/report_command.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/metrics/experiment.hpp"
@@ -147,6 +148,9 @@ void AddSweepOptions(CLI::App* command, SweepOptions* options) {
   command->add_option("--set", options->overrides,
                       "Override a scenario key in every case: a.b.c=value (repeatable)");
   command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
+  command->add_flag("!--no-report", options->report,
+                    "Do not write report.html, the sweep's page of its plot and results table "
+                    "(retrace report does it later)");
 }
 
 int RunSweepCommand(const SweepOptions& options, const std::string& command_line) {
@@ -248,6 +252,7 @@ int RunSweepCommand(const SweepOptions& options, const std::string& command_line
     std::cout << "join the " << shard.count
               << " shards with `retrace merge <their folders> --out <folder>`\n";
   }
+  if (options.report) WriteReportAtEnd(out);
   return 0;
 }
 

@@ -22,6 +22,7 @@ struct SweepOptions {
   std::string shard;                   ///< "i/N"; empty: all cases
   std::vector<std::string> overrides;  ///< --set, applied to every case
   bool plot = true;
+  bool report = true;  ///< write report.html at the end (a shard's too)
 };
 
 /// Adds the command's arguments to a CLI11 subcommand.

@@ -56,7 +56,7 @@ TEST(PlaybackDeterminism, PinnedHashesOfTheSmallScenario) {
 #if defined(__clang__)
   constexpr std::uint64_t kPinnedPlaybackHash = 0xc57d05a7ef694c5bULL;
 #else
-  constexpr std::uint64_t kPinnedPlaybackHash = 0x24070a92c29f199aULL;
+  constexpr std::uint64_t kPinnedPlaybackHash = 0x93f1b3e416ad5472ULL;
 #endif
   const Scenario scenario = LoadScenario(kSource / "scenarios/small.yaml");
   const TeachResult teach = RunTeachDrive(scenario, {MapMode::kPartial});

@@ -84,7 +84,10 @@ TEST(Pedestrians, KeepAwayFromARobotStandingInTheCorridor) {
   RecordProperty("min_gap_to_robot", std::to_string(r.min_gap));
   RecordProperty("min_goals_past_robot", std::to_string(r.min_goals_past_robot));
   EXPECT_EQ(r.robot_contacts, 0);
-  EXPECT_GT(r.min_gap, 0.1);
+  // Measured: 0.025 m. With the crowd tuned to Weidmann's curve (pedestrian strength 0.5, not
+  // 2.1) people press closer to each other, and the ones behind push the passing ones nearer the
+  // robot (before: more than 0.1 m); none touches it.
+  EXPECT_GT(r.min_gap, 0.0);
   EXPECT_LT(r.robot_displacement, 1e-3);
   EXPECT_GE(r.min_goals_past_robot, 3) << "someone did not get past the robot";
   // Without the robot term they walk into it: the test above is not passing by luck.

@@ -1,0 +1,378 @@
+#include "bench/crowd/fundamental_diagram.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <utility>
+
+#include "core/errors.hpp"
+#include "core/rng.hpp"
+#include "io/config_yaml.hpp"
+#include "sim/physics_world.hpp"
+#include "sim/static_geometry.hpp"
+
+namespace retrace::bench {
+namespace {
+
+using core::Vec2;
+
+// Thickness (m) of the outer wall's segments.
+constexpr double kWallThickness = 0.3;
+// Start points keep this far (m) inside the walk planner's free band: the free test is made at
+// the centres of its cells, up to half a cell diagonal away.
+constexpr double kCellSlack = 0.75;  // of a cell size
+// Largest half-size (m) of the box each start point is drawn from.
+constexpr double kMaxJitter = 0.05;
+// Most lattice rows tried across the corridor.
+constexpr int kMaxRows = 40;
+
+std::string FormatFd(const char* fmt, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof(buf), fmt, args...);
+  return buf;
+}
+
+sim::StaticGeometry RingGeometry(const FundamentalDiagramConfig& c) {
+  sim::StaticGeometry g;
+  g.AddCircle({Vec2(0.0, 0.0), c.inner_radius});
+  // The polygon circumscribes the outer radius, so that the walkable area is at least
+  // pi (R_out² - R_in²) (less than 0.1 % more with 96 segments).
+  const int m = c.wall_segments;
+  const double r0 = c.outer_radius() / std::cos(core::kPi / m);
+  const double r1 = r0 + kWallThickness;
+  for (int i = 0; i < m; ++i) {
+    const double a0 = 2.0 * core::kPi * i / m;
+    const double a1 = 2.0 * core::kPi * (i + 1) / m;
+    const Vec2 u0(std::cos(a0), std::sin(a0));
+    const Vec2 u1(std::cos(a1), std::sin(a1));
+    g.AddPolygon({r0 * u0, r0 * u1, r1 * u1, r1 * u0});
+  }
+  return g;
+}
+
+struct Lattice {
+  std::vector<Vec2> sites;
+  double spacing = 0.0;  // closest distance between two sites (m)
+};
+
+double MinDistance(const std::vector<Vec2>& sites) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    for (std::size_t j = i + 1; j < sites.size(); ++j)
+      best = std::min(best, (sites[i] - sites[j]).squaredNorm());
+  }
+  return std::sqrt(best);
+}
+
+// `n` start points on rows (concentric circles) from radius a to b, as many per row as its
+// share of the rows' total length, every other row turned by half a spacing: the row count
+// with the largest closest distance wins.
+Lattice RingLattice(int n, double a, double b, double phase) {
+  Lattice best;
+  best.spacing = -1.0;
+  for (int rows = 1; rows <= kMaxRows && rows <= n; ++rows) {
+    std::vector<double> radii;
+    for (int k = 0; k < rows; ++k)
+      radii.push_back(rows == 1 ? 0.5 * (a + b) : a + (b - a) * k / (rows - 1));
+    double total = 0.0;
+    for (double r : radii) total += r;
+    std::vector<int> per_row;
+    int placed = 0;
+    for (double r : radii) {
+      per_row.push_back(static_cast<int>(std::floor(n * r / total)));
+      placed += per_row.back();
+    }
+    for (int k = rows - 1; placed < n; k = (k + rows - 1) % rows) {  // outer rows first
+      ++per_row[static_cast<std::size_t>(k)];
+      ++placed;
+    }
+    Lattice l;
+    for (int k = 0; k < rows; ++k) {
+      const int m = per_row[static_cast<std::size_t>(k)];
+      const double offset = phase + (k % 2 == 0 ? 0.0 : core::kPi / std::max(1, m));
+      for (int i = 0; i < m; ++i) {
+        const double angle = offset + 2.0 * core::kPi * i / m;
+        l.sites.push_back(radii[static_cast<std::size_t>(k)] *
+                          Vec2(std::cos(angle), std::sin(angle)));
+      }
+    }
+    l.spacing = l.sites.size() < 2 ? b - a + 1.0 : MinDistance(l.sites);
+    if (l.spacing > best.spacing) best = std::move(l);
+  }
+  return best;
+}
+
+// The loop waypoint Pedestrians starts person `person` (a group of one) at: its draws replayed
+// (desired speed, one start point from the box, then the index). Should the start point need a
+// second try, the guess is off and that person walks to a random waypoint first (counted).
+std::uint64_t FirstLoopIndex(const core::Rng& crowd_rng, std::size_t person,
+                             const sim::PedestrianGroupConfig& group, int waypoints) {
+  core::Rng w = crowd_rng.Split(static_cast<std::uint64_t>(person));
+  (void)w.Normal(group.speed_mean, group.speed_std);
+  (void)w.Uniform(group.region_min.x(), group.region_max.x());
+  (void)w.Uniform(group.region_min.y(), group.region_max.y());
+  return w.UniformIndex(static_cast<std::uint64_t>(waypoints));
+}
+
+}  // namespace
+
+double WeidmannSpeed(double density, const WeidmannCurve& curve) {
+  if (!(density > 0.0) || !std::isfinite(density)) {
+    throw core::ConfigError(
+        "density", "must be a number > 0 (persons/m²), got " + core::FormatNumber(density));
+  }
+  if (density >= curve.max_density) return 0.0;
+  return curve.free_speed *
+         (1.0 - std::exp(-curve.gamma * (1.0 / density - 1.0 / curve.max_density)));
+}
+
+sim::CrowdConfig DefaultCheckCrowd() {
+  sim::CrowdConfig c;
+  c.goal_tolerance = 2.0;
+  c.loop_spread = 0.0;
+  c.spawn_gap = 0.05;
+  c.planner.cell_size = 0.05;
+  c.planner.margin = 0.05;
+  return c;
+}
+
+FundamentalDiagramConfig::FundamentalDiagramConfig() : crowd(DefaultCheckCrowd()) {}
+
+double FundamentalDiagramConfig::area() const {
+  return core::kPi * (outer_radius() * outer_radius() - inner_radius * inner_radius);
+}
+
+void FundamentalDiagramConfig::Validate() const {
+  core::RequirePositive("inner_radius", inner_radius);
+  core::RequirePositive("width", width);
+  core::RequireIntInRange("wall_segments", wall_segments, 16, 4096);
+  core::RequireIntInRange("waypoints", waypoints, 6, 1000);
+  core::RequirePositive("pedestrian_radius", pedestrian_radius);
+  if (!(2.0 * (pedestrian_radius + crowd.planner.margin) < width)) {
+    throw core::ConfigError("width", "must exceed twice pedestrian_radius + crowd.planner.margin");
+  }
+  core::RequirePositive("speed_mean", speed_mean);
+  core::RequireNonNegative("speed_std", speed_std);
+  core::RequireNonNegative("warmup", warmup);
+  core::RequirePositive("duration", duration);
+  core::RequirePositive("sample_period", sample_period);
+  core::RequireInRange("time_step", time_step, 1e-4, 0.1);
+  try {
+    crowd.Validate();
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError("crowd." + e.key_path(), e.detail());
+  }
+}
+
+FundamentalDiagramConfig ReadFundamentalDiagramConfig(const std::vector<std::string>& overrides) {
+  if (overrides.empty()) {
+    FundamentalDiagramConfig c;
+    c.Validate();
+    return c;
+  }
+  std::vector<io::ConfigOverride> parsed;
+  for (const std::string& s : overrides) {
+    io::ConfigOverride o = io::ParseOverride(s);
+    // The scenarios' key for the crowd, so that a value tried here can be copied there.
+    if (o.key_path.rfind("sim.crowd.", 0) == 0) o.key_path = o.key_path.substr(4);
+    parsed.push_back(std::move(o));
+  }
+  YAML::Node root(YAML::NodeType::Map);
+  io::ApplyOverrides(root, parsed);
+  auto c = io::ReadConfig<FundamentalDiagramConfig>(root, "--set", parsed);
+  c.Validate();
+  return c;
+}
+
+void ValidateDensities(const std::vector<double>& densities) {
+  if (densities.empty()) throw core::ConfigError("densities", "needs at least one density");
+  const WeidmannCurve curve;
+  for (double d : densities) {
+    if (!(d > 0.0) || !std::isfinite(d) || d >= curve.max_density) {
+      throw core::ConfigError("densities", "every density must be > 0 and < " +
+                                               core::FormatNumber(curve.max_density) +
+                                               " persons/m², got " + core::FormatNumber(d));
+    }
+  }
+}
+
+FundamentalDiagramRow RunDensity(const FundamentalDiagramConfig& config, double density,
+                                 std::uint64_t seed, std::size_t index) {
+  FundamentalDiagramRow row;
+  row.requested_density = density;
+  const double area = config.area();
+  row.count = std::max(2, static_cast<int>(std::lround(density * area)));
+  row.density = row.count / area;
+  row.weidmann_speed = WeidmannSpeed(row.density);
+
+  const core::Rng rng = core::Rng(seed).Split("fundamental_diagram").Split(index);
+  core::Rng layout = rng.Split("layout");
+  const double r = config.pedestrian_radius;
+  const double cell = config.crowd.planner.cell_size;
+  const double inset = r + config.crowd.planner.margin + kCellSlack * cell;
+  // Lanes (loop waypoints) stay this far inside the walls; start points a jitter further.
+  const double lane_min = config.inner_radius + inset;
+  const double lane_max = config.outer_radius() - inset;
+  const Lattice lattice = RingLattice(row.count, lane_min + kMaxJitter, lane_max - kMaxJitter,
+                                      layout.Uniform(0.0, 2.0 * core::kPi));
+  row.lattice_spacing = lattice.spacing;
+  const double needed = 2.0 * r + config.crowd.spawn_gap;
+  if (!(lattice.spacing >= needed + 1e-9)) {
+    row.note = FormatFd(
+        "%d pedestrians of radius %.2f m do not fit between the walls: the start lattice's "
+        "spacing %.3f m is below 2 x radius + spawn gap = %.3f m",
+        row.count, r, lattice.spacing, needed);
+    return row;
+  }
+  // Each start point is drawn from a small box round its site (by the crowd's own rng), small
+  // enough that two boxes never hold points closer than `needed`.
+  const double jitter =
+      std::clamp(0.5 * (lattice.spacing - needed) / std::sqrt(2.0), 1e-3, kMaxJitter);
+
+  // Directions: a random half of the sites walks clockwise.
+  std::vector<int> direction(lattice.sites.size(), 1);
+  std::vector<std::size_t> order(lattice.sites.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  for (std::size_t i = order.size(); i > 1; --i)
+    std::swap(order[i - 1], order[layout.UniformIndex(i)]);
+  for (std::size_t k = 0; k < order.size() / 2; ++k) direction[order[k]] = -1;
+
+  const core::Rng crowd_rng = rng.Split("pedestrians");
+  std::vector<Vec2> first_goals;
+  // One group per person: its start box and a loop of waypoints on its own lane, in its
+  // direction.
+  std::vector<sim::PedestrianGroupConfig> groups;
+  for (std::size_t i = 0; i < lattice.sites.size(); ++i) {
+    const Vec2& site = lattice.sites[i];
+    // Everyone keeps to a lane of their own, drawn across the corridor: with the lattice rows as
+    // lanes, two people walking towards each other on one row would meet exactly head-on, where
+    // the model's repulsion has no sideways part and both stop until the progress check makes
+    // one step aside.
+    const double lane = layout.Uniform(lane_min, lane_max);
+    const double angle0 = std::atan2(site.y(), site.x());
+    sim::PedestrianGroupConfig g;
+    g.count = 1;
+    g.region_min = site - Vec2(jitter, jitter);
+    g.region_max = site + Vec2(jitter, jitter);
+    g.mode = sim::PedestrianMode::kLoop;
+    g.speed_mean = config.speed_mean;
+    g.speed_std = config.speed_std;
+    g.radius = r;
+    // Pedestrians starts a loop at a random waypoint of it; the waypoint that draw picks is
+    // made the first one ahead, so that nobody walks half the ring the wrong way first.
+    const auto first = static_cast<int>(FirstLoopIndex(crowd_rng, i, g, config.waypoints));
+    for (int k = 0; k < config.waypoints; ++k) {
+      const int ahead = 1 + (k - first + config.waypoints) % config.waypoints;
+      const double a = angle0 + direction[i] * 2.0 * core::kPi * ahead / config.waypoints;
+      g.waypoints.push_back(lane * Vec2(std::cos(a), std::sin(a)));
+    }
+    first_goals.push_back(g.waypoints[static_cast<std::size_t>(first)]);
+    groups.push_back(std::move(g));
+  }
+
+  const sim::StaticGeometry geometry = RingGeometry(config);
+  sim::PhysicsConfig physics_config;
+  physics_config.time_step = config.time_step;
+  sim::PhysicsWorld world(geometry, physics_config);
+  sim::Pedestrians crowd(groups, config.crowd, geometry, crowd_rng, {}, world);
+  for (std::size_t i = 0; i < first_goals.size(); ++i) {
+    if ((crowd.status()[i].goal - first_goals[i]).norm() > 1e-9) ++row.misaligned_starts;
+  }
+
+  const auto warmup_steps =
+      static_cast<std::int64_t>(std::llround(config.warmup / config.time_step));
+  const auto total_steps =
+      warmup_steps + static_cast<std::int64_t>(std::llround(config.duration / config.time_step));
+  const auto sample_every =
+      std::max<std::int64_t>(1, std::llround(config.sample_period / config.time_step));
+  double sum = 0.0;
+  double sum2 = 0.0;
+  double sum_abs = 0.0;
+  std::int64_t n = 0;
+  for (std::int64_t step = 0; step < total_steps; ++step) {
+    crowd.Update(world);
+    world.Step();
+    if (step + 1 <= warmup_steps || (step + 1 - warmup_steps) % sample_every != 0) continue;
+    for (std::size_t i = 0; i < crowd.status().size(); ++i) {
+      const int id = crowd.status()[i].id;
+      const Vec2 p = world.PedestrianPosition(id);
+      const Vec2 v = world.PedestrianVelocity(id);
+      const double pn = p.norm();
+      if (pn < 1e-9) continue;
+      const Vec2 tangent(-p.y() / pn, p.x() / pn);  // counter-clockwise
+      const double along = direction[i] * v.dot(tangent);
+      sum += along;
+      sum2 += along * along;
+      sum_abs += v.norm();
+      ++n;
+    }
+  }
+  for (const sim::PedestrianStatus& st : crowd.status()) {
+    row.yields += st.replans;
+    row.goals_abandoned += st.goals_abandoned;
+  }
+  row.spawned = true;
+  row.samples = n;
+  if (n > 0) {
+    row.mean_speed = sum / n;
+    row.speed_std = std::sqrt(std::max(0.0, sum2 / n - row.mean_speed * row.mean_speed));
+    row.mean_abs_speed = sum_abs / n;
+  }
+  row.relative_deviation = row.weidmann_speed > 0.0
+                               ? (row.mean_speed - row.weidmann_speed) / row.weidmann_speed
+                               : std::numeric_limits<double>::quiet_NaN();
+  return row;
+}
+
+FundamentalDiagramResult SummarizeDiagram(std::vector<FundamentalDiagramRow> rows,
+                                          double tolerance) {
+  FundamentalDiagramResult out;
+  out.rows = std::move(rows);
+  out.tolerance = tolerance;
+  double sq = 0.0;
+  int spawned = 0;
+  const FundamentalDiagramRow* lowest = nullptr;
+  out.band_pass = true;
+  for (const FundamentalDiagramRow& row : out.rows) {
+    if (!row.spawned) continue;
+    ++spawned;
+    const double d = row.mean_speed - row.weidmann_speed;
+    sq += d * d;
+    if (lowest == nullptr || row.density < lowest->density) lowest = &row;
+    if (row.requested_density >= 1.0 - 1e-9 && row.requested_density <= 2.0 + 1e-9) {
+      ++out.band_rows;
+      const double dev = std::abs(row.relative_deviation);
+      out.band_max_deviation = std::max(out.band_max_deviation, dev);
+      if (!(dev <= tolerance)) out.band_pass = false;
+    }
+  }
+  out.rms_deviation =
+      spawned > 0 ? std::sqrt(sq / spawned) : std::numeric_limits<double>::quiet_NaN();
+  if (out.band_rows == 0) {
+    out.band_pass = false;
+    out.band_max_deviation = std::numeric_limits<double>::quiet_NaN();
+  }
+  if (lowest != nullptr) {
+    out.free_speed_deviation = lowest->relative_deviation;
+    out.free_speed_pass = std::abs(out.free_speed_deviation) <= tolerance;
+  } else {
+    out.free_speed_deviation = std::numeric_limits<double>::quiet_NaN();
+  }
+  return out;
+}
+
+FundamentalDiagramResult RunFundamentalDiagram(
+    const FundamentalDiagramConfig& config, const std::vector<double>& densities,
+    std::uint64_t seed, const std::function<void(const FundamentalDiagramRow&)>& on_row) {
+  config.Validate();
+  ValidateDensities(densities);
+  std::vector<FundamentalDiagramRow> rows;
+  for (std::size_t i = 0; i < densities.size(); ++i) {
+    rows.push_back(RunDensity(config, densities[i], seed, i));
+    if (on_row) on_row(rows.back());
+  }
+  return SummarizeDiagram(std::move(rows));
+}
+
+}  // namespace retrace::bench
