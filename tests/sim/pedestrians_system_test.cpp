@@ -45,8 +45,11 @@ TEST(Pedestrians, LongRunStaysOutOfWallsAndEachOtherAndKeepsReachingGoals) {
           min_pair = std::min(min_pair, d);
           // Box2D lets touching bodies overlap by up to 3 * b2_linearSlop (1.5 cm), and has no
           // continuous collision between two moving bodies: people meeting at speed overlap
-          // by their closing distance in one step (~2 cm) until the contact pushes them apart.
-          ASSERT_GE(d, 2.0 * r - 0.025) << "pedestrians " << i << ", " << j << " at step " << step;
+          // by their closing distance in one step until the contact pushes them apart, at most
+          // two people at the speed cap (1.3 × 1.34 m/s) for one 10 ms step, 3.5 cm. (Measured:
+          // 2.75 cm since the crowd was tuned to Weidmann's curve, under 2.5 cm before, when
+          // people braked for each other from 5 m away.)
+          ASSERT_GE(d, 2.0 * r - 0.05) << "pedestrians " << i << ", " << j << " at step " << step;
         }
       }
     }
