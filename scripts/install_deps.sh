@@ -11,7 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev
   zlib1g-dev liblz4-dev libzstd-dev libsqlite3-dev
-  clang libclang-rt-dev
+  clang libclang-rt-dev lld
 )
 for arg in "$@"; do
   case "$arg" in

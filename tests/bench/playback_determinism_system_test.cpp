@@ -24,6 +24,7 @@
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "core/rng.hpp"
+#include "tests/support/small_run.hpp"
 #include "tests/support/source_dir.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/trajectory_hash.hpp"
@@ -32,6 +33,7 @@ namespace retrace::bench {
 namespace {
 
 using retrace::testing::kSource;
+using retrace::testing::SmallRunOptions;
 
 std::uint64_t TeachHash(const TeachTrace& trace) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
@@ -67,17 +69,6 @@ TEST(PlaybackDeterminism, PinnedHashesOfTheSmallScenario) {
       << "new teach hash: 0x" << std::hex << TeachHash(partial.trace);
   EXPECT_EQ(testing::TrajectoryHash(run), kPinnedPlaybackHash)
       << "new playback hash: 0x" << std::hex << testing::TrajectoryHash(run);
-}
-
-// `retrace run` of the small scenario in `mode`, one playback run, `jobs` threads.
-RunOptions SmallRunOptions(const std::string& mode, const std::filesystem::path& out, int jobs) {
-  RunOptions options;
-  options.scenario = kSource / "scenarios/small.yaml";
-  options.modes = {mode};
-  options.repeats = 1;
-  options.out = out;
-  options.jobs = jobs;
-  return options;
 }
 
 std::string ReadWholeFile(const std::filesystem::path& path) {

@@ -4,8 +4,8 @@
 # (8 short cases) as 3 array tasks, merges them and requires the merged results.csv to be
 # byte-identical to the unsharded run's; every daemon it started must be gone afterwards. The
 # work dir is removed on success and kept on failure.
-# Label `slurm`, not `system`: it installs packages and starts daemons, so CI leaves it out. Run it
-# with `ctest --test-dir build -L slurm` (as root, about 25 s once the packages are there).
+# Labels `system` and `slurm`: CI runs it with the system tier (it installs the packages it misses,
+# as root, and starts daemons of its own); alone: `ctest --test-dir build -L slurm` (about 20 s).
 # Usage: slurm_sweep_test.sh <retrace binary> <source dir>
 set -uo pipefail
 retrace="$1"
