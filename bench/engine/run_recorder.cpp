@@ -9,9 +9,10 @@ namespace retrace::bench {
 namespace {
 
 // The robot's edge to the nearest pedestrian's (m), +inf without pedestrians.
-double PedestrianGap(const sim::Simulator& simulator, const core::Vec2& p_W, double radius) {
+double PedestrianGap(const std::vector<sim::DynamicCircle>& people, const core::Vec2& p_W,
+                     double radius) {
   double gap = std::numeric_limits<double>::infinity();
-  for (const sim::DynamicCircle& c : simulator.PedestrianCircles()) {
+  for (const sim::DynamicCircle& c : people) {
     gap = std::min(gap, (c.center - p_W).norm() - c.radius - radius);
   }
   return gap;
@@ -19,10 +20,11 @@ double PedestrianGap(const sim::Simulator& simulator, const core::Vec2& p_W, dou
 
 // The pedestrians whose edge lies within NearbyPedestrian::kNearbyRange of the robot's, with
 // their velocities and desired speeds, as of sample `sample`.
-void RecordNearby(const sim::Simulator& simulator, const core::Vec2& p_W, double radius, int sample,
+void RecordNearby(const sim::Simulator& simulator, const std::vector<sim::DynamicCircle>& people,
+                  const core::Vec2& p_W, double radius, int sample,
                   std::vector<NearbyPedestrian>* out) {
   const std::vector<sim::PedestrianStatus>& status = simulator.pedestrians().status();
-  for (const sim::DynamicCircle& c : simulator.PedestrianCircles()) {
+  for (const sim::DynamicCircle& c : people) {
     if ((c.center - p_W).norm() - c.radius - radius > NearbyPedestrian::kNearbyRange) continue;
     NearbyPedestrian n;
     n.sample = sample;
@@ -100,10 +102,12 @@ core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const co
   sample.X_OR = simulator.OdometryPose();
   sample.command = command.command;
   sample.clearance = simulator.StaticClearance(X_WR.translation()) - robot_radius_;
-  sample.pedestrian_gap = PedestrianGap(simulator, X_WR.translation(), robot_radius_);
+  // The pedestrians' circles, copied once per tick for both the gap and the nearby list.
+  const std::vector<sim::DynamicCircle> people = simulator.PedestrianCircles();
+  sample.pedestrian_gap = PedestrianGap(people, X_WR.translation(), robot_radius_);
   sample.avoiding = command.modified;
   if (sample.pedestrian_gap <= NearbyPedestrian::kNearbyRange) {
-    RecordNearby(simulator, X_WR.translation(), robot_radius_,
+    RecordNearby(simulator, people, X_WR.translation(), robot_radius_,
                  static_cast<int>(trace_.samples.size()), &trace_.nearby);
   }
   trace_.samples.push_back(sample);
