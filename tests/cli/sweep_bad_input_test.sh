@@ -58,5 +58,14 @@ expect_bad foreign-results "holds results of another sweep (a results.csv withou
 [ "$(cat "$tmp/other/results.csv")" = "$(printf 'case,x\n0,1')" ] || { fail=$((fail + 1)); echo "FAIL: the foreign results.csv was changed"; }
 [ ! -e "$tmp/other/sweep.json" ] || { fail=$((fail + 1)); echo "FAIL: sweep.json written into a foreign folder"; }
 
+# fuzz_sweep's finding of 2026-11-26, its exact bytes: a 7-key grid that expanded into 2 GB of
+# strings under the sanitizers before the case limit (then 10^6, now 10^5) refused it. Its
+# scenario path is relative (../../scenarios/office.yaml), so it runs two folders down.
+mkdir -p "$tmp/fuzz/a/b"
+cp "$src/tests/data/fuzz_findings/sweep-oom-3c0d98a1.yaml" "$tmp/fuzz/a/b/"
+ln -s "$src/scenarios" "$tmp/fuzz/scenarios"
+ln -s "$src/worlds" "$tmp/fuzz/worlds"
+expect_bad fuzz-sweep-oom "the sweep has more than 100000 cases" sweep "$tmp/fuzz/a/b/sweep-oom-3c0d98a1.yaml" "${out[@]}"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
