@@ -20,7 +20,7 @@ namespace {
 using io::internal::Fail;
 using io::internal::ReadContext;
 
-// At most this many cases (combinations times repeats aside): about a week of episodes on two
+// At most this many cases (combinations times repeats): about a week of episodes on two
 // cores. A million, the limit before, let a 6-key grid expand into 2 GB of strings (found by
 // fuzz_sweep, 2026-11-26) before a single case ran.
 constexpr std::size_t kMaxCases = 100'000;

@@ -288,7 +288,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadSpec{"TooManyCases",
                 kHead + "repeats: 10000\ngrid: {a: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10], b: [1, 2, 3, "
                         "4, 5, 6, 7, 8, 9, 10, 11]}\n",
-                "more than 1000000 cases"}),
+                "more than 100000 cases"}),
     [](const ::testing::TestParamInfo<BadSpec>& param_info) {
       return std::string(param_info.param.name);
     });
