@@ -10,7 +10,9 @@
 #   build-asan so); targets default to all of them.
 # Environment: FUZZ_RUNS=N stops a target after N executions (before its time is up);
 #   FUZZ_TIMEOUT (s, default 5) is the time one input may take before it counts as a hang;
-#   FUZZ_JOBS (default: the number of cores) targets run at once.
+#   FUZZ_JOBS (default: the number of cores) targets run at once; FUZZ_FORK=N runs each target in
+#   libFuzzer's fork mode with N worker processes (one run whose executions add up; a crash, a
+#   hang or an out-of-memory input still ends it and is a finding).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="$1"
@@ -63,17 +65,24 @@ dict="$work/keys.dict"
 run_one() {  # run_one <target>: one target for $seconds, its stats in logs/<target>.txt
   local t="$1"
   mkdir -p "$work/corpus/$t"
-  "$build/fuzz/fuzz_$t" "$work/corpus/$t" "$work/seeds/$t" -dict="$work/keys.dict" \
+  local fork=()
+  [ "$forks" -gt 0 ] && fork=(-fork="$forks" -ignore_crashes=0 -ignore_timeouts=0 -ignore_ooms=0)
+  "$build/fuzz/fuzz_$t" "$work/corpus/$t" "$work/seeds/$t" -dict="$work/keys.dict" "${fork[@]}" \
     -max_total_time="$seconds" -runs="$runs" -timeout="$timeout" -report_slow_units="$timeout" -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$work/findings/$t-" >"$work/logs/$t.txt" 2>&1 || true
   local execs
-  execs=$(grep -oE 'stat::number_of_executed_units: [0-9]+' "$work/logs/$t.txt" | grep -oE '[0-9]+$' || echo 0)
+  if [ "$forks" -gt 0 ]; then  # fork mode's parent prints the running total as "#N: cov: ..."
+    execs=$(grep -oE '^#[0-9]+: cov' "$work/logs/$t.txt" | tail -1 | grep -oE '[0-9]+' || echo 0)
+  else
+    execs=$(grep -oE 'stat::number_of_executed_units: [0-9]+' "$work/logs/$t.txt" | grep -oE '[0-9]+$' || echo 0)
+  fi
   echo "$t $execs"
 }
 export -f run_one
 runs="${FUZZ_RUNS:--1}"
 timeout="${FUZZ_TIMEOUT:-5}"
-export build work seconds runs timeout
+forks="${FUZZ_FORK:-0}"
+export build work seconds runs timeout forks
 printf '%s\n' "${targets[@]}" | xargs -P "${FUZZ_JOBS:-$(nproc)}" -I{} bash -c 'run_one {}' | sort >"$work/execs.txt"
 
 # A hang must reproduce: on a loaded machine an input can take longer than the timeout only
