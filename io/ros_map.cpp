@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <limits>
 #include <opencv2/core.hpp>
-#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <system_error>
@@ -18,72 +17,80 @@
 #include "core/limits.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
+#include "io/internal/decoded_image.hpp"
 #include "io/internal/image_header.hpp"
+#include "io/internal/png_reader.hpp"
 #include "io/read_file.hpp"
 
 namespace retrace::io {
 namespace {
 
-// An 8-bit image as decoded from file: interleaved channels (1 grey, 2 grey+alpha, 3 BGR or
-// 4 BGRA), row 0 at the top.
-struct DecodedImage {
-  int width = 0;
-  int height = 0;
-  int channels = 1;
-  std::vector<std::uint8_t> data;
-};
+using internal::DecodedImage;
 
 // ---------------------------------------------------------------------------------------------
-// PGM (Netpbm P5 binary and P2 ASCII), parsed strictly: the pixel data must hold exactly
-// width x height values.
+// Netpbm: PGM (P2 ASCII, P5 binary), PBM (P1, P4) and PPM (P3, P6), parsed strictly here rather
+// than by a decoder that prints its complaints: the pixel data must hold exactly what the header
+// declares, 8-bit samples only.
 
-class PgmParser {
+class NetpbmParser {
  public:
-  PgmParser(const std::string& bytes, const std::filesystem::path& path)
-      : bytes_(bytes), path_(path) {}
+  NetpbmParser(const std::string& bytes, const std::filesystem::path& path)
+      : bytes_(bytes), path_(path) {
+    RETRACE_CHECK(bytes_.size() >= 2 && bytes_[0] == 'P' && bytes_[1] >= '1' && bytes_[1] <= '6');
+    const char kind = bytes_[1];
+    bitmap_ = kind == '1' || kind == '4';
+    binary_ = kind >= '4';
+    channels_ = kind == '3' || kind == '6' ? 3 : 1;
+    name_ = bitmap_ ? "PBM" : channels_ == 3 ? "PPM" : "PGM";
+  }
 
   DecodedImage Parse() {
-    RETRACE_CHECK(bytes_.size() >= 2 && bytes_[0] == 'P' && (bytes_[1] == '5' || bytes_[1] == '2'));
-    const bool binary = bytes_[1] == '5';
     pos_ = 2;
     const std::int64_t width = HeaderNumber("width");
     const std::int64_t height = HeaderNumber("height");
-    const std::int64_t maxval = HeaderNumber("maxval");
+    const std::int64_t maxval = bitmap_ ? 1 : HeaderNumber("maxval");
     if (width == 0 || height == 0) {
-      Fail("PGM header gives an empty image (" + std::to_string(width) + " x " +
+      Fail(name_ + " header gives an empty image (" + std::to_string(width) + " x " +
            std::to_string(height) + ")");
     }
     if (width > core::kMaxMapCells || height > core::kMaxMapCells ||
         width * height > core::kMaxMapCells) {
-      Fail("PGM header declares " + std::to_string(width) + " x " + std::to_string(height) +
+      Fail(name_ + " header declares " + std::to_string(width) + " x " + std::to_string(height) +
            " pixels; retrace's limit for a map is " +
            std::to_string(core::kMaxMapCells / 1'000'000) + " million cells");
     }
     if (maxval == 0 || maxval > 255) {
-      Fail("PGM maxval " + std::to_string(maxval) +
+      Fail(name_ + " maxval " + std::to_string(maxval) +
            " is not supported: only 8-bit images (maxval 1..255) are");
     }
     // Exactly one whitespace character separates the header from the pixel data.
-    if (pos_ >= bytes_.size()) Fail("PGM has no pixel data after its header");
-    if (!IsSpace(bytes_[pos_])) Fail("malformed PGM header after maxval");
+    if (pos_ >= bytes_.size()) Fail(name_ + " has no pixel data after its header");
+    if (!IsSpace(bytes_[pos_])) Fail("malformed " + name_ + " header after its last number");
     ++pos_;
 
-    const std::uint64_t expected =
-        static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-    std::vector<std::uint8_t> values =
-        binary ? BinaryValues(expected, width, height) : AsciiValues(expected, width, height);
-    for (std::uint8_t& v : values) {
-      if (v > maxval) {
-        Fail("PGM pixel value " + std::to_string(v) + " exceeds the header's maxval " +
-             std::to_string(maxval));
+    const std::uint64_t expected = static_cast<std::uint64_t>(width) *
+                                   static_cast<std::uint64_t>(height) *
+                                   static_cast<std::uint64_t>(channels_);
+    std::vector<std::uint8_t> values;
+    if (bitmap_) {
+      values = binary_ ? PackedBits(width, height) : BitCharacters(expected, width, height);
+      for (std::uint8_t& v : values) v = v != 0 ? 0 : 255;  // 1 is black
+    } else {
+      values =
+          binary_ ? BinaryValues(expected, width, height) : AsciiValues(expected, width, height);
+      for (std::uint8_t& v : values) {
+        if (v > maxval) {
+          Fail(name_ + " pixel value " + std::to_string(v) + " exceeds the header's maxval " +
+               std::to_string(maxval));
+        }
+        // Stretch to 0..255 the way map_server's image loader (SDL_image) does.
+        if (maxval < 255) v = static_cast<std::uint8_t>(v * 255 / maxval);
       }
-      // Stretch to 0..255 the way map_server's image loader (SDL_image) does.
-      if (maxval < 255) v = static_cast<std::uint8_t>(v * 255 / maxval);
     }
     DecodedImage image;
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);
-    image.channels = 1;
+    image.channels = channels_;
     image.data = std::move(values);
     return image;
   }
@@ -95,6 +102,23 @@ class PgmParser {
 
   [[noreturn]] void Fail(const std::string& what) const {
     throw core::IoError(path_.string() + ": " + what);
+  }
+
+  // `bytes` for an error message: unprintable ones as \xNN.
+  static std::string Printable(const std::string& bytes) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string shown;
+    for (const char ch : bytes) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (std::isprint(c) != 0) {
+        shown += ch;
+      } else {
+        shown += "\\x";
+        shown += kHex[c >> 4];
+        shown += kHex[c & 15];
+      }
+    }
+    return shown;
   }
 
   void SkipSpaceAndComments() {
@@ -113,34 +137,38 @@ class PgmParser {
   std::int64_t Number(const std::string& what, bool in_header) {
     SkipSpaceAndComments();
     if (pos_ >= bytes_.size()) {
-      Fail(in_header ? "truncated PGM header: the file ends before the " + what
-                     : "PGM pixel data ends early");
+      Fail(in_header ? "truncated " + name_ + " header: the file ends before the " + what
+                     : name_ + " pixel data ends early");
     }
     const std::size_t start = pos_;
     std::int64_t value = 0;
     while (pos_ < bytes_.size() && std::isdigit(static_cast<unsigned char>(bytes_[pos_]))) {
       value = value * 10 + (bytes_[pos_] - '0');
-      if (value > std::numeric_limits<int>::max()) Fail("PGM " + what + " is too large");
+      if (value > std::numeric_limits<int>::max()) Fail(name_ + " " + what + " is too large");
       ++pos_;
     }
     if (pos_ == start || (pos_ < bytes_.size() && !IsSpace(bytes_[pos_]) && bytes_[pos_] != '#')) {
       std::size_t end = start;
       while (end < bytes_.size() && !IsSpace(bytes_[end]) && end - start < 16) ++end;
-      Fail("malformed PGM " + std::string(in_header ? "header" : "pixel data") + ": the " + what +
-           " '" + bytes_.substr(start, end - start) + "' is not a non-negative integer");
+      Fail("malformed " + name_ + " " + std::string(in_header ? "header" : "pixel data") +
+           ": the " + what + " '" + Printable(bytes_.substr(start, end - start)) +
+           "' is not a non-negative integer");
     }
     return value;
   }
 
   std::int64_t HeaderNumber(const std::string& what) { return Number(what, true); }
 
-  [[noreturn]] void FailSize(std::uint64_t got, std::int64_t width, std::int64_t height,
-                             const char* unit) const {
-    const std::uint64_t expected =
-        static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-    Fail("PGM has the wrong size: its pixel data holds " + std::to_string(got) + " " + unit +
-         " but the header says " + std::to_string(width) + " x " + std::to_string(height) + " = " +
-         std::to_string(expected) + " pixels (" +
+  // `got` pixel-data units (bytes or values) where the header's size needs `expected`.
+  [[noreturn]] void FailSize(std::uint64_t got, std::uint64_t expected, std::int64_t width,
+                             std::int64_t height, const char* unit) const {
+    std::string need = std::to_string(width) + " x " + std::to_string(height);
+    if (channels_ == 3) need += " x 3 samples";
+    need += bitmap_ && binary_
+                ? " pixels, " + std::to_string(expected) + " bytes packed"
+                : " = " + std::to_string(expected) + (channels_ == 3 ? "" : " pixels");
+    Fail(name_ + " has the wrong size: its pixel data holds " + std::to_string(got) + " " + unit +
+         " but the header says " + need + " (" +
          (got < expected ? "the file is truncated" : "there is extra data after the image") +
          ", or the header is wrong)");
   }
@@ -148,9 +176,46 @@ class PgmParser {
   std::vector<std::uint8_t> BinaryValues(std::uint64_t expected, std::int64_t width,
                                          std::int64_t height) const {
     const std::uint64_t got = bytes_.size() - pos_;
-    if (got != expected) FailSize(got, width, height, "bytes");
+    if (got != expected) FailSize(got, expected, width, height, "bytes");
     return std::vector<std::uint8_t>(bytes_.begin() + static_cast<std::ptrdiff_t>(pos_),
                                      bytes_.end());
+  }
+
+  // P4: rows of ceil(width / 8) bytes, the most significant bit first.
+  std::vector<std::uint8_t> PackedBits(std::int64_t width, std::int64_t height) const {
+    const std::uint64_t row = static_cast<std::uint64_t>(width + 7) / 8;
+    const std::uint64_t got = bytes_.size() - pos_;
+    const std::uint64_t expected = row * static_cast<std::uint64_t>(height);
+    if (got != expected) FailSize(got, expected, width, height, "bytes");
+    std::vector<std::uint8_t> values(static_cast<std::size_t>(width * height));
+    for (std::int64_t y = 0; y < height; ++y) {
+      for (std::int64_t x = 0; x < width; ++x) {
+        const auto byte = static_cast<unsigned char>(
+            bytes_[pos_ + static_cast<std::size_t>(y) * row + static_cast<std::size_t>(x / 8)]);
+        values[static_cast<std::size_t>(y * width + x)] =
+            static_cast<std::uint8_t>((byte >> (7 - x % 8)) & 1);
+      }
+    }
+    return values;
+  }
+
+  // P1: one character '0' or '1' per pixel; whitespace between them is optional.
+  std::vector<std::uint8_t> BitCharacters(std::uint64_t expected, std::int64_t width,
+                                          std::int64_t height) {
+    std::vector<std::uint8_t> values;
+    std::uint64_t count = 0;
+    while (true) {
+      SkipSpaceAndComments();
+      if (pos_ >= bytes_.size()) break;
+      const char c = bytes_[pos_++];
+      if (c != '0' && c != '1') {
+        Fail("malformed PBM pixel data: '" + Printable(std::string(1, c)) + "' is not 0 or 1");
+      }
+      if (count < expected) values.push_back(static_cast<std::uint8_t>(c - '0'));
+      ++count;
+    }
+    if (count != expected) FailSize(count, expected, width, height, "values");
+    return values;
   }
 
   std::vector<std::uint8_t> AsciiValues(std::uint64_t expected, std::int64_t width,
@@ -161,71 +226,31 @@ class PgmParser {
       SkipSpaceAndComments();
       if (pos_ >= bytes_.size()) break;
       const std::int64_t v = Number("pixel value", false);
-      if (v > 255) Fail("PGM pixel value " + std::to_string(v) + " exceeds 255");
+      if (v > 255) Fail(name_ + " pixel value " + std::to_string(v) + " exceeds 255");
       // Only store what fits, so a lying header cannot make us allocate without bound.
       if (count < expected) values.push_back(static_cast<std::uint8_t>(v));
       ++count;
     }
-    if (count != expected) FailSize(count, width, height, "values");
+    if (count != expected) FailSize(count, expected, width, height, "values");
     return values;
   }
 
   const std::string& bytes_;
   const std::filesystem::path& path_;
+  std::string name_;
+  bool bitmap_ = false;
+  bool binary_ = false;
+  int channels_ = 1;
   std::size_t pos_ = 0;
 };
-
-// Any other format: PNG and whatever else OpenCV decodes (as map_server accepts any image
-// SDL_image reads).
-DecodedImage DecodeWithOpenCv(const std::string& bytes, const std::filesystem::path& path) {
-  // OpenCV's own messages would be a second line beside retrace's one: its errors come back as
-  // exceptions or an empty image, and are reported from here.
-  static const bool silenced = [] {
-    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
-    return true;
-  }();
-  (void)silenced;
-  cv::Mat mat;
-  try {
-    const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8UC1,
-                         const_cast<char*>(bytes.data()));
-    mat = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    throw core::IoError(path.string() + ": cannot decode image: " + e.msg);
-  }
-  if (mat.empty()) {
-    throw core::IoError(path.string() +
-                        ": cannot decode image (not a PGM, PNG or other supported image format)");
-  }
-  if (mat.depth() != CV_8U) {
-    throw core::IoError(path.string() + ": only 8-bit images are supported (this one has " +
-                        std::to_string(mat.elemSize1() * 8) + "-bit channels)");
-  }
-  if (mat.channels() < 1 || mat.channels() > 4) {
-    throw core::IoError(path.string() + ": unsupported number of image channels (" +
-                        std::to_string(mat.channels()) + ")");
-  }
-  DecodedImage image;
-  image.width = mat.cols;
-  image.height = mat.rows;
-  image.channels = mat.channels();
-  const std::size_t row_bytes =
-      static_cast<std::size_t>(mat.cols) * static_cast<std::size_t>(image.channels);
-  image.data.resize(row_bytes * static_cast<std::size_t>(mat.rows));
-  for (int r = 0; r < mat.rows; ++r) {
-    std::copy_n(mat.ptr<std::uint8_t>(r), row_bytes,
-                image.data.begin() + static_cast<std::ptrdiff_t>(row_bytes) * r);
-  }
-  return image;
-}
 
 DecodedImage ReadImage(const std::filesystem::path& path) {
   const std::string bytes = ReadFileBytes(path);
   if (bytes.empty()) throw core::IoError(path.string() + ": the image file is empty");
   // The declared size and structure are checked before any decoder allocates for them.
   const internal::ImageHeader header = internal::CheckImageHeader(bytes, path);
-  if (header.format == internal::ImageFormat::kPgm) return PgmParser(bytes, path).Parse();
-  return DecodeWithOpenCv(bytes, path);
+  if (header.format == internal::ImageFormat::kPng) return internal::ReadPng(bytes, path);
+  return NetpbmParser(bytes, path).Parse();
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libbox2d-dev libeigen3-dev libyaml-cpp-dev libopencv-dev
+  libbox2d-dev libeigen3-dev libyaml-cpp-dev libopencv-dev libpng-dev
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev

@@ -61,6 +61,14 @@ head -c $(($(stat -c %s "$png") / 2)) "$png" >"$tmp/cut.png"
 ros_map cut.yaml cut.png '[0, 0, 0]'
 file w_cut.yaml 'name: w\nmaps:\n  - {file: cut.yaml}\n'
 expect_bad truncated-png "cut.png: truncated PNG" world "$tmp/w_cut.yaml" --png "$tmp/out.png"
+# Found by fuzz_map_image: OpenCV's PBM/PPM decoder and libpng printed their own lines.
+for f in "$src"/tests/data/fuzz_findings/map-image-print-*; do
+  name=$(basename "$f")
+  cp "$f" "$tmp/$name"
+  ros_map "m_$name.yaml" "$name" '[0, 0, 0]'
+  file "w_$name.yaml" "name: w\nmaps:\n  - {file: m_$name.yaml}\n"
+  expect_bad "$name" "$name: " world "$tmp/w_$name.yaml" --png "$tmp/out.png"
+done
 
 # 2. A world far from the origin: a bucket per metre of 1e9 m (std::length_error), or 10 GB.
 file w_far.yaml 'name: w\nboxes: [{center: [1e9, 1e9], size: [1, 1]}, {center: [0, 0], size: [1, 1]}]\n'

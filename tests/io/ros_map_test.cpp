@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -280,6 +282,63 @@ TEST_F(RosMapTest, PngAlphaFollowsNav2MapServer) {
   const auto trinary = ReadRosMap(WriteYaml(image, "", "trinary.yaml"));
   EXPECT_EQ(trinary.LogOdds({2, 0}), 0.0f);
   EXPECT_EQ(trinary.LogOdds({3, 0}), kOccupied);  // trinary ignores alpha
+}
+
+TEST_F(RosMapTest, NetpbmAndPngVariantsDecode) {
+  const auto classes = [&](const std::string& image) {
+    const auto grid = ReadRosMap(WriteYaml(image, "", "variant.yaml"));
+    std::vector<Cls> out;
+    for (int x = 0; x < grid.width(); ++x) out.push_back(ClassOf(grid.LogOdds({x, 0})));
+    return out;
+  };
+  const std::vector<Cls> black_white_black = {Cls::kOccupiedCell, Cls::kFreeCell,
+                                              Cls::kOccupiedCell};
+  tmp_.Write("a.pbm", "P1\n3 1\n1 0\n1\n");
+  EXPECT_EQ(classes("a.pbm"), black_white_black);
+  tmp_.Write("b.pbm", "P1\n3 1\n101\n");  // PBM's digits need no spaces between them
+  EXPECT_EQ(classes("b.pbm"), black_white_black);
+  tmp_.Write("c.pbm", "P4\n3 1\n\xa0");  // 101 packed, most significant bit first
+  EXPECT_EQ(classes("c.pbm"), black_white_black);
+  const std::vector<Cls> black_white_grey = {Cls::kOccupiedCell, Cls::kFreeCell,
+                                             Cls::kUnknownCell};
+  tmp_.Write("d.ppm", "P3\n3 1\n255\n0 0 0  255 255 255  100 128 160\n");
+  EXPECT_EQ(classes("d.ppm"), black_white_grey);
+  tmp_.Write("e.ppm", std::string("P6\n3 1\n255\n\x00\x00\x00\xff\xff\xff\x64\x80\xa0", 20));
+  EXPECT_EQ(classes("e.ppm"), black_white_grey);
+  // A palette PNG (black, white) and a 1-bit grey PNG (0x0f: four black, four white pixels).
+  const std::string data = std::string(RETRACE_SOURCE_DIR) + "/tests/data/";
+  EXPECT_EQ(classes(data + "io_palette_map.png"),
+            (std::vector<Cls>{Cls::kOccupiedCell, Cls::kFreeCell}));
+  std::vector<Cls> half(8, Cls::kOccupiedCell);
+  std::fill(half.begin() + 4, half.end(), Cls::kFreeCell);
+  EXPECT_EQ(classes(data + "io_1bit_map.png"), half);
+}
+
+// Inputs on which OpenCV's or libpng's decoder printed its own line before retrace's (found by
+// fuzz_map_image): now refused with one IoError, and nothing is printed.
+TEST_F(RosMapTest, DecodersNeverPrint) {
+  const fs::path findings = fs::path(RETRACE_SOURCE_DIR) / "tests/data/fuzz_findings";
+  int seen = 0;
+  for (const auto& entry : fs::directory_iterator(findings)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("map-image-print-", 0) != 0) continue;
+    ++seen;
+    ::testing::internal::CaptureStderr();
+    const std::string msg = ErrorOf<core::IoError>(WriteYaml(entry.path().string()));
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << name;
+    EXPECT_NE(msg.find(name + ": "), std::string::npos) << msg;
+  }
+  EXPECT_EQ(seen, 4);
+  // PNGs whose chunks check out but whose row filter or zlib stream is corrupt reach libpng.
+  for (const auto& [name, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"io_png_bad_filter.png", "cannot decode PNG: bad adaptive filter value"},
+           {"io_png_bad_deflate.png", "cannot decode PNG: IDAT: invalid block type"}}) {
+    ::testing::internal::CaptureStderr();
+    const std::string msg = ErrorOf<core::IoError>(
+        WriteYaml((fs::path(RETRACE_SOURCE_DIR) / "tests/data" / name).string()));
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << name;
+    EXPECT_NE(msg.find(name + ": " + expected), std::string::npos) << msg;
+  }
 }
 
 TEST_F(RosMapTest, SixteenBitImageIsRefused) {
