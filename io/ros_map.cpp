@@ -73,7 +73,7 @@ class NetpbmParser {
                                    static_cast<std::uint64_t>(channels_);
     std::vector<std::uint8_t> values;
     if (bitmap_) {
-      values = binary_ ? PackedBits(width, height) : BitCharacters(expected, width, height);
+      values = binary_ ? PackedBits(width, height) : AsciiValues(expected, width, height);
       for (std::uint8_t& v : values) v = v != 0 ? 0 : 255;  // 1 is black
     } else {
       values =
@@ -200,24 +200,15 @@ class NetpbmParser {
   }
 
   // P1: one character '0' or '1' per pixel; whitespace between them is optional.
-  std::vector<std::uint8_t> BitCharacters(std::uint64_t expected, std::int64_t width,
-                                          std::int64_t height) {
-    std::vector<std::uint8_t> values;
-    std::uint64_t count = 0;
-    while (true) {
-      SkipSpaceAndComments();
-      if (pos_ >= bytes_.size()) break;
-      const char c = bytes_[pos_++];
-      if (c != '0' && c != '1') {
-        Fail("malformed PBM pixel data: '" + Printable(std::string(1, c)) + "' is not 0 or 1");
-      }
-      if (count < expected) values.push_back(static_cast<std::uint8_t>(c - '0'));
-      ++count;
+  std::int64_t BitCharacter() {
+    const char c = bytes_[pos_++];
+    if (c != '0' && c != '1') {
+      Fail("malformed PBM pixel data: '" + Printable(std::string(1, c)) + "' is not 0 or 1");
     }
-    if (count != expected) FailSize(count, expected, width, height, "values");
-    return values;
+    return c - '0';
   }
 
+  // P1, P2, P3: whitespace-separated values.
   std::vector<std::uint8_t> AsciiValues(std::uint64_t expected, std::int64_t width,
                                         std::int64_t height) {
     std::vector<std::uint8_t> values;
@@ -225,7 +216,7 @@ class NetpbmParser {
     while (true) {
       SkipSpaceAndComments();
       if (pos_ >= bytes_.size()) break;
-      const std::int64_t v = Number("pixel value", false);
+      const std::int64_t v = bitmap_ ? BitCharacter() : Number("pixel value", false);
       if (v > 255) Fail(name_ + " pixel value " + std::to_string(v) + " exceeds 255");
       // Only store what fits, so a lying header cannot make us allocate without bound.
       if (count < expected) values.push_back(static_cast<std::uint8_t>(v));
