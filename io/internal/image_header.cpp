@@ -72,56 +72,6 @@ ImageHeader CheckPng(std::string_view b, const std::filesystem::path& path) {
   return header;
 }
 
-// Netpbm: P1 (ASCII bitmap), P3 (ASCII RGB), P4 (binary bitmap), P6 (binary RGB).
-ImageHeader CheckPnm(std::string_view b, const std::filesystem::path& path) {
-  const char kind = b[1];
-  std::size_t at = 2;
-  const auto number = [&](const char* what) {
-    while (at < b.size()) {
-      if (b[at] == '#') {
-        while (at < b.size() && b[at] != '\n' && b[at] != '\r') ++at;
-      } else if (std::strchr(" \t\n\r\v\f", b[at]) != nullptr) {
-        ++at;
-      } else {
-        break;
-      }
-    }
-    std::int64_t v = 0;
-    const std::size_t start = at;
-    while (at < b.size() && b[at] >= '0' && b[at] <= '9') {
-      if (v > core::kMaxMapCells) Fail(path, std::string("Netpbm ") + what + " is too large");
-      v = v * 10 + (b[at] - '0');
-      ++at;
-    }
-    if (at == start) Fail(path, std::string("malformed Netpbm header: no ") + what);
-    return v;
-  };
-  ImageHeader header;
-  header.format = ImageFormat::kPnm;
-  header.width = number("width");
-  header.height = number("height");
-  const bool bitmap = kind == '1' || kind == '4';
-  const std::int64_t maxval = bitmap ? 1 : number("maxval");
-  CheckSize(path, "Netpbm", header.width, header.height);
-  if (!bitmap && (maxval < 1 || maxval > 65535)) {
-    Fail(path, "Netpbm maxval " + std::to_string(maxval) + " is out of range 1..65535");
-  }
-  if (kind == '4' || kind == '5' || kind == '6') {
-    const std::int64_t channels = kind == '6' ? 3 : 1;
-    const std::int64_t bytes_per_sample = maxval > 255 ? 2 : 1;
-    const std::int64_t row =
-        kind == '4' ? (header.width + 7) / 8 : header.width * channels * bytes_per_sample;
-    const std::int64_t needed = row * header.height;
-    const auto available = static_cast<std::int64_t>(b.size() - std::min(b.size(), at + 1));
-    if (available < needed) {
-      Fail(path, "truncated Netpbm image: the header declares " + std::to_string(header.width) +
-                     " x " + std::to_string(header.height) + " pixels (" + std::to_string(needed) +
-                     " bytes), the file holds " + std::to_string(available));
-    }
-  }
-  return header;
-}
-
 }  // namespace
 
 ImageHeader CheckImageHeader(std::string_view bytes, const std::filesystem::path& path) {
@@ -130,11 +80,8 @@ ImageHeader CheckImageHeader(std::string_view bytes, const std::filesystem::path
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPngSignature.data(), 8) == 0) {
     return CheckPng(bytes, path);
   }
-  if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '2' || bytes[1] == '5')) {
-    return {ImageFormat::kPgm, 0, 0};  // parsed strictly, size limit included, by the PGM reader
-  }
   if (bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '6') {
-    return CheckPnm(bytes, path);
+    return {ImageFormat::kNetpbm, 0, 0};  // parsed strictly, size limit included, by its reader
   }
   Fail(path, "not a map image retrace reads (PGM, PNG, or PBM/PPM)");
 }

@@ -10,7 +10,7 @@
 
 namespace retrace::io::internal {
 
-enum class ImageFormat { kPgm, kPnm, kPng };
+enum class ImageFormat { kNetpbm, kPng };
 
 struct ImageHeader {
   ImageFormat format = ImageFormat::kPng;
@@ -18,10 +18,9 @@ struct ImageHeader {
   std::int64_t height = 0;
 };
 
-/// The header of a Netpbm image (P1, P3, P4, P6) or a PNG; for a PGM (P2, P5) only its format
-/// (the PGM reader parses it strictly, the size limit included). Throws core::IoError naming
-/// `path` for any other format, an empty or oversized image, pixel data shorter than the header
-/// declares (binary Netpbm), or a PNG whose chunks do not check out.
+/// The header of a PNG; for Netpbm (P1..P6) only its format (the Netpbm reader parses it
+/// strictly, the size limit included, before it allocates). Throws core::IoError naming `path`
+/// for any other format, an empty or oversized PNG, or a PNG whose chunks do not check out.
 ImageHeader CheckImageHeader(std::string_view bytes, const std::filesystem::path& path);
 
 }  // namespace retrace::io::internal

@@ -49,13 +49,13 @@ head -c 64 /dev/zero >>"$tmp/huge.ppm"
 ros_map huge.yaml huge.ppm '[0, 0, 0]'
 file w_huge.yaml 'name: w\nmaps:\n  - {file: huge.yaml}\n'
 scenario s_huge.yaml w_huge.yaml
-expect_bad huge-ppm "huge.ppm: Netpbm header declares 25554 x 25425 pixels; retrace's limit" teach "$tmp/s_huge.yaml" "${out[@]}"
+expect_bad huge-ppm "huge.ppm: PPM header declares 25554 x 25425 pixels; retrace's limit" teach "$tmp/s_huge.yaml" "${out[@]}"
 # A small PPM whose data is cut short, and a PNG cut in the middle (libpng printed a line).
 printf 'P6\n40 40\n255\n' >"$tmp/short.ppm"
 head -c 100 /dev/zero >>"$tmp/short.ppm"
 ros_map short.yaml short.ppm '[0, 0, 0]'
 file w_short.yaml 'name: w\nmaps:\n  - {file: short.yaml}\n'
-expect_bad short-ppm "short.ppm: truncated Netpbm image" world "$tmp/w_short.yaml" --png "$tmp/out.png"
+expect_bad short-ppm "short.ppm: PPM has the wrong size" world "$tmp/w_short.yaml" --png "$tmp/out.png"
 png="$src/docs/campus_maps.png"
 head -c $(($(stat -c %s "$png") / 2)) "$png" >"$tmp/cut.png"
 ros_map cut.yaml cut.png '[0, 0, 0]'

@@ -405,7 +405,7 @@ TEST_F(RosMapTest, ImageHeadersAreCheckedBeforeDecoding) {
   // A binary PPM declaring 25554 x 25425 pixels over 64 bytes (OpenCV allocated 3.9 GB).
   tmp_.Write("huge.ppm", std::string("P6\n25554 25425\n65535\n") + std::string(64, '\0'));
   std::string msg = ErrorOf<core::IoError>(WriteYaml("huge.ppm"));
-  EXPECT_NE(msg.find("huge.ppm: Netpbm header declares 25554 x 25425 pixels; retrace's limit"),
+  EXPECT_NE(msg.find("huge.ppm: PPM header declares 25554 x 25425 pixels; retrace's limit"),
             std::string::npos)
       << msg;
   tmp_.Write("huge.pgm", std::string("P5\n20000 20000\n255\n") + std::string(64, '\0'));
