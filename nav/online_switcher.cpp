@@ -1,6 +1,7 @@
 #include "nav/online_switcher.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/config.hpp"
 
@@ -21,14 +22,31 @@ double SegmentDistance(const core::Vec2& p, const core::Vec2& a, const core::Vec
 
 }  // namespace
 
+double OnlineSwitchingConfig::MaxMapLength() const {
+  if (!(drift_budget > 0.0) || !(drift > 0.0)) return std::numeric_limits<double>::infinity();
+  return drift_budget / drift;
+}
+
 void OnlineSwitchingConfig::Validate() const {
   core::RequirePositive("revisit_radius", revisit_radius);
   core::RequireNonNegative("window", window);
   core::RequireInRange("drift", drift, 0.0, 0.5);
+  core::RequireNonNegative("drift_budget", drift_budget);
+  // A map must be able to outgrow the window it chooses its end in, or it would end where it
+  // began.
+  if (!(MaxMapLength() > window)) {
+    throw core::ConfigError("drift_budget", "must allow maps longer than the switch window: " +
+                                                core::FormatNumber(drift_budget) + " / drift " +
+                                                core::FormatNumber(drift) + " = " +
+                                                core::FormatNumber(MaxMapLength()) +
+                                                " m of travel, window " +
+                                                core::FormatNumber(window) + " m (0: no budget)");
+  }
 }
 
 RevisitDetector::RevisitDetector(const OnlineSwitchingConfig& config) : config_(config) {
   config_.Validate();
+  max_length_ = config_.MaxMapLength();
   // The sampling of CheckSwitchPoints: fine enough that a revisit cannot slip between samples.
   step_ = std::clamp(config_.revisit_radius / 8.0, 0.05, 0.5);
   lag_ = kRevisitLagFactor * config_.revisit_radius;
@@ -57,7 +75,12 @@ bool RevisitDetector::OnPose(const core::Pose2& X_OR) {
   return revisit;
 }
 
+bool RevisitDetector::DriftBudgetReached() const {
+  return travelled_ - map_start_ >= max_length_;
+}
+
 void RevisitDetector::StartMap(double travelled) {
+  map_start_ = travelled;
   // Keep the trail from the last sample at or before the start, so the new map's trail begins
   // where the map does.
   auto first = std::upper_bound(trail_.begin(), trail_.end(), travelled,

@@ -11,6 +11,13 @@
 // `drift` times the distance driven between the two visits (odometry's error is a few per cent of
 // the distance driven), which makes the test err on the early side.
 //
+// Also when the map's drift reaches its budget ("switching bounds drift, not only revisits";
+// docs/METHOD.md, online map switching): a map is only useful while the drift its own odometry gathered is small against
+// what the localizer tolerates, and a route whose first revisit comes late would otherwise be one
+// map kilometres long. The drift a map may hold is modelled as `drift` times the distance driven
+// since it began (the same model that widens the revisit radius); when it reaches
+// `drift_budget`, i.e. after drift_budget / drift metres of travel, the map is closed.
+//
 // Where: like `route.switch_points: auto`, at the place within `window` metres before the revisit
 // whose scan constrains the pose best (nav/scan_constraint.hpp): after a switch the localizer
 // starts in the new map from the transformed pose, so that place should have landmarks in view.
@@ -20,6 +27,7 @@
 
 #include <vector>
 
+#include "core/config.hpp"
 #include "core/pose2.hpp"
 
 namespace retrace::nav {
@@ -28,10 +36,22 @@ struct OnlineSwitchingConfig {
   double revisit_radius = 3.0;  ///< m (route.revisit_radius)
   double window = 10.0;  ///< m before the revisit to choose the place in (route.switch_window)
   double drift = 0.03;   ///< odometry error per metre driven, a fraction (route.online_drift)
+  /// m of expected drift (drift × the map's length of travel) at which a map is closed even
+  /// without a revisit (route.online_drift_budget); 0: never.
+  double drift_budget = 9.0;
 
-  /// Throws core::ConfigError naming the key: revisit_radius > 0, window >= 0, 0 <= drift <= 0.5.
+  /// m of travel after which a map reaches its drift budget: drift_budget / drift; infinite
+  /// when either is 0.
+  double MaxMapLength() const;
+
+  /// Throws core::ConfigError naming the key: revisit_radius > 0, window >= 0, 0 <= drift <= 0.5,
+  /// drift_budget >= 0 and, when the budget applies, MaxMapLength() > window.
   void Validate() const;
 };
+
+/// Why a map was closed: the operator's signal (a listed or an `auto` switch point), or online
+/// switching's own decision before a revisit or at the drift budget.
+enum class SwitchReason { kOperator, kRevisit, kDriftBudget };
 
 /// Watches the pose source's trail for the moment the robot comes back to where the current map
 /// has already been (see above).
@@ -46,6 +66,10 @@ class RevisitDetector {
 
   /// m driven so far: the sum of the distances between consecutive poses.
   double travelled() const { return travelled_; }
+
+  /// Whether the current map, begun at the last StartMap (or the first pose), has been driven
+  /// for MaxMapLength() or more: its expected drift has reached the budget.
+  bool DriftBudgetReached() const;
 
   /// A new map starts where the robot was after `travelled` m (at most travelled()): the trail
   /// before that no longer counts.
@@ -66,9 +90,19 @@ class RevisitDetector {
   double step_ = 0.0;
   double lag_ = 0.0;
   double travelled_ = 0.0;
+  double map_start_ = 0.0;  ///< m driven when the current map began
+  double max_length_ = 0.0;
   bool has_pose_ = false;
   core::Vec2 last_p_;
   std::vector<Sample> trail_;  ///< of the current map, every step_ m
 };
 
 }  // namespace retrace::nav
+
+template <>
+struct retrace::core::EnumTraits<retrace::nav::SwitchReason> {
+  static constexpr std::array<std::pair<retrace::nav::SwitchReason, std::string_view>, 3> kNames{
+      {{retrace::nav::SwitchReason::kOperator, "operator"},
+       {retrace::nav::SwitchReason::kRevisit, "revisit"},
+       {retrace::nav::SwitchReason::kDriftBudget, "drift_budget"}}};
+};

@@ -34,7 +34,11 @@ void TeachRecorder::OnPose(const core::Pose2& X_OR) {
   X_OR_latest_ = X_OR;
   const bool revisit = detector_->OnPose(X_OR);
   held_.push_back({X_OR, detector_->travelled()});
-  if (revisit) SwitchBeforeRevisit();
+  if (revisit) {
+    SwitchOnline(SwitchReason::kRevisit);
+  } else if (detector_->DriftBudgetReached()) {
+    SwitchOnline(SwitchReason::kDriftBudget);
+  }
   // Hold back enough for the next switch to choose its place within the window.
   const double hold = detector_->config().window + 2.0 * detector_->step();
   BuildHeldUpTo(detector_->travelled() - hold);
@@ -103,9 +107,10 @@ void TeachRecorder::StartNextMap() {
   if (matcher_) matcher_->Clear();
 }
 
-void TeachRecorder::SwitchBeforeRevisit() {
-  // The revisit is at the latest pose; the map must end at least one step before it, and no
-  // earlier than `window` before that, nor before the map has begun.
+void TeachRecorder::SwitchOnline(SwitchReason reason) {
+  // The revisit (or the end of the drift budget) is at the latest pose; the map must end at
+  // least one step before it, and no earlier than `window` before that, nor before the map has
+  // begun. A drift-budget switch thus ends the map within `window` before its budget runs out.
   const double latest = detector_->travelled() - detector_->step();
   const double earliest =
       std::max(latest - detector_->config().window, map_start_travelled_ + kPlaceSpacing);
@@ -147,7 +152,7 @@ void TeachRecorder::SwitchBeforeRevisit() {
   StartNextMap();
   detector_->StartMap(travelled);
   map_start_travelled_ = travelled;
-  switches_.push_back({travelled, best});
+  switches_.push_back({travelled, best, reason});
 }
 
 void TeachRecorder::BuildFirstHeld() {

@@ -20,8 +20,9 @@
 // then hold for the corrected poses.
 //
 // With online switching (nav/online_switcher.hpp) there is no operator: the recorder switches by
-// itself just before the robot comes back to where the current map has been, at the place of
-// the last `window` metres whose scan constrains the pose best. To choose a place behind the
+// itself just before the robot comes back to where the current map has been, or when the map
+// has been driven for its drift budget, at the place of the last `window` metres whose scan
+// constrains the pose best. To choose a place behind the
 // robot it holds the latest poses and scans back and builds its maps that far behind the robot;
 // Finish() builds the rest. Scans taken at exactly the pose of the scan before them (the robot
 // standing still) are dropped from that buffer: the mapper would not integrate them either.
@@ -52,6 +53,9 @@ struct RecordedPose {
 struct OnlineSwitch {
   double travelled = 0.0;   ///< m the source's poses had travelled at the switch
   double constraint = 0.0;  ///< of the scan at the switch place (nav/scan_constraint.hpp)
+  /// kRevisit: the robot was coming back to the map's trail; kDriftBudget: the map had been
+  /// driven for its drift budget (OnlineSwitchingConfig::MaxMapLength()).
+  SwitchReason reason = SwitchReason::kRevisit;
 };
 
 /// Builds the partial maps of one teaching drive.
@@ -109,7 +113,7 @@ class TeachRecorder {
   void ApplyPose(const core::Pose2& X_OR);
   bool ApplyScan(const core::LaserScan& scan);
   void StartNextMap();
-  void SwitchBeforeRevisit();
+  void SwitchOnline(SwitchReason reason);
   void BuildFirstHeld();
   void BuildHeldUpTo(double travelled);
 

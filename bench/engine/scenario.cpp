@@ -59,6 +59,16 @@ void RouteConfig::Validate() const {
   core::RequireNonNegative("switch_window", switch_window);
   core::RequireNonNegative("min_switch_constraint", min_switch_constraint);
   core::RequireInRange("online_drift", online_drift, 0.0, 0.5);
+  core::RequireNonNegative("online_drift_budget", online_drift_budget);
+  if (!(OnlineSwitching().MaxMapLength() > switch_window)) {
+    throw core::ConfigError(
+        "online_drift_budget",
+        "must allow maps longer than route.switch_window: " +
+            core::FormatNumber(online_drift_budget) + " m / online_drift " +
+            core::FormatNumber(online_drift) + " = " +
+            core::FormatNumber(OnlineSwitching().MaxMapLength()) + " m of travel, window " +
+            core::FormatNumber(switch_window) + " m (0: no budget)");
+  }
   const std::vector<double>& points_at = switch_points.value;
   for (std::size_t i = 0; i < points_at.size(); ++i) {
     core::RequirePositive("switch_points", points_at[i]);
@@ -69,6 +79,11 @@ void RouteConfig::Validate() const {
     }
   }
   core::RequirePositive("revisit_radius", revisit_radius);
+}
+
+nav::OnlineSwitchingConfig RouteConfig::OnlineSwitching() const {
+  return nav::OnlineSwitchingConfig{revisit_radius, switch_window, online_drift,
+                                    online_drift_budget};
 }
 
 void CrossingConfig::Validate() const {

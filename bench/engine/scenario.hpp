@@ -22,6 +22,7 @@
 #include "nav/localizer.hpp"
 #include "nav/mapper.hpp"
 #include "nav/obstacle_avoidance.hpp"
+#include "nav/online_switcher.hpp"
 #include "nav/path_follower.hpp"
 #include "nav/robot_geometry.hpp"
 #include "nav/scan_matcher.hpp"
@@ -68,6 +69,12 @@ struct RouteConfig {
   /// fraction); the recorder treats a place as revisited within revisit_radius plus this times
   /// the distance driven since. Larger: safer against drift, more maps.
   double online_drift = 0.03;
+  /// `online`: m of drift a map may gather before it is closed even without a revisit, the
+  /// drift being online_drift times the distance driven since the map began, so a map is at
+  /// most online_drift_budget / online_drift m of travel long (300 m by default). Must allow
+  /// maps longer than switch_window; 0: no budget (maps end only before revisits).
+  /// docs/METHOD.md (online map switching) gives the sweep behind the default.
+  double online_drift_budget = 9.0;
   /// How well a scan at a switch point must constrain the pose (≈ end points constraining the
   /// weakest direction); below it the scenario gets a warning naming a better place nearby.
   /// The default is where the scan matcher calls a scan degenerate (nav.scan_matcher
@@ -82,10 +89,13 @@ struct RouteConfig {
     v("revisit_radius", revisit_radius);
     v("switch_window", switch_window);
     v("online_drift", online_drift);
+    v("online_drift_budget", online_drift_budget);
     v("min_switch_constraint", min_switch_constraint);
   }
   /// The switching keys (the scenario checks that exactly one of file and points is given).
   void Validate() const;
+  /// The settings of `online` switching (nav/online_switcher.hpp) these keys give.
+  nav::OnlineSwitchingConfig OnlineSwitching() const;
 };
 
 /// Static objects that exist only during teaching or only during playback (parked cars, a

@@ -107,8 +107,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   RequireSwitchingModeIfOnline(scenario, modes);
   std::optional<nav::OnlineSwitchingConfig> online;
   if (scenario.switching_online()) {
-    online = nav::OnlineSwitchingConfig{config.route.revisit_radius, config.route.switch_window,
-                                        config.route.online_drift};
+    online = config.route.OnlineSwitching();
   }
   std::vector<ModeRecorder> recorders =
       MakeModeRecorders(modes, config.nav, scenario.robot, online);

@@ -11,8 +11,26 @@ constexpr double kPathSpacing = 0.25;
 
 }  // namespace
 
-SwitchingQuality EvaluateSwitching(const TeachTrace& trace, double revisit_radius) {
+std::vector<std::string> SwitchReasons(const ModeTeach& teach, const RouteConfig& route) {
+  std::vector<std::string> reasons;
+  if (!SwitchesMaps(teach.mode) || teach.bundle.maps.size() < 2) return reasons;
+  const std::size_t switches = teach.bundle.maps.size() - 1;
+  if (route.switch_points.is(SwitchPlanning::kOnline)) {
+    for (const nav::OnlineSwitch& s : teach.online_switches)
+      reasons.emplace_back(core::EnumName(s.reason));
+    // A teach folder read back holds no online switches: reasons unknown.
+    if (reasons.size() != switches) reasons.clear();
+    return reasons;
+  }
+  const char* why = route.switch_points.is(SwitchPlanning::kAuto) ? "auto" : "operator";
+  reasons.assign(switches, why);
+  return reasons;
+}
+
+SwitchingQuality EvaluateSwitching(const TeachTrace& trace, double revisit_radius,
+                                   const std::vector<std::string>& reasons) {
   SwitchingQuality q;
+  const bool with_reasons = reasons.size() + 1 == trace.maps.size();
   q.maps = static_cast<int>(trace.maps.size());
   // The driven path, thinned, with each map's first pose kept exactly; `travelled` is the arc
   // length of the thinned path.
@@ -32,6 +50,7 @@ SwitchingQuality EvaluateSwitching(const TeachTrace& trace, double revisit_radiu
       if (i == 0 && k > 0 && travelled > 0.0 &&
           (q.switch_travel_m.empty() || travelled > q.switch_travel_m.back())) {
         q.switch_travel_m.push_back(travelled);
+        if (with_reasons) q.reasons.push_back(reasons[k - 1]);
       }
     }
   }
@@ -43,6 +62,13 @@ SwitchingQuality EvaluateSwitching(const TeachTrace& trace, double revisit_radiu
   const double length = RouteLength(path);
   while (!q.switch_travel_m.empty() && !(q.switch_travel_m.back() < length)) {
     q.switch_travel_m.pop_back();
+    if (with_reasons) q.reasons.pop_back();
+  }
+  for (const std::string& why : q.reasons) {
+    if (why == "operator") ++q.reason_counts.operator_points;
+    if (why == "auto") ++q.reason_counts.auto_points;
+    if (why == "revisit") ++q.reason_counts.revisit;
+    if (why == "drift_budget") ++q.reason_counts.drift_budget;
   }
   q.minimum = static_cast<int>(SuggestSwitchPoints(path, revisit_radius).size()) + 1;
   q.warnings = CheckSwitchPoints(path, q.switch_travel_m, revisit_radius);

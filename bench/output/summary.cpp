@@ -92,8 +92,10 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
                       std::to_string(q.revisiting) + " holding a place twice";
     if (!q.switch_travel_m.empty()) {
       cut += "; switches after";
-      for (std::size_t i = 0; i < q.switch_travel_m.size(); ++i)
+      for (std::size_t i = 0; i < q.switch_travel_m.size(); ++i) {
         cut += (i ? ", " : " ") + Cell(q.switch_travel_m[i], "%.1f");
+        if (i < q.reasons.size()) cut += " (" + q.reasons[i] + ")";
+      }
       cut += " m driven";
     }
     text += cut + "\n";

@@ -84,8 +84,7 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
 
   std::optional<nav::OnlineSwitchingConfig> online_config;
   if (online) {
-    online_config = nav::OnlineSwitchingConfig{
-        config.route.revisit_radius, config.route.switch_window, config.route.online_drift};
+    online_config = config.route.OnlineSwitching();
   }
   std::vector<ModeRecorder> recorders =
       MakeModeRecorders(modes, config.nav, streams.robot, online_config);

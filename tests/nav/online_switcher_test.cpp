@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "core/angle.hpp"
@@ -58,6 +60,34 @@ TEST(RevisitDetector, RefusesABadConfig) {
   EXPECT_THROW(RevisitDetector(OnlineSwitchingConfig{0.0, 10.0, 0.03}), core::ConfigError);
   EXPECT_THROW(RevisitDetector(OnlineSwitchingConfig{3.0, -1.0, 0.03}), core::ConfigError);
   EXPECT_THROW(RevisitDetector(OnlineSwitchingConfig{3.0, 10.0, 0.9}), core::ConfigError);
+  EXPECT_THROW(RevisitDetector(OnlineSwitchingConfig{3.0, 10.0, 0.03, -1.0}), core::ConfigError);
+  // 0.3 m of drift at 3 % is a 10 m map: no longer than the window it would choose its end in.
+  try {
+    RevisitDetector(OnlineSwitchingConfig{3.0, 10.0, 0.03, 0.3});
+    ADD_FAILURE() << "a budget no longer than the window was accepted";
+  } catch (const core::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("drift_budget"), std::string::npos) << e.what();
+  }
+  // No budget, or no drift to spend it on: maps end only before revisits.
+  EXPECT_NO_THROW(RevisitDetector(OnlineSwitchingConfig{3.0, 10.0, 0.03, 0.0}));
+  EXPECT_NO_THROW(RevisitDetector(OnlineSwitchingConfig{3.0, 10.0, 0.0, 9.0}));
+  EXPECT_EQ(OnlineSwitchingConfig({3.0, 10.0, 0.0, 9.0}).MaxMapLength(),
+            std::numeric_limits<double>::infinity());
+}
+
+TEST(RevisitDetector, TheDriftBudgetIsReachedAfterBudgetOverDriftMetresOfTheMap) {
+  // 6 m at 3 %: 200 m of travel per map.
+  RevisitDetector detector(OnlineSwitchingConfig{3.0, 10.0, 0.03, 6.0});
+  EXPECT_DOUBLE_EQ(detector.config().MaxMapLength(), 200.0);
+  int i = 0;
+  for (; !detector.DriftBudgetReached(); ++i) detector.OnPose(Pose2(0.1 * i, 0.0, 0.0));
+  EXPECT_NEAR(detector.travelled(), 200.0, 0.1 + 1e-9);
+  // A map begun 5 m back has 195 m to go.
+  detector.StartMap(detector.travelled() - 5.0);
+  EXPECT_FALSE(detector.DriftBudgetReached());
+  const double start = detector.travelled() - 5.0;
+  for (; !detector.DriftBudgetReached(); ++i) detector.OnPose(Pose2(0.1 * i, 0.0, 0.0));
+  EXPECT_NEAR(detector.travelled() - start, 200.0, 0.1 + 1e-9);
 }
 
 // A figure-eight (lemniscate of Gerono, 20 m half-width) in a walled hall with pillars, driven
@@ -114,6 +144,7 @@ TEST(OnlineSwitching, AFigureEightSwitchesBeforeTheCrossing) {
   ASSERT_EQ(recorder.online_switches().size(), 1u);
   ASSERT_EQ(bundle.maps.size(), 2u);
   const OnlineSwitch& s = recorder.online_switches()[0];
+  EXPECT_EQ(s.reason, SwitchReason::kRevisit);
   EXPECT_LT(s.travelled, second_crossing - online.revisit_radius);
   EXPECT_GT(s.travelled, second_crossing - online.revisit_radius - online.window - 3.0);
   const Pose2 X_OM1 = poses.front() * bundle.maps[0].X_MS;  // map 0's frame is the first pose
@@ -132,6 +163,93 @@ TEST(OnlineSwitching, AFigureEightSwitchesBeforeTheCrossing) {
   const Pose2 expected = X_OM1.Inverse() * poses.back();
   EXPECT_NEAR(X_M1R.x, expected.x, 1e-6);
   EXPECT_NEAR(X_M1R.y, expected.y, 1e-6);
+}
+
+// A straight road 1 km long between two walls 10 m apart, with a post every 7 m on the left
+// and every 11 m on the right (so that how well a place is constrained along the road varies):
+// no place is ever driven twice.
+struct StraightRoad {
+  static constexpr double kLength = 1000.0;
+  std::vector<testing::Segment> walls{{{-50.0, -5.0}, {kLength + 50.0, -5.0}},
+                                      {{-50.0, 5.0}, {kLength + 50.0, 5.0}}};
+  std::vector<testing::Circle> posts;
+  StraightRoad() {
+    for (double x = 0.0; x <= kLength + 40.0; x += 7.0) posts.push_back({{x, 4.0}, 0.3});
+    for (double x = 3.0; x <= kLength + 40.0; x += 11.0) posts.push_back({{x, -4.0}, 0.3});
+  }
+  core::LaserScan Scan(const Pose2& X_WR) const {
+    std::vector<testing::Circle> near;  // only the posts in range: keeps the test fast
+    for (const testing::Circle& c : posts)
+      if (std::abs(c.c.x() - X_WR.x) < 31.0) near.push_back(c);
+    testing::ScanSpec spec;
+    spec.beams = 541;
+    return testing::FakeScan(spec, X_WR, [&](const Vec2& o, const Vec2& d) {
+      double r = testing::NearestSegment(o, d, walls);
+      for (const testing::Circle& c : near) r = std::min(r, testing::RayCircle(o, d, c));
+      return r;
+    });
+  }
+};
+
+// Drives the road with exact odometry (O = W), a pose every 0.125 m and a scan every 0.5 m
+// (binary fractions: the distances driven add up exactly).
+std::vector<OnlineSwitch> DriveStraightRoad(const OnlineSwitchingConfig& online,
+                                            std::size_t* maps) {
+  const StraightRoad road;
+  TeachRecorder recorder(MapperConfig{}, RobotGeometry{}, std::nullopt, online);
+  for (int i = 0; 0.125 * i <= StraightRoad::kLength; ++i) {
+    const Pose2 X_WR(0.125 * i, 0.0, 0.0);
+    recorder.OnPose(X_WR);
+    if (i % 4 == 0) recorder.OnScan(road.Scan(X_WR));
+  }
+  *maps = recorder.Finish().maps.size();
+  return recorder.online_switches();
+}
+
+TEST(OnlineSwitching, AStraightKilometreWithoutRevisitIsCutAtEveryDriftBudget) {
+  // 3 m of drift at 3 %: a map every 100 m at most.
+  const OnlineSwitchingConfig online{3.0, 10.0, 0.03, 3.0};
+  std::size_t maps = 0;
+  const std::vector<OnlineSwitch> switches = DriveStraightRoad(online, &maps);
+  ASSERT_EQ(maps, switches.size() + 1);
+  // Each map ends inside the window behind the place its budget ran out: between 100 m less
+  // the window (and a step of the detector's trail, and a pose) and 100 m after it began.
+  EXPECT_GE(switches.size(), 10u);
+  EXPECT_LE(switches.size(), 12u);
+  double start = 0.0;
+  for (const OnlineSwitch& s : switches) {
+    EXPECT_EQ(s.reason, SwitchReason::kDriftBudget);
+    EXPECT_LE(s.travelled - start, online.MaxMapLength()) << "at " << s.travelled;
+    EXPECT_GE(s.travelled - start, online.MaxMapLength() - online.window - 0.5 - 0.125)
+        << "at " << s.travelled;
+    // ... at a place whose scan sees the posts, not at the window's edge by default.
+    EXPECT_GT(s.constraint, 0.0);
+    start = s.travelled;
+  }
+  EXPECT_GT(StraightRoad::kLength - start, 0.0);
+  EXPECT_LE(StraightRoad::kLength - start, online.MaxMapLength());
+}
+
+TEST(OnlineSwitching, TheChosenPlaceIsTheBestConstrainedOfTheWindow) {
+  const StraightRoad road;
+  const OnlineSwitchingConfig online{3.0, 10.0, 0.03, 3.0};
+  std::size_t maps = 0;
+  const std::vector<OnlineSwitch> switches = DriveStraightRoad(online, &maps);
+  ASSERT_FALSE(switches.empty());
+  // The first switch: its budget ran out at 100 m; no scan of the window before that (every
+  // 0.5 m, as the recorder compares them) is better constrained than the one chosen.
+  const OnlineSwitch& s = switches.front();
+  const double end = online.MaxMapLength();
+  for (double d = end - online.window + 0.5; d < end - 0.5; d += 0.5) {
+    const double c = ScanConstraint(road.Scan(Pose2(d, 0.0, 0.0)), RobotGeometry{});
+    EXPECT_LE(c, s.constraint + 1e-9) << "a better place at " << d << " m than " << s.travelled;
+  }
+}
+
+TEST(OnlineSwitching, WithoutABudgetAStraightKilometreIsOneMap) {
+  std::size_t maps = 0;
+  EXPECT_TRUE(DriveStraightRoad(OnlineSwitchingConfig{3.0, 10.0, 0.03, 0.0}, &maps).empty());
+  EXPECT_EQ(maps, 1u);
 }
 
 TEST(OnlineSwitching, ScansOfARobotStandingStillAreNotHeld) {
