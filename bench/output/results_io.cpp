@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -90,6 +91,16 @@ void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach) 
     io::WriteTum(dir / "reference" / MapFile(k, "map"), Stamped(map.time, map.X_MR));
     if (truth) io::WriteTum(dir / "reference" / MapFile(k, "world"), Stamped(map.time, map.X_WR));
   }
+  // Online switching: where and why the recorder began each map after the first.
+  if (!teach.online_switches.empty()) {
+    io::CsvWriter switches(dir / "switches.csv",
+                           {"map", "odometry_travelled_m", "constraint", "reason"});
+    for (std::size_t k = 0; k < teach.online_switches.size(); ++k) {
+      const nav::OnlineSwitch& s = teach.online_switches[k];
+      switches.AddRow({k + 1, s.travelled, s.constraint, std::string(core::EnumName(s.reason))});
+    }
+    switches.Commit();
+  }
 }
 
 ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
@@ -123,6 +134,29 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
                           MapFile(k, "world") + " must hold the same, non-empty, instants");
     }
     trace.maps.push_back(std::move(map));
+  }
+  if (std::filesystem::exists(dir / "switches.csv")) {
+    const std::vector<io::CsvRecord> rows = io::ReadCsvFile(dir / "switches.csv");
+    const auto number = [](const std::string& text, double* value) {
+      char* end = nullptr;
+      *value = std::strtod(text.c_str(), &end);
+      return !text.empty() && end == text.c_str() + text.size();
+    };
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+      const std::vector<std::string>& c = rows[i].cells;
+      double travelled = 0.0, constraint = 0.0;
+      const std::optional<nav::SwitchReason> reason =
+          c.size() == 4 && number(c[1], &travelled) && number(c[2], &constraint)
+              ? core::ParseEnum<nav::SwitchReason>(c[3])
+              : std::nullopt;
+      if (!reason) {
+        throw core::IoError((dir / "switches.csv").string() + ":" +
+                            std::to_string(rows[i].line) +
+                            ": expected map, odometry_travelled_m, constraint, reason (" +
+                            core::EnumNameList<nav::SwitchReason>() + ")");
+      }
+      teach.online_switches.push_back({travelled, constraint, *reason});
+    }
   }
   return teach;
 }

@@ -607,7 +607,8 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                            "time_efficiency", "jerk_m_s3", "crowd"});
   ExpectKeys(a["social"]["crowd"],
              {"encounters", "passed", "yielded", "blocked", "wait_time_s", "max_wait_s"});
-  ExpectKeys(a["switching"], {"minimum_maps", "revisiting_maps", "switch_travel_m"});
+  ExpectKeys(a["switching"], {"minimum_maps", "revisiting_maps", "switch_travel_m", "reasons",
+                              "switches_by_reason"});
   ExpectKeys(a["outcomes"], {"success", "timeout", "collision", "lost"});
   ExpectKeys(a["map_quality"], {"distortion_m", "agreement", "per_map"});
   ExpectKeys(a["map_quality"]["distortion_m"], {"rms", "max"});

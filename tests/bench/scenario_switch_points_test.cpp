@@ -60,6 +60,21 @@ TEST(ScenarioSwitchPoints, AutoInsideAListIsAnError) {
   }
 }
 
+TEST(ScenarioSwitchPoints, TheDriftBudgetIsOneRouteKeyCheckedByName) {
+  const Scenario scenario = SmallWith("route.online_drift_budget=6");
+  EXPECT_EQ(scenario.config.route.OnlineSwitching().drift_budget, 6.0);
+  EXPECT_DOUBLE_EQ(scenario.config.route.OnlineSwitching().MaxMapLength(), 200.0);
+  for (const char* bad : {"route.online_drift_budget=-1", "route.online_drift_budget=0.2"}) {
+    try {
+      SmallWith(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const core::ConfigError& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("route.online_drift_budget")) << bad;
+    }
+  }
+  EXPECT_NO_THROW(SmallWith("route.online_drift_budget=0"));  // no budget
+}
+
 TEST(ScenarioSwitchPoints, AScanAlongACorridorConstrainsLittleARoomMuch) {
   using testing::Segment;
   auto constraint = [](const std::vector<Segment>& faces) {

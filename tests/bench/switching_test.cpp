@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/angle.hpp"
@@ -63,6 +64,36 @@ TEST(Switching, ACutTooLateLeavesOneMapHoldingAPlaceTwice) {
   EXPECT_EQ(q.maps, 3);
   EXPECT_EQ(q.revisiting, 1);
   EXPECT_NE(q.warnings.at(0).find("partial map 0"), std::string::npos);
+}
+
+TEST(Switching, EachSwitchSaysWhy) {
+  const SwitchingQuality q =
+      EvaluateSwitching(TwoLaps({40.0, 55.0, 110.0}), 3.0, {"drift_budget", "revisit", "revisit"});
+  ASSERT_EQ(q.reasons.size(), q.switch_travel_m.size());
+  EXPECT_EQ(q.reasons, (std::vector<std::string>{"drift_budget", "revisit", "revisit"}));
+  EXPECT_EQ(q.reason_counts.drift_budget, 1);
+  EXPECT_EQ(q.reason_counts.revisit, 2);
+  EXPECT_EQ(q.reason_counts.operator_points + q.reason_counts.auto_points, 0);
+  // Without reasons (a teach folder read back), none are made up.
+  EXPECT_TRUE(EvaluateSwitching(TwoLaps({55.0, 110.0}), 3.0).reasons.empty());
+}
+
+TEST(Switching, ReasonsComeFromTheRecorderOnlineAndFromTheRouteOtherwise) {
+  ModeTeach teach;
+  teach.mode = MapMode::kPartial;
+  teach.bundle.maps.resize(3);
+  teach.online_switches = {{100.0, 20.0, nav::SwitchReason::kDriftBudget},
+                           {150.0, 30.0, nav::SwitchReason::kRevisit}};
+  RouteConfig route;
+  route.switch_points.word = SwitchPlanning::kOnline;
+  EXPECT_EQ(SwitchReasons(teach, route), (std::vector<std::string>{"drift_budget", "revisit"}));
+  route.switch_points.word = SwitchPlanning::kAuto;
+  EXPECT_EQ(SwitchReasons(teach, route), (std::vector<std::string>{"auto", "auto"}));
+  route.switch_points.word.reset();
+  route.switch_points.value = {100.0, 150.0};
+  EXPECT_EQ(SwitchReasons(teach, route), (std::vector<std::string>{"operator", "operator"}));
+  teach.mode = MapMode::kSingle;
+  EXPECT_TRUE(SwitchReasons(teach, route).empty());
 }
 
 }  // namespace
