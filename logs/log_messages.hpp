@@ -2,6 +2,7 @@
 // The decoded messages retrace reads from logs, in core types. 3D poses are projected onto
 // the plane: x, y and the yaw of the quaternion (z, roll and pitch are dropped).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,10 @@ namespace retrace::logs {
 struct ScanMessage {
   core::LaserScan scan;  ///< scan.stamp is the header stamp (s since the epoch)
   std::string frame_id;  ///< the laser's frame
+  /// The message's angle_max (rad) where it is more than half an increment from the last beam's
+  /// angle_min + (n − 1)·angle_increment (a driver's quirk; the beams are placed by angle_min and
+  /// the increment all the same); empty where they agree.
+  std::optional<double> angle_max = std::nullopt;
 };
 
 /// nav_msgs/msg/Odometry: the pose of child_frame_id (the robot base) in frame_id (odom).

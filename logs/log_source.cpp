@@ -65,7 +65,18 @@ std::string_view LogFormatName(LogFormat format) {
   return "log";
 }
 
+namespace {
+
+// A rosbag2 bag's metadata.yaml stands for its folder: `ros2 bag info` users point at it.
+bool IsBagMetadata(const std::filesystem::path& path) {
+  std::error_code error;
+  return path.filename() == "metadata.yaml" && std::filesystem::is_regular_file(path, error);
+}
+
+}  // namespace
+
 LogFormat DetectLogFormat(const std::filesystem::path& path) {
+  if (IsBagMetadata(path)) return LogFormat::kRosbag2;
   std::error_code error;
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   if (error || !std::filesystem::exists(status))
@@ -110,6 +121,10 @@ std::unique_ptr<MessageSource> OpenLog(const std::filesystem::path& path) {
     case LogFormat::kSqlite:
       return std::make_unique<SqliteBagReader>(path);
     case LogFormat::kRosbag2:
+      if (IsBagMetadata(path)) {
+        const std::filesystem::path folder = path.parent_path();
+        return std::make_unique<Rosbag2Source>(folder.empty() ? "." : folder);
+      }
       return std::make_unique<Rosbag2Source>(path);
   }
   throw core::IoError(path.string() + ": unknown log format");

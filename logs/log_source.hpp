@@ -2,6 +2,7 @@
 // Opening a log of any supported kind as one MessageSource (logs/raw_message.hpp), chosen by
 // its content, not its name:
 //   a folder with metadata.yaml            a rosbag2 bag: its files in order (MCAP or SQLite 3)
+//   a file named metadata.yaml             the rosbag2 bag of its folder
 //   a file starting with MCAP's magic      an MCAP file (ROS 2 bags record these since Iron)
 //   a file starting with SQLite's magic    a rosbag2 .db3 file
 //   a gzip file or a text file             a CARMEN log (.log, .clf, plain or gzipped)

@@ -248,15 +248,21 @@ ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr) {
     }
     if (n > 0) {
       const double expected = m.scan.Angle(n - 1);
-      // Half an increment, and a little for the float32 rounding of the three angles.
-      const double tolerance =
-          0.5 * std::abs(m.scan.angle_increment) + 1e-6 * (1.0 + std::abs(expected));
-      if (!(std::abs(static_cast<double>(angle_max) - expected) <= tolerance)) {
+      // A little for the float32 rounding of the three angles.
+      const double rounding = 1e-6 * (1.0 + std::abs(expected));
+      const double increment = std::abs(m.scan.angle_increment);
+      const double off = std::abs(static_cast<double>(angle_max) - expected);
+      if (!(off <= kAngleMaxSlackIncrements * increment + rounding)) {
         throw core::IoError("angle_max " + NumF(angle_max) +
                             " does not match angle_min + (n - 1) * angle_increment = " +
                             NumF(static_cast<float>(expected)) + " for n = " + std::to_string(n) +
-                            " ranges");
+                            " ranges (more than " + Num(kAngleMaxSlackIncrements) +
+                            " increments apart)");
       }
+      // Drivers that count n increments instead of n - 1 (or round the field of view): the
+      // beams are at angle_min + i * angle_increment all the same, as every ROS consumer reads
+      // them; the caller notes it.
+      if (off > 0.5 * increment + rounding) m.angle_max = angle_max;
     }
     return m;
   });

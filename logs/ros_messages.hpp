@@ -45,10 +45,15 @@ double YawFromQuaternion(double x, double y, double z, double w);
 // core::IoError "<type>: <reason>" for a malformed one (truncated, a count beyond the buffer,
 // a bad quaternion, ...); the caller adds the file and message index.
 
-/// Also checks that angle_max ≈ angle_min + (n − 1)·angle_increment (to half an increment),
-/// since core::LaserScan keeps no angle_max. NaN and ±inf ranges are kept as they are;
-/// intensities, time_increment and scan_time are dropped.
+/// Beam i is at angle_min + i·angle_increment, as every ROS consumer reads it; angle_max is only
+/// checked against angle_min + (n − 1)·angle_increment, since core::LaserScan keeps none. Up to
+/// kAngleMaxSlackIncrements increments apart (real drivers are 1 or 2 off) the scan is used and
+/// ScanMessage::angle_max says so (consistent to half an increment: empty); further apart it is
+/// refused. NaN and ±inf ranges are kept as they are; intensities, time_increment and scan_time
+/// are dropped.
 ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr);
+/// How far (in increments) a LaserScan's angle_max may lie from angle_min + (n − 1)·increment.
+inline constexpr double kAngleMaxSlackIncrements = 2.0;
 /// angle_max = angle_min + (n − 1)·angle_increment; no intensities; time_increment and scan_time
 /// 0. Throws core::IoError for a stamp ToRosTime refuses.
 std::vector<std::uint8_t> EncodeLaserScan(const ScanMessage& message);

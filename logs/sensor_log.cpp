@@ -1,6 +1,7 @@
 #include "logs/sensor_log.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -47,6 +48,20 @@ std::string_view Text(const RawMessage& m) {
   return {reinterpret_cast<const char*>(m.data.data()), m.data.size()};
 }
 
+// The ipc_timestamp of a CARMEN line as it is spelled: the third field from the end.
+std::string_view IpcStampText(std::string_view line) {
+  std::size_t end = line.size();
+  for (int field = 0; field < 3; ++field) {
+    while (end > 0 && std::isspace(static_cast<unsigned char>(line[end - 1]))) --end;
+    const std::size_t begin = line.find_last_of(" \t", end == 0 ? 0 : end - 1);
+    const std::size_t start = begin == std::string_view::npos ? 0 : begin + 1;
+    if (field == 2) return line.substr(start, end - start);
+    if (start == 0) return {};
+    end = start;
+  }
+  return {};
+}
+
 void SortByStamp(std::vector<StampedPose>& poses) {
   std::stable_sort(poses.begin(), poses.end(),
                    [](const StampedPose& a, const StampedPose& b) { return a.t < b.t; });
@@ -75,6 +90,26 @@ struct Gathered {
   std::map<std::string, std::vector<StampedPose>, std::less<>> poses;        // reference topics
   std::map<std::string, std::optional<core::Pose2>, std::less<>> carmen_mount;  // per laser
   CarmenLaserDefaults carmen_defaults;
+  // Per scan topic, for people: where a quirk was first and last seen ("line 12", "message 12").
+  struct ScanQuirks {
+    std::string angle_max_first;  // the first scan whose angle_max disagrees
+    double angle_max = 0.0;       // ... its angle_max (rad)
+    double angle_max_expected = 0.0;
+    std::string repeat_first;  // the first scan stamped as the one before it
+    std::string repeat_last;
+    std::string repeat_stamp;  // ... the stamp as the line spells it (CARMEN) or a number
+  };
+  std::map<std::string, ScanQuirks, std::less<>> scan_quirks;
+  // Per topic, the messages with the earliest and the latest log time, to name them when they
+  // follow another clock than the scans.
+  struct LogTimes {
+    std::int64_t min_ns = 0;
+    std::int64_t max_ns = 0;
+    std::string min_place;
+    std::string max_place;
+  };
+  std::map<std::string, LogTimes, std::less<>> log_times;
+  std::string place;  // where the message being gathered is
   // Messages stamped before the one before them in their stream (a scan topic's geometry or a
   // pose stream): how many were dropped, and the first as an error. A few are dropped (the
   // Intel Research Lab log's laser lines step back 4 times in 910); a stream that does it often
@@ -126,14 +161,17 @@ void AddPose(std::vector<StampedPose>& stream, double stamp, const core::Pose2& 
 
 // Counts a scan of message `number` into its topic's geometry (taken from the first scan), or
 // drops it as AddPose does.
-void AddScan(ScanGeometry& geometry, const core::LaserScan& scan, const std::string& log,
-             std::uint64_t number, std::string_view topic, Gathered& gathered) {
+void AddScan(ScanGeometry& geometry, const ScanMessage& message, std::int64_t log_time_ns,
+             const std::string& log, std::uint64_t number, std::string_view topic,
+             Gathered& gathered, std::string_view stamp_text = {}) {
+  const core::LaserScan& scan = message.scan;
   ScanGeometry& g = geometry;
   if (g.scans > 0 && scan.stamp < g.last_stamp) {
     Gathered::Backwards& b = gathered.backwards[&g];
     if (b.dropped++ == 0) b.first = WentBack(log, number, topic, scan.stamp, g.last_stamp);
     return;
   }
+  Gathered::ScanQuirks& quirks = gathered.scan_quirks[std::string(topic)];
   if (g.scans == 0) {
     g.beams = scan.size();
     g.angle_min = scan.angle_min;
@@ -141,16 +179,35 @@ void AddScan(ScanGeometry& geometry, const core::LaserScan& scan, const std::str
     g.range_min = scan.range_min;
     g.range_max = scan.range_max;
     g.first_stamp = scan.stamp;
+    g.first_log_ns = log_time_ns;
+    g.last_log_ns = log_time_ns;
+  } else if (scan.stamp == g.last_stamp) {
+    if (g.repeated_stamps++ == 0) {
+      quirks.repeat_first = gathered.place;
+      quirks.repeat_stamp =
+          stamp_text.empty() ? core::FormatNumber(scan.stamp) : std::string(stamp_text);
+    }
+    quirks.repeat_last = gathered.place;
   }
+  if (message.angle_max && g.inconsistent_angle_max++ == 0) {
+    quirks.angle_max_first = gathered.place;
+    quirks.angle_max = *message.angle_max;
+    quirks.angle_max_expected = scan.size() > 0 ? scan.Angle(scan.size() - 1) : scan.angle_min;
+  }
+  g.first_log_ns = std::min(g.first_log_ns, log_time_ns);
+  g.last_log_ns = std::max(g.last_log_ns, log_time_ns);
   g.last_stamp = scan.stamp;
   ++g.scans;
 }
 
 // Chooses one of `candidates` (topics holding the wanted messages): the one named in `chosen`,
 // or the only one.
+// Several candidates and none chosen is only a problem for commands that use the stream: the
+// error is kept in `ambiguous` (the first one wins) and nothing is chosen, so that the rest of the
+// log is still chosen and described.
 std::string Choose(const std::string& log, std::string_view what, std::string_view option,
                    const std::string& chosen, const std::vector<std::string>& candidates,
-                   const LogIndex& index) {
+                   const LogIndex& index, std::string& ambiguous) {
   if (!chosen.empty()) {
     if (std::find(candidates.begin(), candidates.end(), chosen) != candidates.end()) return chosen;
     const bool exists = std::any_of(index.topics.begin(), index.topics.end(),
@@ -164,8 +221,11 @@ std::string Choose(const std::string& log, std::string_view what, std::string_vi
   if (candidates.empty()) return {};
   std::string list;
   for (const std::string& c : candidates) list += (list.empty() ? "" : ", ") + c;
-  throw core::IoError(log + ": several topics hold " + std::string(what) + " (" + list +
-                      "); choose one with " + std::string(option));
+  if (ambiguous.empty()) {
+    ambiguous = log + ": several topics hold " + std::string(what) + " (" + list +
+                "); choose one with " + std::string(option);
+  }
+  return {};
 }
 
 template <class Map>
@@ -190,21 +250,25 @@ std::optional<core::Pose2> StaticChain(const Gathered& g, const std::string& bas
   return std::nullopt;  // a cycle
 }
 
-void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+// Chooses the streams of a ROS log; returns the error of an ambiguous choice (empty: none).
+std::string ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   const std::string& log = index.name;
+  std::string ambiguous;
   index.scan_topic = Choose(log, "laser scans (sensor_msgs/msg/LaserScan)", "--scan-topic",
-                            choice.scan_topic, Keys(g.scans), index);
-  if (index.scan_topic.empty())
+                            choice.scan_topic, Keys(g.scans), index, ambiguous);
+  if (index.scan_topic.empty() && ambiguous.empty())
     throw core::IoError(log +
                         ": no sensor_msgs/msg/LaserScan topic: nothing to map or localize with");
-  g.RequireForward(&g.scans[index.scan_topic], g.scans[index.scan_topic].scans, index.scan_topic,
-                   index);
-  index.scan = g.scans[index.scan_topic];
-  index.laser_frame = g.scan_frame[index.scan_topic];
+  if (!index.scan_topic.empty()) {
+    g.RequireForward(&g.scans[index.scan_topic], g.scans[index.scan_topic].scans, index.scan_topic,
+                     index);
+    index.scan = g.scans[index.scan_topic];
+    index.laser_frame = g.scan_frame[index.scan_topic];
+  }
 
   const std::string odometry_topic =
       Choose(log, "odometry (nav_msgs/msg/Odometry)", "--odometry-topic", choice.odometry_topic,
-             Keys(g.odometry), index);
+             Keys(g.odometry), index, ambiguous);
   if (!odometry_topic.empty()) {
     g.RequireForward(&g.odometry[odometry_topic], g.odometry[odometry_topic].size(), odometry_topic,
                      index);
@@ -213,6 +277,10 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
     index.odometry_source = odometry_topic + " (nav_msgs/msg/Odometry)";
   } else {
     std::string base = choice.base_frame;
+    if (!ambiguous.empty() && g.odometry.size() > 1) {
+      // Several odometry topics: tf is not the odometry, and nothing more can be chosen.
+      return ambiguous;
+    }
     if (base.empty()) {
       if (g.tf_odometry.size() > 1) {
         throw core::IoError(log + ": no odometry topic, and tf moves several frames in " +
@@ -234,7 +302,7 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
 
   const std::string reference_topic =
       Choose(log, "poses (geometry_msgs/msg/PoseStamped)", "--reference-topic",
-             choice.reference_topic, Keys(g.poses), index);
+             choice.reference_topic, Keys(g.poses), index, ambiguous);
   if (!reference_topic.empty()) {
     g.RequireForward(&g.poses[reference_topic], g.poses[reference_topic].size(), reference_topic,
                      index);
@@ -242,6 +310,7 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
     index.reference_source = reference_topic + " (geometry_msgs/msg/PoseStamped)";
   }
 
+  if (index.scan_topic.empty()) return ambiguous;  // no scans chosen: no mount to find
   if (const std::optional<core::Pose2> X_RL = StaticChain(g, index.base_frame, index.laser_frame)) {
     index.X_RL = *X_RL;
     index.mount_source = index.base_frame == index.laser_frame
@@ -254,6 +323,7 @@ void ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
                           " to the scans' " + "frame " + Quote(index.laser_frame) +
                           ": the LiDAR is assumed at the robot's origin, facing forward");
   }
+  return ambiguous;
 }
 
 void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
@@ -336,7 +406,9 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     } else if (IsCarmenLaser(m.type)) {
       const CarmenLaser laser =
           Decoded(log, number, m.topic, [&] { return ParseCarmenLaser(line, g.carmen_defaults); });
-      AddScan(g.scans[std::string(m.topic)], laser.scan.scan, log, number, m.topic, g);
+      g.scan_frame.try_emplace(std::string(m.topic), laser.scan.frame_id);
+      AddScan(g.scans[std::string(m.topic)], laser.scan, m.log_time_ns, log, number, m.topic, g,
+              IpcStampText(line));
       if (laser.X_OR) {
         AddPose(g.odometry[std::string(m.topic)], laser.scan.scan.stamp, *laser.X_OR, log, number,
                 m.topic, g);
@@ -359,7 +431,7 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     const ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeLaserScan(m.data); });
     ScanGeometry& geometry = g.scans[std::string(m.topic)];
     if (geometry.scans == 0) g.scan_frame[std::string(m.topic)] = scan.frame_id;
-    AddScan(geometry, scan.scan, log, number, m.topic, g);
+    AddScan(geometry, scan, m.log_time_ns, log, number, m.topic, g);
   } else if (m.type == kOdometryType) {
     const OdometryMessage odom =
         Decoded(log, number, m.topic, [&] { return DecodeOdometry(m.data); });
@@ -382,6 +454,95 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
   }
 }
 
+// Refuses a scan stream whose scans mostly repeat the stamp before them: stamps printed with too
+// few digits (CARMEN logs written with %g: every scan of an hour stamped 1.13486e+09) cannot
+// order the scans nor place them on the odometry, and nothing in the log says how far apart
+// they were.
+void RequireDistinctScanStamps(Gathered& g, const LogIndex& index) {
+  const ScanGeometry& scan = index.scan;
+  if (scan.scans < 10 || static_cast<double>(scan.repeated_stamps) <=
+                             kMaxRepeatedStampFraction * static_cast<double>(scan.scans)) {
+    return;
+  }
+  const Gathered::ScanQuirks& q = g.scan_quirks[index.scan_topic];
+  throw core::IoError(
+      index.name + ": " + std::to_string(scan.repeated_stamps) + " of " +
+      std::to_string(scan.scans) + " scans on " + Quote(index.scan_topic) +
+      " carry the same stamp as the scan before them (" + q.repeat_first + " to " + q.repeat_last +
+      ", e.g. " + q.repeat_stamp +
+      " s): the stamps were written with too few digits to order the scans and place them on "
+      "the odometry; write the log with full-precision stamps (e.g. %.6f)");
+}
+
+std::string StampSpan(const std::vector<StampedPose>& poses) {
+  return core::FormatNumber(poses.front().t) + " to " + core::FormatNumber(poses.back().t) + " s";
+}
+
+// Odometry that does not overlap the scans in time follows another clock: refused, naming both
+// spans. A reference that does not is dropped with a note (the log is still usable without).
+void RequireOverlappingClocks(LogIndex& index) {
+  const ScanGeometry& scan = index.scan;
+  if (scan.scans == 0) return;
+  const std::string scans = "the scans (" + index.scan_topic + ", stamps " +
+                            core::FormatNumber(scan.first_stamp) + " to " +
+                            core::FormatNumber(scan.last_stamp) + " s)";
+  const auto apart = [&](const std::vector<StampedPose>& poses) {
+    return !poses.empty() &&
+           (poses.back().t < scan.first_stamp || poses.front().t > scan.last_stamp);
+  };
+  if (apart(index.odometry)) {
+    throw core::IoError(index.name + ": the odometry (" + index.odometry_source + ", stamps " +
+                        StampSpan(index.odometry) + ") and " + scans +
+                        " do not overlap in time: they follow two clocks");
+  }
+  if (apart(index.reference)) {
+    index.notes.push_back("the reference (" + index.reference_source + ", stamps " +
+                          StampSpan(index.reference) + ") does not overlap " + scans +
+                          " in time (two clocks): it is not used");
+    index.reference.clear();
+    index.reference_source.clear();
+  }
+}
+
+std::string AngleMaxNote(const ScanStream& stream, const Gathered::ScanQuirks& q) {
+  const ScanGeometry& s = stream.geometry;
+  const double off = std::abs(q.angle_max - q.angle_max_expected) / std::abs(s.angle_increment);
+  const auto round4 = [](double rad) { return std::round(rad * 1e4) / 1e4; };  // float32 angles
+  return Quote(stream.topic) + ": angle_max of " + std::to_string(s.inconsistent_angle_max) +
+         " of " + std::to_string(s.scans) + " scans is " +
+         core::FormatNumber(std::round(off * 10.0) / 10.0) +
+         " increments from angle_min + (n - 1) * angle_increment (the first, " + q.angle_max_first +
+         ": " + core::FormatNumber(round4(q.angle_max)) + " rad for " +
+         core::FormatNumber(round4(q.angle_max_expected)) +
+         " rad): beam i is taken at angle_min + i * angle_increment, as ROS consumers do";
+}
+
+// Names the topics whose log times lie more than kOtherClock outside the scans' [from, to]: they
+// follow another clock (PARAM lines stamped since the epoch beside scans stamped since the
+// logger started, or the other way round). Empty when there are none.
+std::string OtherClockNote(const Gathered& g, const LogIndex& index, std::int64_t from_ns,
+                           std::int64_t to_ns) {
+  const auto margin = static_cast<std::int64_t>(kOtherClock * 1e9);
+  std::string list;
+  for (const LogTopic& t : index.topics) {
+    const Gathered::LogTimes& times = g.log_times.find(t.topic)->second;
+    const bool early = times.min_ns < from_ns - margin;
+    const bool late = times.max_ns > to_ns + margin;
+    if (!early && !late) continue;
+    const std::int64_t ns = early ? times.min_ns : times.max_ns;
+    list += (list.empty() ? "" : ", ") + Quote(t.topic) + " (" + std::to_string(t.messages) +
+            (t.messages == 1 ? " message" : " messages") + "; " +
+            (early ? times.min_place : times.max_place) + " at " +
+            core::FormatNumber(index.Since(ns)) + " s)";
+  }
+  if (list.empty()) return {};
+  return "log times from two clocks: " + list + " lie more than " +
+         core::FormatNumber(kOtherClock) + " s outside the scans' (0 to " +
+         core::FormatNumber(static_cast<double>(to_ns - from_ns) * 1e-9) +
+         " s): they follow another clock than the scans; times (--from, --to) count from the "
+         "first scan";
+}
+
 }  // namespace
 
 LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice) {
@@ -389,45 +550,88 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice)
   index.name = path.string();
   index.format = DetectLogFormat(path);
   const std::unique_ptr<MessageSource> source = OpenLog(path);
+  const auto* carmen = dynamic_cast<const CarmenReader*>(source.get());
 
   Gathered g;
   RawMessage m;
   std::uint64_t number = 0;
   while (source->Next(m)) {
     ++number;
+    g.place = carmen != nullptr ? "line " + std::to_string(carmen->line())
+                                : "message " + std::to_string(number);
     if (number == 1) index.start_ns = m.log_time_ns;
     index.end_ns = std::max(index.end_ns, m.log_time_ns);
     auto [it, added] = g.topic_index.try_emplace(std::string(m.topic), index.topics.size());
     if (added) {
       index.topics.push_back({std::string(m.topic), std::string(m.type), 0, 0.0, 0.0});
       index.topics.back().first_s = static_cast<double>(m.log_time_ns);
+      g.log_times[std::string(m.topic)] = {m.log_time_ns, m.log_time_ns, g.place, g.place};
     }
     LogTopic& topic = index.topics[it->second];
     ++topic.messages;
     topic.last_s = static_cast<double>(m.log_time_ns);
+    Gathered::LogTimes& times = g.log_times.find(m.topic)->second;
+    if (m.log_time_ns < times.min_ns)
+      times = {m.log_time_ns, times.max_ns, g.place, times.max_place};
+    if (m.log_time_ns > times.max_ns)
+      times = {times.min_ns, m.log_time_ns, times.min_place, g.place};
     Gather(m, number, choice, index.name, g);
   }
   if (number == 0) throw core::IoError(index.name + ": the log holds no message");
   index.start_ns = std::min(index.start_ns, index.end_ns);
-  for (LogTopic& t : index.topics) {
-    t.first_s = (t.first_s - static_cast<double>(index.start_ns)) * 1e-9;
-    t.last_s = (t.last_s - static_cast<double>(index.start_ns)) * 1e-9;
+  for (const LogTopic& t : index.topics) {
+    const auto scans = g.scans.find(t.topic);
+    if (scans != g.scans.end())
+      index.scan_streams.push_back({t.topic, g.scan_frame[t.topic], scans->second});
   }
 
   try {
+    std::string ambiguous;
     if (index.format == LogFormat::kCarmen) {
       ChooseCarmen(choice, g, index);
     } else {
-      ChooseRos(choice, g, index);
+      ambiguous = ChooseRos(choice, g, index);
     }
+    if (!index.scan_topic.empty()) RequireDistinctScanStamps(g, index);
     SortByStamp(index.odometry);
     SortByStamp(index.reference);
-    if (index.odometry.size() < 2) {
+    if (!index.odometry_source.empty() && index.odometry.size() < 2) {
       throw core::IoError(index.name + ": fewer than two odometry poses in " +
                           index.odometry_source);
     }
+    if (!index.scan_topic.empty()) RequireOverlappingClocks(index);
+    if (!ambiguous.empty()) {
+      index.needs_choice = true;
+      throw core::IoError(ambiguous);
+    }
   } catch (const core::IoError& e) {
     index.problem = e.what();
+  }
+
+  // Log times for people count from the first scan (of the chosen stream, else of any).
+  index.origin_ns = index.start_ns;
+  std::optional<std::int64_t> scans_from, scans_to;
+  for (const ScanStream& stream : index.scan_streams) {
+    if (stream.geometry.scans == 0) continue;
+    if (!index.scan_topic.empty() && stream.topic != index.scan_topic) continue;
+    scans_from =
+        std::min(scans_from.value_or(stream.geometry.first_log_ns), stream.geometry.first_log_ns);
+    scans_to =
+        std::max(scans_to.value_or(stream.geometry.last_log_ns), stream.geometry.last_log_ns);
+  }
+  if (scans_from) index.origin_ns = *scans_from;
+  for (LogTopic& t : index.topics) {
+    t.first_s = (t.first_s - static_cast<double>(index.origin_ns)) * 1e-9;
+    t.last_s = (t.last_s - static_cast<double>(index.origin_ns)) * 1e-9;
+  }
+  for (const ScanStream& stream : index.scan_streams) {
+    if (!index.scan_topic.empty() && stream.topic != index.scan_topic) continue;
+    if (stream.geometry.inconsistent_angle_max > 0)
+      index.notes.push_back(AngleMaxNote(stream, g.scan_quirks[stream.topic]));
+  }
+  if (scans_from) {
+    const std::string note = OtherClockNote(g, index, *scans_from, *scans_to);
+    if (!note.empty()) index.notes.push_back(note);
   }
   return index;
 }

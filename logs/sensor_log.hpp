@@ -14,9 +14,14 @@
 //
 // A topic is found automatically when it is the only one of its type; otherwise StreamChoice
 // names it. Stamps are the messages' own (header stamps; CARMEN: the ipc timestamp), in s;
-// times given by the user (--from, --to) count in s from the log's first message (its log time).
+// times given by the user (--from, --to) count in s of log time from the first scan of the scan
+// stream (not the first message: PARAM lines or tf_static may carry another clock).
 // A message stamped before the one before it in its stream is dropped; a used stream in which
 // more than 1 % of the messages do that has a broken clock and is refused (IndexLog's problem).
+// So is a scan stream whose scans mostly repeat the stamp before them (stamps printed with too
+// few digits: no clock to interpolate the odometry at), and odometry that does not overlap the
+// scans in time. Messages whose log times lie far (over kOtherClock) outside the scans' are
+// named in a note, as are scans whose angle_max is a little off (ros_messages.hpp).
 //
 // A log is read in two passes, so that a long one is streamed, never held whole: IndexLog reads
 // everything but the scans into memory (poses are small), ReadScans then streams the scans.
@@ -51,7 +56,7 @@ struct LogTopic {
   std::string topic;
   std::string type;
   std::uint64_t messages = 0;
-  double first_s = 0.0;  ///< log time of its first message (s since the log's first message)
+  double first_s = 0.0;  ///< log time of its first message (s since LogIndex::origin_ns)
   double last_s = 0.0;
 };
 
@@ -59,16 +64,30 @@ struct LogTopic {
 struct ScanGeometry {
   std::uint64_t scans = 0;
   std::size_t beams = 0;
-  double angle_min = 0.0;        ///< rad
-  double angle_increment = 0.0;  ///< rad
-  double range_min = 0.0;        ///< m
-  double range_max = 0.0;        ///< m
-  double first_stamp = 0.0;      ///< s
-  double last_stamp = 0.0;       ///< s
+  double angle_min = 0.0;         ///< rad
+  double angle_increment = 0.0;   ///< rad
+  double range_min = 0.0;         ///< m
+  double range_max = 0.0;         ///< m
+  double first_stamp = 0.0;       ///< s
+  double last_stamp = 0.0;        ///< s
+  std::int64_t first_log_ns = 0;  ///< log time of the first scan used
+  std::int64_t last_log_ns = 0;   ///< ... and of the last
+  /// Scans whose angle_max is 1 to 2 increments off angle_min + (n − 1)·angle_increment
+  /// (ScanMessage::angle_max): used all the same, noted once.
+  std::uint64_t inconsistent_angle_max = 0;
+  /// Scans stamped exactly as the scan before them (stamps printed with too few digits).
+  std::uint64_t repeated_stamps = 0;
   /// rad from the first beam to the last
   double field_of_view() const {
     return beams > 1 ? static_cast<double>(beams - 1) * angle_increment : 0.0;
   }
+};
+
+/// One topic of laser scans (CARMEN: one laser message name).
+struct ScanStream {
+  std::string topic;
+  std::string frame;  ///< the scans' frame_id
+  ScanGeometry geometry;
 };
 
 /// What a log holds (the first pass).
@@ -78,7 +97,12 @@ struct LogIndex {
   std::vector<LogTopic> topics;  ///< in order of first appearance
   std::int64_t start_ns = 0;     ///< log time of the first message
   std::int64_t end_ns = 0;       ///< log time of the last message
+  /// Where log times for people start (--from, --to, LogTopic::first_s): the first scan of the
+  /// chosen scan topic; with none chosen, the first scan of any; with no scans, start_ns. Not
+  /// the first message: a CARMEN log's PARAM lines may carry another clock than its scans.
+  std::int64_t origin_ns = 0;
 
+  std::vector<ScanStream> scan_streams;  ///< every scan topic, in order of first appearance
   std::string scan_topic;
   ScanGeometry scan;
   std::string odometry_source;         ///< what the odometry came from, for people
@@ -91,13 +115,22 @@ struct LogIndex {
   std::string mount_source;        ///< what X_RL came from
   std::vector<std::string> notes;  ///< things the user should know (an assumed mount, ...)
   std::string problem;             ///< why the log cannot be used as it is (empty: it can)
+  /// The problem is only that a stream has several topics and none was chosen: the log is
+  /// described whole (log-info), only commands that use the streams need the choice.
+  bool needs_choice = false;
 
   double duration_s() const { return static_cast<double>(end_ns - start_ns) * 1e-9; }
-  /// Log time (s since the first message) of a log time in ns.
+  /// Log time for people (s since origin_ns) of a log time in ns.
   double Since(std::int64_t log_time_ns) const {
-    return static_cast<double>(log_time_ns - start_ns) * 1e-9;
+    return static_cast<double>(log_time_ns - origin_ns) * 1e-9;
   }
 };
+
+/// Log times further than this (s) before the first scan or after the last follow another clock.
+inline constexpr double kOtherClock = 3600.0;
+/// A scan stream in which more than this share of the scans repeat the stamp before them is
+/// refused (at least 10 scans).
+inline constexpr double kMaxRepeatedStampFraction = 0.5;
 
 /// Reads the log at `path` once, all but the scans. Throws core::IoError naming the log for a
 /// missing or malformed file or message. A log that cannot be used — without scans or odometry,
@@ -109,9 +142,9 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice 
 void RequireUsable(const LogIndex& index);
 
 /// Calls `on_scan(scan, log_time_s)` for every scan of `index.scan_topic` whose log time (s since
-/// the log's first message) lies in [from_s, to_s], in log order, but for a scan stamped before
-/// the one before it (IndexLog drops those too). Throws core::IoError naming the
-/// log and the message for a scan that cannot be decoded.
+/// index.origin_ns, the first scan) lies in [from_s, to_s], in log order, but for a scan stamped
+/// before the one before it (IndexLog drops those too). Throws core::IoError naming the log and the
+/// message for a scan that cannot be decoded.
 void ReadScans(const LogIndex& index, double from_s, double to_s,
                const std::function<void(const ScanMessage&, double)>& on_scan);
 

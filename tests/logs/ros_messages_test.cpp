@@ -116,19 +116,33 @@ TEST(LaserScanCodec, ChecksAngleMaxToHalfAnIncrement) {
   EXPECT_DOUBLE_EQ(ok.scan.stamp, 100.5);
   EXPECT_EQ(ok.scan.size(), 5u);
   EXPECT_NEAR(ok.scan.range_max, 5.6, 1e-6);
-  // A driver that writes angle_min + n * increment (one beam too far) is refused.
-  const std::string error =
-      IoErrorOf([&] { DecodeLaserScan(HandBuiltScan(0.0f, 0.5f, 0.1f, ranges)); });
-  EXPECT_TRUE(Contains(error,
-                       "sensor_msgs/msg/LaserScan: angle_max 0.5 does not match "
-                       "angle_min + (n - 1) * angle_increment = 0.4"))
-      << error;
-  EXPECT_TRUE(Contains(error, "for n = 5 ranges")) << error;
+  EXPECT_FALSE(ok.angle_max.has_value());
   // Clockwise scanners have a negative increment.
   EXPECT_NO_THROW(DecodeLaserScan(HandBuiltScan(1.0f, 0.6f, -0.1f, ranges)));
   EXPECT_NE(IoErrorOf([&] { DecodeLaserScan(HandBuiltScan(0.0f, 0.4f, kNaN, ranges)); }), "");
   // An empty scan has nothing to check.
   EXPECT_NO_THROW(DecodeLaserScan(HandBuiltScan(0.0f, 3.0f, 0.1f, {})));
+}
+
+// Real drivers write angle_max = angle_min + n * increment (one increment too far) or round the
+// field of view (two): every ROS consumer places beam i at angle_min + i * increment, and so
+// does retrace, saying so; a scan further off than two increments is refused.
+TEST(LaserScanCodec, AngleMaxOneOrTwoIncrementsOffIsUsedByAngleMinAndIncrement) {
+  const std::vector<float> ranges(5, 1.0f);
+  for (const float angle_max : {0.5f, 0.6f, 0.3f, 0.2f}) {
+    const ScanMessage m = DecodeLaserScan(HandBuiltScan(0.0f, angle_max, 0.1f, ranges));
+    ASSERT_TRUE(m.angle_max.has_value()) << angle_max;
+    EXPECT_NEAR(*m.angle_max, angle_max, 1e-7);
+    EXPECT_EQ(m.scan.angle_min, 0.0);
+    EXPECT_NEAR(m.scan.Angle(4), 0.4, 1e-6);  // the last beam, by angle_min + i * increment
+  }
+  const std::string error =
+      IoErrorOf([&] { DecodeLaserScan(HandBuiltScan(0.0f, 0.7f, 0.1f, ranges)); });
+  EXPECT_TRUE(Contains(error,
+                       "sensor_msgs/msg/LaserScan: angle_max 0.7 does not match "
+                       "angle_min + (n - 1) * angle_increment = 0.4"))
+      << error;
+  EXPECT_TRUE(Contains(error, "for n = 5 ranges (more than 2 increments apart)")) << error;
 }
 
 TEST(LaserScanCodec, DecodesBigEndian) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -161,8 +163,18 @@ TEST(SensorLog, SeveralScanTopicsNeedAChoice) {
   EXPECT_NE(error.find("several topics hold laser scans"), std::string::npos) << error;
   EXPECT_NE(error.find("/front, /rear"), std::string::npos) << error;
   EXPECT_NE(error.find("--scan-topic"), std::string::npos) << error;
-  // The log is still described.
-  EXPECT_EQ(IndexLog(bag).topics.size(), 6U);
+  // The log is still described: both scan topics, and the streams that need no choice.
+  const LogIndex index = IndexLog(bag);
+  EXPECT_EQ(index.topics.size(), 6U);
+  EXPECT_TRUE(index.needs_choice);
+  ASSERT_EQ(index.scan_streams.size(), 2U);
+  EXPECT_EQ(index.scan_streams[0].topic, "/front");
+  EXPECT_EQ(index.scan_streams[1].topic, "/rear");
+  EXPECT_EQ(index.scan_streams[1].geometry.scans, 51U);
+  EXPECT_EQ(index.scan_streams[1].geometry.beams, 301U);
+  EXPECT_EQ(index.scan_streams[1].frame, "laser");
+  EXPECT_EQ(index.odometry.size(), 251U);
+  EXPECT_NE(index.reference_source.find("/ground_truth"), std::string::npos);
 
   StreamChoice choice;
   choice.scan_topic = "/rear";
@@ -171,6 +183,118 @@ TEST(SensorLog, SeveralScanTopicsNeedAChoice) {
   EXPECT_NE(IndexError(bag, choice).find("holds no laser scans"), std::string::npos);
   choice.scan_topic = "/nope";
   EXPECT_NE(IndexError(bag, choice).find("is not in the log"), std::string::npos);
+}
+
+// A bag whose driver writes angle_max = angle_min + n * increment (one increment too far), in
+// every scan: used, with one note for the log, not one per scan.
+TEST(SensorLog, AngleMaxOffByAnIncrementIsNotedOncePerLog) {
+  testing::TempDir tmp;
+  const fs::path file = tmp.path() / "angle_max.mcap";
+  {
+    McapWriter w(file, McapCompression::kNone);
+    const std::uint16_t scans = w.AddChannel("/scan", "sensor_msgs/msg/LaserScan");
+    const std::uint16_t odom = w.AddChannel("/odom", "nav_msgs/msg/Odometry");
+    for (int k = 0; k <= 50; ++k) {
+      const double t = 0.1 * k;
+      const auto ns = static_cast<std::int64_t>(std::llround(t * 1e9));
+      w.Write(odom, ns, EncodeOdometry({t, "odom", "laser", Odometry(t)}));
+      std::vector<std::uint8_t> cdr = EncodeLaserScan({Scan(t), "laser"});
+      // angle_max, the second float after the header (stamp 8 bytes, frame "laser": 4 + 6,
+      // padded to 4): at 4 + 8 + 12 + 4 = 28 from the start.
+      const float angle_max = static_cast<float>(-1.5 + 301 * 0.01);
+      std::memcpy(cdr.data() + 28, &angle_max, sizeof angle_max);
+      w.Write(scans, ns, cdr);
+    }
+    w.Close();
+  }
+  const LogIndex index = IndexLog(file);
+  EXPECT_EQ(index.problem, "");
+  EXPECT_EQ(index.scan.scans, 51U);
+  EXPECT_EQ(index.scan.inconsistent_angle_max, 51U);
+  ASSERT_EQ(index.notes.size(), 1U);
+  const std::string& note = index.notes[0];
+  EXPECT_NE(note.find("'/scan': angle_max of 51 of 51 scans is 1 increments from angle_min + "
+                      "(n - 1) * angle_increment (the first, message 2: 1.51 rad for 1.5 rad)"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("beam i is taken at angle_min + i * angle_increment"), std::string::npos);
+  ReadScans(index, 0.0, 1e9,
+            [&](const ScanMessage& m, double) { EXPECT_NEAR(m.scan.Angle(300), 1.5, 1e-6); });
+}
+
+// The CARMEN lines of a log whose PARAM lines carry the epoch (logger stamps since 1970) while
+// the laser lines carry the logger's own clock: --from and --to count from the first scan, and
+// the PARAM lines are named in one note.
+TEST(SensorLog, TimesCountFromTheFirstScanAndAnotherClockIsNamed) {
+  testing::TempDir tmp;
+  std::string text =
+      "PARAM robot_front_laser_max 50.0 1134860000.123 host 1134860000.123\n"
+      "PARAM laser_front_laser_resolution 1.0 1134860000.124 host 1134860000.124\n";
+  for (int k = 0; k <= 50; ++k) {
+    const double t = 10.0 + 0.1 * k;
+    char line[256];
+    std::snprintf(line, sizeof line, "FLASER 3 1.0 2.0 3.0 %.2f 0 0 %.2f 0 0 %.6f host %.6f\n",
+                  0.1 * k, 0.1 * k, t, t);
+    text += line;
+  }
+  const fs::path file = tmp.Write("clocks.log", text);
+  const LogIndex index = IndexLog(file);
+  EXPECT_EQ(index.problem, "");
+  EXPECT_EQ(index.origin_ns, 10'000'000'000);
+  std::vector<double> times;
+  ReadScans(index, 1.0, 2.0, [&](const ScanMessage&, double t) { times.push_back(t); });
+  ASSERT_EQ(times.size(), 11U);
+  EXPECT_NEAR(times.front(), 1.0, 1e-9);
+  ASSERT_EQ(index.topics.size(), 2U);
+  EXPECT_NEAR(index.topics[1].first_s, 0.0, 1e-9);  // FLASER
+  ASSERT_EQ(index.notes.size(), 1U);
+  EXPECT_NE(index.notes[0].find("log times from two clocks: 'PARAM' (2 messages; line 2 at "
+                                "11348599"),
+            std::string::npos)
+      << index.notes[0];
+  EXPECT_NE(index.notes[0].find("lie more than 3600 s outside the scans' (0 to 5 s)"),
+            std::string::npos)
+      << index.notes[0];
+}
+
+// The Intel Research Lab log's lines as a logger printing %g would write them: every scan of the
+// drive stamped 1.13486e+09. Refused in one line naming the lines, not "fewer than two
+// odometry poses".
+TEST(SensorLog, StampsWithTooFewDigitsAreRefusedNamingTheLines) {
+  testing::TempDir tmp;
+  std::string text = "# written with %g\n";
+  for (int k = 0; k < 20; ++k) {
+    text += "FLASER 3 1.0 2.0 3.0 " + std::to_string(0.1 * k) + " 0 0 " + std::to_string(0.1 * k) +
+            " 0 0 1.13486e+09 nohost 1.13486e+09\n";
+  }
+  const std::string error = IndexError(tmp.Write("g.log", text));
+  EXPECT_NE(error.find("g.log: 19 of 20 scans on 'FLASER' carry the same stamp as the scan before "
+                       "them (line 3 to line 21, e.g. 1.13486e+09 s): the stamps were written "
+                       "with too few digits"),
+            std::string::npos)
+      << error;
+}
+
+// ODOM lines stamped since the epoch beside laser lines stamped since the logger started.
+TEST(SensorLog, OdometryOnAnotherClockThanTheScansIsRefusedNamingBoth) {
+  testing::TempDir tmp;
+  std::string text;
+  for (int k = 0; k < 20; ++k) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "ODOM %.1f 0 0 0 0 0 %.3f host %.3f\nFLASER 3 1.0 2.0 3.0 %.1f 0 0 %.1f 0 0 "
+                  "%.3f host %.3f\n",
+                  0.1 * k, 1134860000.0 + 0.1 * k, 0.1 * k, 0.1 * k, 0.1 * k, 0.1 * k, 0.1 * k);
+    text += line;
+  }
+  StreamChoice odom;
+  odom.odometry_topic = "ODOM";
+  const std::string error = IndexError(tmp.Write("odom.log", text), odom);
+  EXPECT_NE(error.find("odom.log: the odometry (ODOM lines, stamps 1134860000 to 1134860001.9 s) "
+                       "and the scans (FLASER, stamps 0 to 1.9 s) do not overlap in time: they "
+                       "follow two clocks"),
+            std::string::npos)
+      << error;
 }
 
 TEST(SensorLog, TimeGoingBackwardsIsRefusedNamingTheMessage) {
@@ -249,6 +373,16 @@ TEST(SensorLog, FormatsAreDetectedByContent) {
   fs::create_directories(tmp.path() / "folder");
   EXPECT_NE(error(tmp.path() / "folder").find("without metadata.yaml"), std::string::npos);
   EXPECT_NE(error(tmp.path() / "missing.mcap").find("no such file"), std::string::npos);
+}
+
+// `ros2 bag info` users point at the bag's metadata.yaml: it opens the bag, not a CARMEN log.
+TEST(SensorLog, ABagsMetadataYamlOpensTheBag) {
+  const fs::path metadata = testing::kSource / "tests/data/rosbag2/talker_mcap/metadata.yaml";
+  EXPECT_EQ(DetectLogFormat(metadata), LogFormat::kRosbag2);
+  const LogIndex index = IndexLog(metadata);
+  ASSERT_EQ(index.topics.size(), 2U);
+  EXPECT_EQ(index.topics[0].messages + index.topics[1].messages, 20U);
+  EXPECT_NE(index.problem.find("no sensor_msgs/msg/LaserScan topic"), std::string::npos);
 }
 
 TEST(SensorLog, ABagWithoutScansIsDescribedButNotUsable) {
