@@ -31,9 +31,11 @@ BeamPlan PlanBeam(const MapperConfig& config, double hit_range_max, const core::
                   std::size_t i) {
   BeamPlan plan;
   if (scan.NoReturn(i)) {
-    if (config.no_return_range <= 0.0) return plan;
+    // Nothing within the LiDAR's own range: free space is known up to that range at most (a
+    // 5 m LiDAR says nothing about 5 to 10 m).
+    plan.clear_to = std::min(config.no_return_range, scan.range_max);
+    if (!(plan.clear_to > 0.0)) return plan;
     plan.kind = BeamKind::kClear;
-    plan.clear_to = config.no_return_range;
     plan.length = plan.clear_to;
     return plan;
   }

@@ -29,8 +29,9 @@ struct MapperConfig {
   /// that are already saturated free during teaching leaves no trace.
   double log_odds_min = -8.0;
   double log_odds_max = 8.0;
-  /// m: no-return (+inf) beams clear free cells up to this range, without marking a hit, and
-  /// never beyond a cell the map already holds as occupied (a dropout is not open space).
+  /// m: no-return (+inf) beams clear free cells up to this range or the scan's own range_max,
+  /// whichever is shorter, without marking a hit, and never beyond a cell the map already holds
+  /// as occupied (a dropout is not open space).
   double no_return_range = 10.0;
   InverseSensorModelConfig inverse_model;
 

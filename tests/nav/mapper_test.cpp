@@ -244,6 +244,27 @@ TEST(Mapper, NoReturnBeamsClearUpToTheClearingRangeWithoutMarking) {
   }
 }
 
+// A Neato's LiDAR (range_max 5 m) reads +inf where nothing is within 5 m: that says nothing
+// about 5 to 10 m, so its no-return beams clear to 5 m only, not to no_return_range.
+TEST(Mapper, NoReturnBeamsClearNoFurtherThanTheScansOwnRangeMax) {
+  MapperConfig config;
+  config.no_return_range = 10.0;
+  Mapper mapper(config, RobotGeometry{});
+  mapper.SetPose(Pose2(0.05, 0.05, 0.0));
+  core::LaserScan scan = UniformScan(361, core::DegToRad(360.0) * 360.0 / 361.0, kInf);
+  scan.range_min = 0.2;
+  scan.range_max = 5.0;
+  ASSERT_TRUE(mapper.OnScan(scan));
+  const core::OccupancyGrid& grid = mapper.grid();
+  EXPECT_EQ(mapper.stats().beams_cleared, 361u);
+  EXPECT_LT(grid.Probability(grid.WorldToCell({4.75, 0.05})), 0.05);  // inside 5 m: free
+  EXPECT_EQ(grid.Probability(grid.WorldToCell({5.25, 0.05})), 0.5);   // beyond: unknown
+  EXPECT_EQ(grid.Probability(grid.WorldToCell({0.05, -7.95})), 0.5);
+  for (const core::CellIndex& c : CellsWhere(grid, Touched)) {
+    EXPECT_LE((grid.CellToWorld(c) - Vec2(0.05, 0.05)).norm(), 5.0 + 0.08);
+  }
+}
+
 // A flat wall at x = 3.03 m seen over 90 degrees, with every 7th beam a dropout (+inf).
 core::LaserScan WallScanWithDropouts() {
   core::LaserScan scan = UniformScan(361, core::DegToRad(90.0), 0.0f);
