@@ -38,7 +38,7 @@ struct OnlineSwitchingConfig {
   double drift = 0.03;   ///< odometry error per metre driven, a fraction (route.online_drift)
   /// m of expected drift (drift × the map's length of travel) at which a map is closed even
   /// without a revisit (route.online_drift_budget); 0: never.
-  double drift_budget = 9.0;
+  double drift_budget = 12.0;
 
   /// m of travel after which a map reaches its drift budget: drift_budget / drift; infinite
   /// when either is 0.

@@ -71,10 +71,10 @@ struct RouteConfig {
   double online_drift = 0.03;
   /// `online`: m of drift a map may gather before it is closed even without a revisit, the
   /// drift being online_drift times the distance driven since the map began, so a map is at
-  /// most online_drift_budget / online_drift m of travel long (300 m by default). Must allow
+  /// most online_drift_budget / online_drift m of travel long (400 m by default). Must allow
   /// maps longer than switch_window; 0: no budget (maps end only before revisits).
   /// docs/METHOD.md (online map switching) gives the sweep behind the default.
-  double online_drift_budget = 9.0;
+  double online_drift_budget = 12.0;
   /// How well a scan at a switch point must constrain the pose (≈ end points constraining the
   /// weakest direction); below it the scenario gets a warning naming a better place nearby.
   /// The default is where the scan matcher calls a scan degenerate (nav.scan_matcher
