@@ -3,17 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
 #include <span>
 #include <string>
-#include <tuple>
 #include <unordered_set>
 #include <utility>
 
 #include "core/angle.hpp"
 #include "core/check.hpp"
 #include "core/errors.hpp"
+#include "nav/cluster_estimate.hpp"
 #include "nav/resampling.hpp"
 
 namespace retrace::nav {
@@ -111,9 +110,16 @@ void AugmentedMclConfig::Validate() const {
   if (!(alpha_slow > 0.0)) throw core::ConfigError("alpha_slow", "must be > 0");
   core::RequireInRange("alpha_fast", alpha_fast, 0.0, 1.0);
   core::RequireGreater("alpha_fast", alpha_fast, "alpha_slow", alpha_slow);
+  core::RequireInRange("trigger_ratio", trigger_ratio, 0.0, 1.0);
+  core::RequireIntInRange("hypotheses", hypotheses, 1, 1'000'000);
   core::RequireInRange("near_fraction", near_fraction, 0.0, 1.0);
   core::RequireNonNegative("near_sigma_xy", near_sigma_xy);
   core::RequireNonNegative("near_sigma_theta", near_sigma_theta);
+  core::RequireNonNegative("path_sigma_xy", path_sigma_xy);
+  core::RequireNonNegative("path_sigma_theta", path_sigma_theta);
+  core::RequireIntInRange("confirm_updates", confirm_updates, 1, 1'000'000);
+  core::RequireIntInRange("max_updates", max_updates, confirm_updates, 1'000'000);
+  core::RequireNonNegative("margin", margin);
   core::RequireInRange("free_threshold", free_threshold, 0.0, 0.5);
   if (!(free_threshold < 0.5)) {
     throw core::ConfigError("free_threshold", "must be < 0.5 (unknown cells are 0.5)");
@@ -178,7 +184,24 @@ void Localizer::SetMap(const core::OccupancyGrid& map) {
       free_cells_.push_back(static_cast<std::uint32_t>(i));
   }
   ResetAverages();
+  trial_.Stop();
   force_update_ = true;
+}
+
+void Localizer::SetRecoveryPoses(std::vector<core::Pose2> poses) {
+  recovery_poses_ = std::move(poses);
+}
+
+void Localizer::Restart(const core::Pose2& X_MR) {
+  odometry_since_update_ = core::Pose2::Identity();
+  force_update_ = true;
+  ResetAverages();
+  trial_.Stop();
+  lost_ = false;
+  estimate_ = anchor_ = X_MR;
+  challenger_updates_ = 0;
+  const std::optional<ClusterMean> c = ClusterAround(particles_, X_MR);
+  if (c) estimate_ = c->X_MR;
 }
 
 void Localizer::Initialize(const core::Pose2& X_MR, double sigma_xy, double sigma_theta) {
@@ -187,7 +210,6 @@ void Localizer::Initialize(const core::Pose2& X_MR, double sigma_xy, double sigm
   int n = config_.particles;
   if (config_.kld.enabled) n = std::clamp(n, config_.kld.min_particles, config_.kld.max_particles);
   particles_.assign(static_cast<std::size_t>(n), Particle{});
-  injected_.assign(static_cast<std::size_t>(n), 0);
   const double w = 1.0 / n;
   for (Particle& p : particles_) {
     const double x = X_MR.x + sigma_xy * rng_.Normal();
@@ -195,9 +217,7 @@ void Localizer::Initialize(const core::Pose2& X_MR, double sigma_xy, double sigm
     const double theta = X_MR.theta + sigma_theta * rng_.Normal();
     p = {core::Pose2(x, y, theta), w};
   }
-  odometry_since_update_ = core::Pose2::Identity();
-  force_update_ = true;
-  ResetAverages();
+  Restart(X_MR);
 }
 
 void Localizer::SetParticles(std::vector<Particle> particles) {
@@ -215,10 +235,7 @@ void Localizer::SetParticles(std::vector<Particle> particles) {
   if (!(total > 0.0)) throw core::ConfigError("particles", "weights must not all be 0");
   for (Particle& p : particles) p.weight /= total;
   particles_ = std::move(particles);
-  injected_.assign(particles_.size(), 0);
-  odometry_since_update_ = core::Pose2::Identity();
-  force_update_ = true;
-  ResetAverages();
+  Restart(MainCluster(particles_)->X_MR);
 }
 
 void Localizer::Predict(const core::OdometryDelta& delta) {
@@ -226,6 +243,11 @@ void Localizer::Predict(const core::OdometryDelta& delta) {
   if (delta.distance == 0.0 && delta.dtheta == 0.0) return;
   const MotionNoise noise = MotionNoiseOf(delta, config_.motion);
   for (Particle& p : particles_) p.X_MR = SampleMotion(p.X_MR, delta, noise, rng_);
+  if (trial_.running()) trial_.Predict(delta, noise, rng_);
+  anchor_ = core::IntegrateOdometry(anchor_, delta);
+  challenger_ = core::IntegrateOdometry(challenger_, delta);
+  const std::optional<ClusterMean> c = ClusterAround(particles_, anchor_);
+  estimate_ = c ? c->X_MR : anchor_;
 }
 
 LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
@@ -262,11 +284,8 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   std::vector<std::uint8_t> dynamic(tested.size(), 0);
   if (config_.rejection.enabled) {
     DynamicBeamResult result;
-    // Particles injected by the last resampling are hypotheses, not yet part of the belief:
-    // they join the sums of eq. (9) once they have been weighted (one random particle that
-    // happens to explain an unmapped return as a hit would otherwise veto its rejection).
     std::vector<double> prior(n);
-    for (std::size_t j = 0; j < n; ++j) prior[j] = injected_[j] != 0 ? 0.0 : particles_[j].weight;
+    for (std::size_t j = 0; j < n; ++j) prior[j] = particles_[j].weight;
     std::vector<core::Pose2> sample_X;
     std::vector<double> sample_w;
     double range_sum = 0.0;
@@ -303,11 +322,12 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
     // The belief's expected likelihood: prior weight times the per-beam geometric mean.
     if (!xs.empty()) w_avg += particles_[j].weight * std::exp(ll / static_cast<double>(xs.size()));
   }
-  NormalizeLogWeights(log_w, w);
+  const double belief_evidence = NormalizeLogWeights(log_w, w);
   for (std::size_t j = 0; j < n; ++j) particles_[j].weight = w[j];
   out.n_eff = EffectiveSampleSize(w);
 
-  // Augmented MCL: short- and long-term averages of the measurement likelihood.
+  // Short- and long-term averages of the measurement likelihood; lost while the short one is
+  // far below the long one.
   const AugmentedMclConfig& aug = config_.augmented;
   if (!xs.empty()) {
     if (!averages_started_) {
@@ -321,63 +341,77 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   out.w_avg = w_avg;
   out.w_slow = w_slow_;
   out.w_fast = w_fast_;
-  const double p_inject =
-      aug.enabled && w_slow_ > 0.0 ? std::max(0.0, 1.0 - w_fast_ / w_slow_) : 0.0;
-  out.inject_probability = p_inject;
+  lost_ = averages_started_ && w_fast_ < aug.trigger_ratio * w_slow_;
+  if (aug.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
 
-  int inject_count = 0;
-  if (p_inject > 0.0 && !config_.kld.enabled) {
-    for (std::size_t j = 0; j < n; ++j) inject_count += rng_.Bernoulli(p_inject) ? 1 : 0;
-  }
-  const bool resample = out.n_eff < config_.resample_ess_ratio * static_cast<double>(n) ||
-                        inject_count > 0 || (config_.kld.enabled && p_inject > 0.0);
-  if (resample) {
-    const core::Pose2 estimate = Estimate();
-    std::vector<Particle> next;
-    std::vector<std::uint8_t> next_injected;
-    if (config_.kld.enabled) {
-      next = ResampleKld(w);
-      next_injected.assign(next.size(), 0);
-      for (std::size_t m = 0; m < next.size(); ++m) {
-        if (p_inject > 0.0 && rng_.Bernoulli(p_inject)) {
-          next[m].X_MR = RandomPose(estimate, rng_.Bernoulli(aug.near_fraction));
-          next_injected[m] = 1;
-          ++inject_count;
-        }
-      }
-    } else {
-      next = ResampleFixed(w, inject_count);
-      // The first injected half goes near the estimate, the rest over the free cells.
-      const int near = static_cast<int>(std::lround(aug.near_fraction * inject_count));
-      for (int k = 0; k < inject_count; ++k) {
-        next[n - static_cast<std::size_t>(inject_count) + static_cast<std::size_t>(k)].X_MR =
-            RandomPose(estimate, k < near);
-      }
-    }
-    injected_.assign(next.size(), 0);
-    if (config_.kld.enabled) {
-      for (std::size_t m = 0; m < next.size(); ++m) injected_[m] = next_injected[m];
-    } else {
-      for (int k = 0; k < inject_count; ++k) injected_[n - 1 - static_cast<std::size_t>(k)] = 1;
-    }
-    const double wn = 1.0 / static_cast<double>(next.size());
-    for (Particle& p : next) p.weight = wn;
-    particles_ = std::move(next);
+  if (!out.reacquired && out.n_eff < config_.resample_ess_ratio * static_cast<double>(n)) {
+    particles_ = config_.kld.enabled ? ResampleKld(w) : ResampleFixed(w);
+    const double wn = 1.0 / static_cast<double>(particles_.size());
+    for (Particle& p : particles_) p.weight = wn;
     out.resampled = true;
   }
-  if (!out.resampled) std::fill(injected_.begin(), injected_.end(), 0);
-  out.injected = inject_count;
+  FollowCluster(out.reacquired);
+  out.lost = lost_;
   out.particles = static_cast<int>(particles_.size());
   return out;
 }
 
-std::vector<Particle> Localizer::ResampleFixed(const std::vector<double>& weights,
-                                               int inject_count) {
+void Localizer::RunRecovery(std::span<const double> xs, std::span<const double> ys,
+                            double belief_evidence, LocalizerUpdate* out) {
+  const AugmentedMclConfig& aug = config_.augmented;
+  if (trial_.running()) {
+    trial_.Weigh(*field_, robot_.X_RL, xs, ys, belief_evidence, rng_);
+    out->trial_updates = trial_.updates();
+    out->trial_log_bayes_factor = trial_.log_bayes_factor();
+    if (trial_.updates() >= aug.confirm_updates && trial_.log_bayes_factor() > aug.margin) {
+      // The trial explains the last scans better than the belief: it becomes the belief.
+      particles_ = trial_.Draw(particles_.size(), rng_);
+      trial_.Stop();
+      w_fast_ = w_slow_;
+      lost_ = false;
+      out->reacquired = true;
+    } else if (trial_.updates() >= aug.max_updates ||
+               (!lost_ && trial_.log_bayes_factor() < 0.0)) {
+      trial_.Stop();
+    }
+    return;
+  }
+  if (lost_) trial_.Start(RecoveryHypotheses());
+}
+
+void Localizer::FollowCluster(bool jump) {
+  const std::optional<ClusterMean> main = MainCluster(particles_);
+  const std::optional<ClusterMean> followed = ClusterAround(particles_, anchor_);
+  const auto near = [](const core::Pose2& a, const core::Pose2& b) {
+    return core::Distance(a, b) <= kClusterRadius &&
+           std::abs(core::AngleDiff(a.theta, b.theta)) <= kClusterAngle;
+  };
+  if (jump || !followed || near(followed->X_MR, main->X_MR) ||
+      followed->weight < 0.1 * main->weight) {
+    anchor_ = main->X_MR;
+    challenger_updates_ = 0;
+  } else {
+    // Another cluster outweighs the one followed: follow it only once it has stayed the main
+    // cluster, at the same place, for confirm_updates updates.
+    challenger_updates_ = challenger_updates_ > 0 && near(challenger_, main->X_MR)
+                              ? challenger_updates_ + 1
+                              : 1;
+    challenger_ = main->X_MR;
+    if (challenger_updates_ >= config_.augmented.confirm_updates) {
+      anchor_ = main->X_MR;
+      challenger_updates_ = 0;
+    } else {
+      anchor_ = followed->X_MR;
+    }
+  }
+  estimate_ = anchor_;
+}
+
+std::vector<Particle> Localizer::ResampleFixed(const std::vector<double>& weights) {
   const std::size_t n = weights.size();
-  const std::size_t keep = n - static_cast<std::size_t>(inject_count);
   std::vector<Particle> next(n);
-  const std::vector<std::size_t> idx = LowVarianceResample(weights, keep, rng_);
-  for (std::size_t m = 0; m < keep; ++m) next[m] = particles_[idx[m]];
+  const std::vector<std::size_t> idx = LowVarianceResample(weights, n, rng_);
+  for (std::size_t m = 0; m < n; ++m) next[m] = particles_[idx[m]];
   return next;
 }
 
@@ -414,13 +448,7 @@ std::vector<Particle> Localizer::ResampleKld(const std::vector<double>& weights)
   return next;
 }
 
-core::Pose2 Localizer::RandomPose(const core::Pose2& around, bool near) {
-  const AugmentedMclConfig& aug = config_.augmented;
-  if (near || free_cells_.empty()) {
-    return {around.x + aug.near_sigma_xy * rng_.Normal(),
-            around.y + aug.near_sigma_xy * rng_.Normal(),
-            around.theta + aug.near_sigma_theta * rng_.Normal()};
-  }
+core::Pose2 Localizer::FreeCellPose() {
   const std::uint32_t cell = free_cells_[rng_.UniformIndex(free_cells_.size())];
   const int w = field_->width();
   const double res = field_->resolution();
@@ -433,89 +461,33 @@ core::Pose2 Localizer::RandomPose(const core::Pose2& around, bool near) {
   return {x, y, rng_.Uniform(-core::kPi, core::kPi)};
 }
 
-namespace {
-
-// Weighted mean (circular for θ) of the particles within radius (m) and angle (rad) of
-// `around`, or nullopt when none has weight there.
-std::optional<core::Pose2> LocalMean(const std::vector<Particle>& particles,
-                                     const core::Pose2& around, double radius, double angle) {
-  double x = 0.0, y = 0.0, s = 0.0, c = 0.0, total = 0.0;
-  for (const Particle& p : particles) {
-    const double dx = p.X_MR.x - around.x, dy = p.X_MR.y - around.y;
-    if (dx * dx + dy * dy > radius * radius ||
-        std::abs(core::AngleDiff(p.X_MR.theta, around.theta)) > angle) {
-      continue;
-    }
-    x += p.weight * p.X_MR.x;
-    y += p.weight * p.X_MR.y;
-    s += p.weight * std::sin(p.X_MR.theta);
-    c += p.weight * std::cos(p.X_MR.theta);
-    total += p.weight;
-  }
-  if (!(total > 0.0)) return std::nullopt;
-  return core::Pose2(x / total, y / total, std::atan2(s, c));
-}
-
-}  // namespace
-
-core::Pose2 Localizer::Estimate() const {
-  if (particles_.empty()) return core::Pose2::Identity();
-  // The heaviest neighbourhood of a 3-D histogram (a cell and the 26 around it, heading
-  // wrapping) seeds the estimate, then mean-shift steps refine it within kClusterRadius /
-  // kClusterAngle: particles of other modes and freshly injected random particles do not drag
-  // the estimate away from the main cluster. Summing neighbourhoods matters: a converged cloud
-  // that straddles cell borders (a heading of exactly -90 deg lies on one) splits over up to
-  // eight cells, and a lone heavy injected particle elsewhere could then outweigh each part.
-  constexpr double kBinXy = 0.5;
-  constexpr int kHeadingBins = 12;  // 30 deg
-  const double bin_theta = 2.0 * core::kPi / kHeadingBins;
-  using Key = std::tuple<std::int64_t, std::int64_t, std::int64_t>;
-  struct Bin {
-    double weight = 0.0;
-    std::size_t first = 0;  // a particle of the bin, for the seed
+std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
+  const AugmentedMclConfig& aug = config_.augmented;
+  const int count = aug.hypotheses;
+  const int near = static_cast<int>(std::lround(aug.near_fraction * count));
+  std::vector<core::Pose2> out;
+  out.reserve(static_cast<std::size_t>(count));
+  const auto around = [&](const core::Pose2& X, double sigma_xy, double sigma_theta) {
+    return core::Pose2(X.x + sigma_xy * rng_.Normal(), X.y + sigma_xy * rng_.Normal(),
+                       X.theta + sigma_theta * rng_.Normal());
   };
-  std::map<Key, Bin> bins;
-  for (std::size_t j = 0; j < particles_.size(); ++j) {
-    const core::Pose2& X = particles_[j].X_MR;
-    const auto heading = static_cast<std::int64_t>(std::floor(X.theta / bin_theta));
-    const Key key{static_cast<std::int64_t>(std::floor(X.x / kBinXy)),
-                  static_cast<std::int64_t>(std::floor(X.y / kBinXy)),
-                  ((heading % kHeadingBins) + kHeadingBins) % kHeadingBins};
-    auto [it, inserted] = bins.try_emplace(key, Bin{0.0, j});
-    it->second.weight += particles_[j].weight;
-  }
-  const Bin* best = nullptr;
-  double best_weight = -1.0;
-  for (const auto& [key, bin] : bins) {
-    const auto [bx, by, bt] = key;
-    double sum = 0.0;
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dt = -1; dt <= 1; ++dt) {
-          const auto it = bins.find({bx + dx, by + dy, (bt + dt + kHeadingBins) % kHeadingBins});
-          if (it != bins.end()) sum += it->second.weight;
-        }
-      }
-    }
-    if (sum > best_weight) {
-      best_weight = sum;
-      best = &bin;
+  for (int k = 0; k < count; ++k) {
+    if (k < near || (recovery_poses_.empty() && free_cells_.empty())) {
+      out.push_back(around(estimate_, aug.near_sigma_xy, aug.near_sigma_theta));
+    } else if (!recovery_poses_.empty()) {
+      const core::Pose2& X = recovery_poses_[rng_.UniformIndex(recovery_poses_.size())];
+      out.push_back(around(X, aug.path_sigma_xy, aug.path_sigma_theta));
+    } else {
+      out.push_back(FreeCellPose());
     }
   }
-  core::Pose2 estimate = particles_[best->first].X_MR;
-  for (int iteration = 0; iteration < 3; ++iteration) {
-    const std::optional<core::Pose2> m =
-        LocalMean(particles_, estimate, kClusterRadius, kClusterAngle);
-    if (!m) break;
-    estimate = *m;
-  }
-  return estimate;
+  return out;
 }
 
 Eigen::Matrix3d Localizer::Covariance() const {
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   if (particles_.empty()) return cov;
-  const core::Pose2 mean = Estimate();
+  const core::Pose2 mean = estimate_;
   double total = 0.0;
   for (const Particle& p : particles_) {
     const Eigen::Vector3d d(p.X_MR.x - mean.x, p.X_MR.y - mean.y,
@@ -528,6 +500,9 @@ Eigen::Matrix3d Localizer::Covariance() const {
 
 void Localizer::ApplyMapSwitch(const core::OccupancyGrid& next_map, const core::Pose2& X_new_old) {
   for (Particle& p : particles_) p.X_MR = X_new_old * p.X_MR;  // eq. (1)
+  estimate_ = X_new_old * estimate_;
+  anchor_ = X_new_old * anchor_;
+  challenger_ = X_new_old * challenger_;
   SetMap(next_map);
 }
 

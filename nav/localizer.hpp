@@ -2,12 +2,14 @@
 // Monte Carlo localization in one partial map (paper §4.2): augmented MCL with the sample
 // motion model, the likelihood-field measurement model over a subsampled scan summed in log
 // space, motion-gated updates, low-variance resampling when the effective sample size drops,
-// random-particle injection driven by w_slow / w_fast, optional KLD-sampling, and dynamic scan
+// recovery trials driven by w_slow / w_fast whose hypotheses lie where a repeating robot can be,
+// an estimate that follows one cluster with hysteresis, optional KLD-sampling, and dynamic scan
 // point rejection (eq. 7-9) that leaves beams hitting unmapped objects out of the weights.
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/config.hpp"
@@ -20,6 +22,8 @@
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
 #include "nav/motion_model.hpp"
+#include "nav/particle.hpp"
+#include "nav/recovery_trial.hpp"
 #include "nav/robot_geometry.hpp"
 
 namespace retrace::nav {
@@ -49,25 +53,38 @@ struct DynamicRejectionConfig {
   void Validate() const;
 };
 
-/// Augmented MCL (Probabilistic Robotics Table 8.3): w_slow and w_fast follow the average
-/// measurement likelihood with rates alpha_slow << alpha_fast; each resampled particle is
-/// replaced by a random one with probability max(0, 1 - w_fast / w_slow).
+/// Recovery (augmented MCL's trigger, Probabilistic Robotics Table 8.3, with a teach-and-repeat
+/// proposal; docs/METHOD.md, "Recovery"). w_slow and w_fast follow the average measurement
+/// likelihood with rates alpha_slow << alpha_fast. The localizer is *lost* while
+/// w_fast < trigger_ratio · w_slow: the belief explains the scans much worse than it used to.
+/// While lost, and when `enabled`, a recovery trial (nav/recovery_trial.hpp) runs `hypotheses`
+/// hypotheses beside the belief: near_fraction of them around the estimate (Gaussian), the rest
+/// around poses of the taught path of the current map and the start of the next
+/// (Localizer::SetRecoveryPoses; uniformly over the map's free cells when none are given). The
+/// trial replaces the belief only once it has explained at least confirm_updates scans and its
+/// summed log evidence beats the belief's by `margin` nats; after max_updates it ends. No random
+/// particle ever enters the belief directly.
 ///
 /// The average likelihood of an update is the expectation over the belief (prior weights) of
 /// the per-beam geometric mean exp(Σ_i log p_i / n) (1/m): with about a hundred beams the plain
 /// product would underflow, and the per-beam mean keeps the rates independent of the beam count.
-/// Both averages start at the first update's value after Initialize, SetMap or ApplyMapSwitch
-/// (starting at 0 as in the book would make w_slow lag for thousands of updates). With updates
-/// every 0.2 m, alpha_slow = 1e-3 remembers about 200 m of route and alpha_fast = 0.1 about 2 m.
-/// Random particles: near_fraction of them around the current estimate (Gaussian), the rest
-/// uniformly over the map's free cells (uniform heading).
+/// Both averages start at the first update's value after Initialize, SetMap or ApplyMapSwitch.
+/// With updates every 0.2 m, alpha_slow = 1e-3 remembers about 200 m of route and
+/// alpha_fast = 0.1 about 2 m.
 struct AugmentedMclConfig {
   bool enabled = true;
   double alpha_slow = 1e-3;
   double alpha_fast = 0.1;
-  double near_fraction = 0.5;
-  double near_sigma_xy = 0.5;     ///< m
-  double near_sigma_theta = 0.2;  ///< rad
+  double trigger_ratio = 0.5;     ///< lost while w_fast < trigger_ratio · w_slow
+  int hypotheses = 300;           ///< particles of a recovery trial
+  double near_fraction = 0.3;     ///< share of them around the estimate
+  double near_sigma_xy = 1.0;     ///< m
+  double near_sigma_theta = 0.3;  ///< rad
+  double path_sigma_xy = 1.0;     ///< m, around the taught path's poses
+  double path_sigma_theta = 0.3;  ///< rad, around the taught heading
+  int confirm_updates = 5;        ///< scans a trial must explain before it may win
+  int max_updates = 25;           ///< scans after which a trial that has not won ends
+  double margin = 10.0;           ///< nats by which a trial's evidence must beat the belief's
   double free_threshold = 0.25;   ///< a cell is free when its probability <= this
 
   template <class V>
@@ -75,9 +92,16 @@ struct AugmentedMclConfig {
     v("enabled", enabled);
     v("alpha_slow", alpha_slow);
     v("alpha_fast", alpha_fast);
+    v("trigger_ratio", trigger_ratio);
+    v("hypotheses", hypotheses);
     v("near_fraction", near_fraction);
     v("near_sigma_xy", near_sigma_xy);
     v("near_sigma_theta", near_sigma_theta);
+    v("path_sigma_xy", path_sigma_xy);
+    v("path_sigma_theta", path_sigma_theta);
+    v("confirm_updates", confirm_updates);
+    v("max_updates", max_updates);
+    v("margin", margin);
     v("free_threshold", free_threshold);
   }
   /// Throws core::ConfigError naming the key.
@@ -119,10 +143,8 @@ struct KldConfig {
 /// as in the paper; see BeamModelConfig for why its z_rand and σ differ.
 ///
 /// Dynamic rejection: the sums of eq. (9) run over the particles weighted by their prior
-/// weights (Table 8.5's plain sum right after resampling), leaving out particles injected by the
-/// last resampling until they have been weighted once: a random particle that happens to explain
-/// an unmapped return as a hit would otherwise veto its rejection (with injection feeding back
-/// through the lower likelihood of unrejected beams, this made the filter diverge in tests).
+/// weights (Table 8.5's plain sum right after resampling). Recovery hypotheses never take part:
+/// they live in a separate trial until they win (AugmentedMclConfig).
 struct LocalizerConfig {
   int particles = 500;              ///< fixed count (the initial count with KLD-sampling)
   int beam_step = 10;               ///< use scan beams 0, step, 2 step, ...
@@ -152,12 +174,6 @@ struct LocalizerConfig {
   void Validate() const;
 };
 
-/// One hypothesis: the robot pose X_MR in the map frame M and its normalised weight.
-struct Particle {
-  core::Pose2 X_MR;
-  double weight = 0.0;
-};
-
 /// How a scan beam was used by an update.
 enum class BeamUse : std::uint8_t {
   kUnused,    ///< not selected (beam_step), or not a valid finite reading within the limits
@@ -181,16 +197,17 @@ struct LocalizerUpdate {
   double w_avg = 0.0;  ///< average per-beam likelihood of this update (1/m)
   double w_slow = 0.0;
   double w_fast = 0.0;
-  double inject_probability = 0.0;
-  int injected = 0;   ///< random particles added by this update's resampling
-  int particles = 0;  ///< particle count after the update
+  bool lost = false;        ///< after this update: w_fast < trigger_ratio · w_slow
+  int trial_updates = 0;    ///< scans the running recovery trial has explained (0: none runs)
+  double trial_log_bayes_factor = 0.0;  ///< its evidence against the belief's (nats)
+  bool reacquired = false;  ///< the trial won: it replaced the belief in this update
+  int particles = 0;        ///< particle count after the update
 };
 
-/// Augmented Monte Carlo localization with dynamic scan point rejection in a map frame M.
+/// Monte Carlo localization with dynamic scan point rejection and teach-and-repeat recovery in a
+/// map frame M.
 class Localizer {
  public:
-  static constexpr double kClusterRadius = 1.0;  ///< m
-  static constexpr double kClusterAngle = 0.5;   ///< rad
   /// Validates the config and the geometry (throws core::ConfigError naming the key); all
   /// randomness comes from rng. Readings outside [robot.range_min, robot.range_max] are
   /// ignored, and robot.range_max is the sensor models' maximum range. No map and no particles
@@ -201,8 +218,12 @@ class Localizer {
   Localizer& operator=(Localizer&&) noexcept;
 
   /// Uses `map` (copied into the likelihood field, distance field and free-cell list) from now
-  /// on; the next scan is used even without motion, and w_slow / w_fast restart.
+  /// on; the next scan is used even without motion, w_slow / w_fast restart and a running
+  /// recovery trial ends.
   void SetMap(const core::OccupancyGrid& map);
+  /// Where the robot can be in the current map (M), for recovery hypotheses: the taught path's
+  /// poses, and the start of the next map's. Empty: uniformly over the map's free cells.
+  void SetRecoveryPoses(std::vector<core::Pose2> poses);
   /// Draws the particles around X_MR (M) with independent Gaussians of std sigma_xy (m) on x
   /// and y and sigma_theta (rad) on the heading. Throws core::ConfigError on a negative or
   /// non-finite sigma. The next scan is used even without motion.
@@ -219,16 +240,18 @@ class Localizer {
   /// after Initialize, SetMap, ApplyMapSwitch): standing still never reuses a scan.
   LocalizerUpdate Update(const core::LaserScan& scan);
 
-  /// The robot pose X_MR in M: the weighted mean (circular mean for θ) of the main cluster, the
-  /// particles within kClusterRadius and kClusterAngle of the heaviest cell of a (0.5 m, 0.5 m,
-  /// 30°) histogram, refined by mean shift. The identity before Initialize. Injected random
-  /// particles and minor modes do not drag it; the spread of all particles is Covariance().
-  core::Pose2 Estimate() const;
+  /// The robot pose X_MR in M: the weighted mean (circular mean for θ) of the cluster the
+  /// estimate follows (nav/cluster_estimate.hpp), moved with every prediction. After each update
+  /// it moves to the belief's main cluster, unless that lies elsewhere (beyond kClusterRadius or
+  /// kClusterAngle) while the followed cluster still holds a tenth of its weight: then only
+  /// after the main cluster has stayed there for augmented.confirm_updates updates. A single
+  /// update therefore cannot carry the estimate far. The identity before Initialize.
+  core::Pose2 Estimate() const { return estimate_; }
   /// Weighted covariance of all particles' (x, y, θ) around Estimate() (m², m·rad, rad²); θ
   /// differences wrapped to [-π, π).
   Eigen::Matrix3d Covariance() const;
   /// Paper eq. (1) at a map switch: every particle becomes X_new_old * X_old_R (so does the
-  /// estimate, a function of the particles), then next_map replaces the map as in SetMap.
+  /// estimate), then next_map replaces the map as in SetMap.
   /// X_new_old is the old map frame in the new one, i.e. inverse(X_{M_k S}) (docs/DESIGN.md §2).
   void ApplyMapSwitch(const core::OccupancyGrid& next_map, const core::Pose2& X_new_old);
 
@@ -238,12 +261,19 @@ class Localizer {
   bool has_map() const { return field_ != nullptr; }
   /// The current map's likelihood field (requires has_map()).
   const LikelihoodField& likelihood_field() const;
+  /// As of the last update: the belief explains the scans much worse than it used to.
+  bool lost() const { return lost_; }
 
  private:
   void ResetAverages();
-  std::vector<Particle> ResampleFixed(const std::vector<double>& weights, int inject_count);
+  std::vector<Particle> ResampleFixed(const std::vector<double>& weights);
   std::vector<Particle> ResampleKld(const std::vector<double>& weights);
-  core::Pose2 RandomPose(const core::Pose2& around, bool near);
+  std::vector<core::Pose2> RecoveryHypotheses();
+  core::Pose2 FreeCellPose();
+  void RunRecovery(std::span<const double> xs, std::span<const double> ys,
+                   double belief_evidence, LocalizerUpdate* out);
+  void FollowCluster(bool jump);
+  void Restart(const core::Pose2& X_MR);
 
   LocalizerConfig config_;
   RobotGeometry robot_;
@@ -252,13 +282,21 @@ class Localizer {
   std::unique_ptr<GridRayCaster> caster_;
   std::unique_ptr<BeamModel> beam_model_;
   std::vector<std::uint32_t> free_cells_;  // row-major indices of free cells
+  std::vector<core::Pose2> recovery_poses_;
   std::vector<Particle> particles_;
-  std::vector<std::uint8_t> injected_;  // 1: injected by the last resampling, not yet weighted
+  RecoveryTrial trial_;
   core::Pose2 odometry_since_update_;
   bool force_update_ = false;
   bool averages_started_ = false;
   double w_slow_ = 0.0;
   double w_fast_ = 0.0;
+  bool lost_ = false;
+  // The estimate and the cluster it follows (moved by every prediction); a main cluster seen
+  // elsewhere, and for how many updates in a row.
+  core::Pose2 estimate_;
+  core::Pose2 anchor_;
+  core::Pose2 challenger_;
+  int challenger_updates_ = 0;
 };
 
 }  // namespace retrace::nav

@@ -1,21 +1,53 @@
 #include "nav/map_server.hpp"
 
+#include <algorithm>
 #include <utility>
+#include <vector>
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
 
 namespace retrace::nav {
 
-MapServer::MapServer(TeachBundle bundle) : bundle_(std::move(bundle)) {
+MapServer::MapServer(TeachBundle bundle, const LoopConfig& loop)
+    : bundle_(std::move(bundle)), loop_(loop) {
   if (bundle_.maps.empty())
     throw core::ConfigError("maps", "the teach bundle holds no partial map");
+  for (const PartialMap& map : bundle_.maps) route_length_ += map.path.Length();
+  if (loop_.enabled && !bundle_.maps.back().path.empty() && !bundle_.maps.front().path.empty()) {
+    const core::Pose2 end_in_first = LastMapInFirst() * bundle_.maps.back().path.back();
+    loops_ = core::Distance(end_in_first, bundle_.maps.front().path.front()) <=
+             loop_.closure_radius + loop_.drift * route_length_;
+  }
+}
+
+void MapServer::HandOver(Localizer& localizer, PathFollower& follower) const {
+  follower.SetPath(current().path);
+  std::vector<core::Pose2> where = current().path.poses();
+  const bool has_next = !IsLast() || loops_;
+  if (has_next) {
+    // The next map's frame in this one: its start is this map's switch pose (or, after the last
+    // map of a loop, map 0's origin carried back through the chain).
+    const std::size_t next = IsLast() ? 0 : index_ + 1;
+    const core::Pose2 X_this_next = IsLast() ? LastMapInFirst().Inverse() : current().X_MS;
+    const core::Path& path = bundle_.maps[next].path;
+    for (std::size_t i = 0; i < path.size() && path.ArcLength(i) <= kNextPathReach; ++i) {
+      where.push_back(X_this_next * path[i]);
+    }
+  }
+  localizer.SetRecoveryPoses(std::move(where));
 }
 
 void MapServer::Start(Localizer& localizer, PathFollower& follower) {
   index_ = 0;
   localizer.SetMap(current().grid);
-  follower.SetPath(current().path);
+  HandOver(localizer, follower);
+}
+
+MapStep MapServer::Decide(const FollowerOutput& f) const {
+  if (!f.goal_reached && f.remaining > kPathEndTolerance) return MapStep::kStay;
+  if (!IsLast()) return MapStep::kNext;
+  return loops_ ? MapStep::kWrap : MapStep::kDone;
 }
 
 MapSwitch MapServer::SwitchToNext(Localizer& localizer, PathFollower& follower) {
@@ -28,7 +60,7 @@ MapSwitch MapServer::SwitchToNext(Localizer& localizer, PathFollower& follower) 
   const core::Pose2 X_next_prev = current().X_MS.Inverse();
   ++index_;
   localizer.ApplyMapSwitch(current().grid, X_next_prev);
-  follower.SetPath(current().path);
+  HandOver(localizer, follower);
   s.X_MnR = localizer.Estimate();
   return s;
 }
@@ -49,7 +81,11 @@ MapSwitch MapServer::WrapToFirst(Localizer& localizer, PathFollower& follower) {
   const core::Pose2 X_first_last = LastMapInFirst();
   index_ = 0;
   localizer.ApplyMapSwitch(current().grid, X_first_last);
-  follower.SetPath(current().path);
+  HandOver(localizer, follower);
+  // The chain of switch poses carries the maps' drift over the whole loop: spread the particles
+  // over what that drift allows, and let the scans find the robot again.
+  const double sigma_xy = std::max(loop_.min_sigma_xy, 0.5 * loop_.drift * route_length_);
+  localizer.Initialize(localizer.Estimate(), sigma_xy, loop_.min_sigma_theta);
   s.X_MnR = localizer.Estimate();
   return s;
 }

@@ -155,6 +155,11 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
         "  no reference: no localization error (give --reference FILE, or "
         "--synthetic-odometry on a corrected log)\n";
   }
+  const LocalizerHealth& h = m.localizer;
+  text += "  the localizer: lost (by its own account) " + FixedText(h.lost_time_s, 1) + " s in " +
+          std::to_string(h.lost_spells) + (h.lost_spells == 1 ? " spell" : " spells") + ", " +
+          std::to_string(h.reacquisitions) + " re-acquisitions; largest single-update jump " +
+          FixedText(h.max_jump_m, 2) + " m (at " + FixedText(h.max_jump_time_s, 1) + " s)\n";
   text += "  beams rejected as dynamic: " + FixedText(100.0 * m.rejected_fraction, 2) +
           " %; update time mean " + FixedText(m.update_time_ms.mean, 2) + " ms, p95 " +
           FixedText(m.update_time_ms.p95, 2) + " ms; " + FixedText(m.real_time_factor, 0) +
@@ -172,19 +177,23 @@ void AddLogLocalizeOptions(CLI::App* cmd, LogLocalizeOptions* options) {
   cmd->add_option("--initial-pose", options->initial_pose,
                   "Where the robot starts in map 0: x,y,yaw_deg (default: from the reference "
                   "when there is one, else map 0's origin)");
+  cmd->add_flag("--every-odometry-tick", options->every_odometry_tick,
+                "One prediction per odometry message, as the simulator's playback predicts "
+                "(default: the fewest arcs that follow the messages within 1 mm)");
 }
 
 int RunLogLocalizeCommand(const LogLocalizeOptions& options, const std::string& command_line) {
   const auto wall_start = std::chrono::steady_clock::now();
   const LogConfig config = LoadLogRunConfig(options.run, {});
-  std::optional<core::Pose2> initial;
-  if (!options.initial_pose.empty()) initial = ParseInitialPose(options.initial_pose);
+  LogReplayOptions replay;
+  if (!options.initial_pose.empty()) replay.initial = ParseInitialPose(options.initial_pose);
+  replay.every_odometry_tick = options.every_odometry_tick;
   const ModeTeach teach = ReadTeachFolder(options.teach_dir, ModeOfTeachFolder(options.teach_dir));
   const logs::LogIndex index = logs::IndexLog(options.run.log, options.run.streams);
   const LogStreams streams =
       PrepareLogStreams(index, config, options.run.synthetic_odometry, options.run.reference);
   const LogLocalizeResult run =
-      RunLogLocalize(index, streams, teach, config, options.run.window, initial);
+      RunLogLocalize(index, streams, teach, config, options.run.window, replay);
   const LogLocalizeSeries series = ComputeLogSeries(run, teach.trace);
   const LogLocalizeMetrics metrics = ComputeLogMetrics(run, series, teach.bundle, config.metrics);
 

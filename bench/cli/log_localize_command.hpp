@@ -18,6 +18,7 @@ struct LogLocalizeOptions {
   LogRunOptions run;
   std::filesystem::path teach_dir;
   std::string initial_pose;  ///< x,y,yaw_deg in map 0; empty: automatic
+  bool every_odometry_tick = false;  ///< one prediction per odometry message
 };
 
 void AddLogLocalizeOptions(CLI::App* cmd, LogLocalizeOptions* options);

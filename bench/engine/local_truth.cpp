@@ -11,10 +11,10 @@
 namespace retrace::bench {
 
 LocalTruth::LocalTruth(const TeachMapTrace& map, double window, double fallback_distance)
-    : map_(map), window_(window), fallback_distance_(fallback_distance) {
-  RETRACE_CHECK(!map_.X_WR.empty() && map_.X_WR.size() == map_.X_MR.size());
-  positions_.reserve(map_.X_WR.size());
-  for (const core::Pose2& X : map_.X_WR) positions_.push_back(X.translation());
+    : map_(&map), window_(window), fallback_distance_(fallback_distance) {
+  RETRACE_CHECK(!map_->X_WR.empty() && map_->X_WR.size() == map_->X_MR.size());
+  positions_.reserve(map_->X_WR.size());
+  for (const core::Pose2& X : map_->X_WR) positions_.push_back(X.translation());
   arc_ = core::CumulativeArcLength(positions_);
 }
 
@@ -51,12 +51,23 @@ core::Pose2 LocalTruth::InMap(const core::Pose2& X_WR) {
     if (global_d2 < d2) best = global;
   }
   match_ = best;
-  return map_.X_MR[best] * map_.X_WR[best].Inverse() * X_WR;
+  return map_->X_MR[best] * map_->X_WR[best].Inverse() * X_WR;
 }
 
 PoseError Compare(const core::Pose2& estimate, const core::Pose2& truth) {
   return {(estimate.translation() - truth.translation()).norm(),
           std::abs(core::AngleDiff(estimate.theta, truth.theta))};
+}
+
+LocalTruthAcrossMaps::LocalTruthAcrossMaps(const TeachTrace& teach, double window,
+                                           double fallback_distance)
+    : teach_(teach),
+      window_(window),
+      fallback_distance_(fallback_distance),
+      current_(teach.maps.at(0), window, fallback_distance) {}
+
+void LocalTruthAcrossMaps::Enter(std::size_t map) {
+  current_ = LocalTruth(teach_.maps.at(map), window_, fallback_distance_);
 }
 
 }  // namespace retrace::bench

@@ -35,17 +35,37 @@ class LocalTruth {
   /// The local alignment of the last match, X_{W M_k} = X_{W R_j} * inverse(X_{M_k R_j}): it
   /// carries an estimate in M_k into W (est.tum), so that comparing it with the ground truth
   /// gives exactly the localization error.
-  core::Pose2 X_WM() const { return map_.X_WR[match_] * map_.X_MR[match_].Inverse(); }
+  core::Pose2 X_WM() const { return map_->X_WR[match_] * map_->X_MR[match_].Inverse(); }
 
  private:
   std::size_t Nearest(const core::Vec2& p, std::size_t lo, std::size_t hi, double* d2) const;
 
-  const TeachMapTrace& map_;
+  const TeachMapTrace* map_;
   double window_;
   double fallback_distance_;
   std::vector<core::Vec2> positions_;  // of the teaching samples (W)
   std::vector<double> arc_;            // arc length of each sample's position along the segment
   std::size_t match_ = 0;
+};
+
+/// The local truth across map switches, for playback and log replay alike: a LocalTruth of the
+/// current map's teaching trace, whose match starts again at the beginning of every map entered.
+class LocalTruthAcrossMaps {
+ public:
+  /// Starts in map 0. `teach` must outlive this object and hold a trace of every map entered
+  /// (checked when entered).
+  LocalTruthAcrossMaps(const TeachTrace& teach, double window, double fallback_distance);
+  /// The robot entered map `map` (a switch, or map 0 again after a loop's last map).
+  void Enter(std::size_t map);
+  /// The local truth X_{M_k R} in the current map for the ground truth X_WR.
+  core::Pose2 InMap(const core::Pose2& X_WR) { return current_.InMap(X_WR); }
+  const LocalTruth& current() const { return current_; }
+
+ private:
+  const TeachTrace& teach_;
+  double window_;
+  double fallback_distance_;
+  LocalTruth current_;
 };
 
 /// Position (m) and heading (rad, absolute) error of an estimate against a truth.

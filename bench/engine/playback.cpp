@@ -12,10 +12,8 @@
 #include "bench/engine/thread_cpu_time.hpp"
 #include "core/angle.hpp"
 #include "core/rng.hpp"
-#include "nav/localizer.hpp"
-#include "nav/map_server.hpp"
+#include "nav/navigator.hpp"
 #include "nav/obstacle_avoidance.hpp"
-#include "nav/path_follower.hpp"
 #include "sim/simulator.hpp"
 
 namespace retrace::bench {
@@ -78,13 +76,11 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
   ScriptedEvents events(config.events, EventPhase::kPlayback);
   RouteProgress route_progress(scenario.route);
   // The navigation stack: it believes the robot is at map 0's origin.
-  nav::Localizer localizer(config.nav.localizer, scenario.robot, rng.Split("localizer"));
-  nav::PathFollower follower(config.nav.follower);
+  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle,
+                     nav::LoopConfig{}, rng.Split("localizer"));
   nav::ObstacleAvoidance avoidance(config.nav.avoidance, scenario.robot);
-  nav::MapServer server(bundle);
-  server.Start(localizer, follower);
-  localizer.Initialize(core::Pose2::Identity(), config.playback.initial_sigma_xy,
-                       core::DegToRad(config.playback.initial_sigma_yaw_deg));
+  nav.Start(core::Pose2::Identity(), config.playback.initial_sigma_xy,
+            core::DegToRad(config.playback.initial_sigma_yaw_deg));
   RunRecorder recorder(run, rng.seed(), teach, config.metrics, scenario.robot.radius);
   EndConditions end(config.limits, timeout_s);
   ObserverFeed feed(observer);
@@ -96,40 +92,39 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
     // 1. Step the world; the sensors that came due.
     const sim::SimStep s = stepper.Step(command);
     // 2. Localize: prediction from each odometry increment, correction from each scan.
-    if (s.odometry) localizer.Predict(*s.odometry);
+    if (s.odometry) nav.OnOdometry(*s.odometry);
     if (s.lidar) {
       const double cpu0 = ThreadCpuSeconds();
-      const nav::LocalizerUpdate update = localizer.Update(s.lidar->scan);
+      const nav::LocalizerUpdate update = nav.OnScan(s.lidar->scan);
       if (update.ran) {
-        recorder.OnUpdate(localizer, update, *s.lidar, s.time, ThreadCpuSeconds() - cpu0,
-                          server.index(), simulator);
+        recorder.OnUpdate(nav.localizer(), update, *s.lidar, s.time, ThreadCpuSeconds() - cpu0,
+                          nav.server().index(), simulator);
       }
       latest_scan = s.lidar->scan;
       feed.OnScan(*s.lidar, update);
     }
     if (!stepper.ControlDue()) continue;
     const core::Pose2 X_WR = simulator.RobotPose();
-    // 3. Switch map: at the end of path k, map k+1 and the pose carried over by eq. (1).
-    nav::FollowerOutput follow = follower.Compute(localizer.Estimate(), stepper.control_dt());
-    if (server.SwitchDue(follow)) {
-      recorder.OnSwitch(s.time, server.SwitchToNext(localizer, follower), X_WR);
+    // 3. Follow the taught path; at its end, map k+1 and the pose carried over by eq. (1).
+    const nav::NavigatorTick tick = nav.OnControlTick(stepper.control_dt());
+    if (tick.map_switch) {
+      recorder.OnSwitch(s.time, *tick.map_switch, X_WR);
       feed.OnSwitch(s.time);
-      follow = follower.Compute(localizer.Estimate(), stepper.control_dt());
     }
-    // 4. Follow, avoid on the latest scan, command the robot.
-    nav::AvoidanceOutput avoid{.command = follow.command};
-    if (latest_scan) avoid = avoidance.Filter(follow.command, *latest_scan);
+    // 4. Avoid on the latest scan, command the robot.
+    nav::AvoidanceOutput avoid{.command = tick.follow.command};
+    if (latest_scan) avoid = avoidance.Filter(tick.follow.command, *latest_scan);
     command = avoid.command;
     // 5. Record; scripted events; check the end.
-    const core::Pose2 X_MR = localizer.Estimate();
-    const core::Pose2 X_MR_truth =
-        recorder.OnControlTick(s.time, server.index(), X_WR, X_MR, avoid, simulator);
-    feed.OnTick(s.time, localizer, server, X_WR, X_MR_truth, command.v, simulator);
+    const core::Pose2 X_MR = nav.Estimate();
+    const core::Pose2 X_MR_truth = recorder.OnControlTick(
+        s.time, nav.server().index(), X_WR, X_MR, nav.localizer().lost(), avoid, simulator);
+    feed.OnTick(s.time, nav.localizer(), nav.server(), X_WR, X_MR_truth, command.v, simulator);
     recorder.OnEvents(s.time,
                       events.Fire(s.time, route_progress.Update(X_WR.translation()), simulator));
-    outcome =
-        end.Check({s.time, follow.goal_reached, server.IsLast(), !stepper.collisions().empty(),
-                   Compare(X_MR, X_MR_truth).distance, server.index(), follow.remaining});
+    outcome = end.Check({s.time, tick.route_done, nav.server().IsLast(),
+                         !stepper.collisions().empty(), Compare(X_MR, X_MR_truth).distance,
+                         nav.server().index(), tick.follow.remaining});
   }
   feed.OnEnd();
   if (tap != nullptr) tap->OnEnd();

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "bench/engine/snapshot_capture.hpp"
+#include "bench/engine/update_score.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -39,60 +40,40 @@ void RecordNearby(const sim::Simulator& simulator, const std::vector<sim::Dynami
   }
 }
 
-// Scores the localizer's dynamic-point mask against which beams really hit a pedestrian.
-LocalizerSample Score(const nav::LocalizerUpdate& update, const sim::LidarReading& reading,
-                      double time, double cpu_s) {
-  LocalizerSample sample;
-  sample.time = time;
-  sample.cpu_s = cpu_s;
-  sample.beams_tested = update.beams_tested;
-  sample.beams_rejected = update.beams_rejected;
-  sample.spread = update.spread;
-  sample.rejection_particles = update.rejection_particles;
-  for (std::size_t i = 0; i < update.beams.size(); ++i) {
-    if (update.beams[i] == nav::BeamUse::kUnused) continue;
-    const bool rejected = update.beams[i] == nav::BeamUse::kRejected;
-    const bool pedestrian = reading.truth[i].source == sim::BeamSource::kPedestrian;
-    if (rejected && pedestrian) ++sample.true_positive;
-    if (rejected && !pedestrian) ++sample.false_positive;
-    if (!rejected && pedestrian) ++sample.false_negative;
-  }
-  return sample;
-}
-
 }  // namespace
 
 RunRecorder::RunRecorder(int run, std::uint64_t seed, const TeachTrace& teach,
                          const MetricsConfig& metrics, double robot_radius)
-    : teach_(teach), metrics_(metrics), robot_radius_(robot_radius) {
+    : metrics_(metrics),
+      robot_radius_(robot_radius),
+      local_truth_(teach, metrics.match_window, metrics.match_fallback_distance) {
   trace_.run = run;
   trace_.seed = seed;
   trace_.robot_radius = robot_radius;
-  local_truth_.emplace(teach_.maps.at(0), metrics_.match_window, metrics_.match_fallback_distance);
 }
 
 void RunRecorder::OnUpdate(const nav::Localizer& localizer, const nav::LocalizerUpdate& update,
                            const sim::LidarReading& lidar, double t, double cpu_s,
                            std::size_t map_index, const sim::Simulator& simulator) {
-  trace_.updates.push_back(Score(update, lidar, t, cpu_s));
+  trace_.updates.push_back(ScoreUpdate(update, t, cpu_s, lidar.truth));
   const int crowd = PedestrianBeams(update, lidar);
   if (crowd > 0 && (!trace_.snapshot || crowd > trace_.snapshot->pedestrian_beams)) {
     const core::Pose2 X_WR = simulator.RobotPose();
     trace_.snapshot =
         CaptureSnapshot(localizer, update, lidar, t, static_cast<int>(map_index), X_WR,
-                        local_truth_->InMap(X_WR), simulator.PedestrianCircles());
+                        local_truth_.InMap(X_WR), simulator.PedestrianCircles());
   }
 }
 
 void RunRecorder::OnSwitch(double t, const nav::MapSwitch& map_switch, const core::Pose2& X_WR) {
   trace_.switches.push_back({t, static_cast<int>(map_switch.from), static_cast<int>(map_switch.to),
                              X_WR, map_switch.X_MnR});
-  local_truth_.emplace(teach_.maps.at(map_switch.to), metrics_.match_window,
-                       metrics_.match_fallback_distance);
+  local_truth_.Enter(map_switch.to);
 }
 
 core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const core::Pose2& X_WR,
-                                       const core::Pose2& X_MR, const nav::AvoidanceOutput& command,
+                                       const core::Pose2& X_MR, bool lost,
+                                       const nav::AvoidanceOutput& command,
                                        const sim::Simulator& simulator) {
   PlaybackSample sample;
   sample.time = t;
@@ -106,12 +87,13 @@ core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const co
   const std::vector<sim::DynamicCircle> people = simulator.PedestrianCircles();
   sample.pedestrian_gap = PedestrianGap(people, X_WR.translation(), robot_radius_);
   sample.avoiding = command.modified;
+  sample.lost = lost;
   if (sample.pedestrian_gap <= NearbyPedestrian::kNearbyRange) {
     RecordNearby(simulator, people, X_WR.translation(), robot_radius_,
                  static_cast<int>(trace_.samples.size()), &trace_.nearby);
   }
   trace_.samples.push_back(sample);
-  return local_truth_->InMap(X_WR);
+  return local_truth_.InMap(X_WR);
 }
 
 void RunRecorder::OnEvents(double t, const std::vector<std::string>& names) {

@@ -35,11 +35,12 @@ class RunRecorder {
                 const sim::Simulator& simulator);
   /// A map switch at time t, the robot at X_WR; the local truth moves into the new map.
   void OnSwitch(double t, const nav::MapSwitch& map_switch, const core::Pose2& X_WR);
-  /// A control tick: the robot at X_WR, the estimate X_MR in map `map_index`, the command sent.
-  /// Returns the local truth of the robot in that map.
+  /// A control tick: the robot at X_WR, the estimate X_MR in map `map_index`, whether the
+  /// localizer deems itself lost, the command sent. Returns the local truth of the robot in that
+  /// map.
   core::Pose2 OnControlTick(double t, std::size_t map_index, const core::Pose2& X_WR,
-                            const core::Pose2& X_MR, const nav::AvoidanceOutput& command,
-                            const sim::Simulator& simulator);
+                            const core::Pose2& X_MR, bool lost,
+                            const nav::AvoidanceOutput& command, const sim::Simulator& simulator);
   /// Scripted events that fired at time t.
   void OnEvents(double t, const std::vector<std::string>& names);
 
@@ -48,11 +49,10 @@ class RunRecorder {
                   double sim_time_s, double cpu_time_s);
 
  private:
-  const TeachTrace& teach_;
   MetricsConfig metrics_;
   double robot_radius_;
   RunTrace trace_;
-  std::optional<LocalTruth> local_truth_;
+  LocalTruthAcrossMaps local_truth_;
 };
 
 }  // namespace retrace::bench

@@ -17,6 +17,13 @@ Stepper::Stepper(sim::Simulator& simulator, double control_rate_hz, ProgressFn p
       progress_(std::move(progress)),
       next_report_(kProgressPeriod) {}
 
+void Stepper::SetTap(SensorTap* tap) {
+  tap_ = tap;
+  if (tap_ != nullptr) {
+    tap_->OnOdometry(simulator_.time(), simulator_.OdometryPose(), simulator_.RobotPose());
+  }
+}
+
 sim::SimStep Stepper::Step(const core::Twist& command) {
   sim::SimStep s = simulator_.Step(command);
   ++steps_;

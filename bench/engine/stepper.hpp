@@ -23,7 +23,10 @@ class Stepper {
   /// One physics step with `command` (and the sensors that came due, which go to the tap).
   sim::SimStep Step(const core::Twist& command);
   /// Copies every odometry tick and scan to `tap` (nullptr: none), which must outlive the steps.
-  void SetTap(SensorTap* tap) { tap_ = tap; }
+  /// Hands every odometry tick and scan to `tap` from now on, starting with the odometry pose at
+  /// this instant (the drive's start, where the odometry reads the identity), so that a log
+  /// holds the increment of the first tick too.
+  void SetTap(SensorTap* tap);
 
   /// Whether the current instant is a control tick: every control period, the start included.
   bool ControlDue() const { return steps_ % control_steps_ == 0; }

@@ -59,6 +59,7 @@ struct PlaybackSample {
   double clearance = 0.0;       ///< m from the robot's edge to the nearest static surface
   double pedestrian_gap = 0.0;  ///< m from the robot's edge to the nearest pedestrian's (inf: none)
   bool avoiding = false;        ///< obstacle avoidance changed the follower's command
+  bool lost = false;            ///< the localizer's own verdict (nav::Localizer::lost)
 };
 
 /// A pedestrian near the robot at one control tick (its edge within kNearbyRange of the robot's),
@@ -85,6 +86,7 @@ struct LocalizerSample {
   double spread = 0.0;          ///< the belief's spread at the endpoints (m, LocalizerUpdate)
   int rejection_particles = 0;  ///< distinct particles in the sums of eq. (9)
   double cpu_s = 0.0;           ///< thread CPU time of the measurement update (s)
+  bool reacquired = false;      ///< a recovery trial replaced the belief (LocalizerUpdate)
 };
 
 /// A map switch done by the map server.

@@ -40,6 +40,9 @@ AggregateMetrics Aggregate(const TeachTrace& teach, const std::vector<RunTrace>&
   double time_sum = 0.0, length_sum = 0.0, progress_sum = 0.0, lost_sum = 0.0;
   int lost_runs = 0;
   double switch_sum_m = 0.0, switch_sum_rad = 0.0, update_ms_sum = 0.0;
+  std::vector<LocalizerHealth> health;
+  for (const RunMetrics& m : metrics) health.push_back(m.localizer);
+  a.localizer = CombineLocalizerHealth(health);
   for (const RunMetrics& m : metrics) {
     if (m.success) ++a.successes;
     const int outcome = static_cast<int>(m.outcome);

@@ -39,6 +39,12 @@
 //   Summary per run, and lost_fraction = the fraction of samples with an error whose position
 //   error exceeds lost_error.
 //
+// localizer (bench/metrics/localizer_health.hpp): lost_time_s, the time the localizer deemed
+//   itself lost (PlaybackSample.lost); lost_spells, how often it became lost; reacquisitions,
+//   recovery trials that replaced its belief; max_jump_m, the largest move of the estimate
+//   between two consecutive samples in the same map beyond what the odometry moved, and its time.
+//   Aggregate: sums, and the largest jump of any run.
+//
 // repeatability (aggregate over runs): stations every station_spacing m of arc length along the
 //   taught path, s = 0, spacing, 2 spacing, ... <= length. Each run's ground-truth positions
 //   are projected onto the taught path with progress tracking, giving per sample (s, e), e
@@ -130,6 +136,7 @@
 
 #include "bench/engine/metrics_config.hpp"
 #include "bench/engine/trace.hpp"
+#include "bench/metrics/localizer_health.hpp"
 #include "bench/metrics/map_quality.hpp"
 #include "bench/metrics/switching.hpp"
 
@@ -239,6 +246,7 @@ struct RunMetrics {
   Summary localization_error_m;
   Summary localization_error_rad;
   double lost_fraction = kMetricNaN;  ///< of the samples with a localization error
+  LocalizerHealth localizer;          ///< the localizer's own account and its estimate's jumps
   CollisionStats collisions;
   std::vector<SwitchError> switches;
   double switch_error_max_m = kMetricNaN;
@@ -287,6 +295,7 @@ struct AggregateMetrics {
   Summary localization_error_rad_run_mean;
   double lost_fraction_pooled = kMetricNaN;
   double lost_fraction_run_mean = kMetricNaN;
+  LocalizerHealth localizer;  ///< sums over the runs; the largest jump of any run
   Repeatability repeatability;
   CollisionStats collisions;  ///< totals; minima over all runs
   int runs_with_collision = 0;

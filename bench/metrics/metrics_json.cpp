@@ -92,6 +92,14 @@ nlohmann::json PooledAndRunMean(const Summary& pooled, const Summary& run_mean) 
 
 }  // namespace
 
+nlohmann::json ToJson(const LocalizerHealth& h) {
+  return {{"lost_time_s", io::JsonNumber(h.lost_time_s)},
+          {"lost_spells", h.lost_spells},
+          {"reacquisitions", h.reacquisitions},
+          {"max_jump_m", io::JsonNumber(h.max_jump_m)},
+          {"max_jump_time_s", io::JsonNumber(h.max_jump_time_s)}};
+}
+
 nlohmann::json ToJson(const Summary& s) {
   return {{"mean", io::JsonNumber(s.mean)},
           {"rms", io::JsonNumber(s.rms)},
@@ -121,6 +129,7 @@ nlohmann::json ToJson(const RunMetrics& m) {
           {"localization_error_m", ToJson(m.localization_error_m)},
           {"localization_error_rad", ToJson(m.localization_error_rad)},
           {"lost_fraction", io::JsonNumber(m.lost_fraction)},
+          {"localizer", ToJson(m.localizer)},
           {"collisions", ToJson(m.collisions)},
           {"switch_error",
            {{"count", m.switches.size()},
@@ -157,6 +166,7 @@ nlohmann::json ToJson(const AggregateMetrics& a) {
           {"lost_fraction",
            {{"pooled", io::JsonNumber(a.lost_fraction_pooled)},
             {"run_mean", io::JsonNumber(a.lost_fraction_run_mean)}}},
+          {"localizer", ToJson(a.localizer)},
           {"repeatability_m", io::JsonNumber(r.repeatability_m)},
           {"repeatability_max_spread_m", io::JsonNumber(r.max_spread_m)},
           {"repeatability_stations_used", r.stations_used},

@@ -12,6 +12,7 @@ namespace retrace::bench {
 /// repeatability stations are one compact array of rows [s_m, offset of each run...] (m,
 /// rounded to 0.1 mm).
 nlohmann::json ToJson(const Summary& summary);
+nlohmann::json ToJson(const LocalizerHealth& health);
 nlohmann::json ToJson(const RunMetrics& metrics);
 nlohmann::json ToJson(const AggregateMetrics& metrics);
 

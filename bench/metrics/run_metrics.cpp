@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "bench/engine/local_truth.hpp"
 #include "bench/metrics/internal/collisions.hpp"
@@ -35,6 +36,12 @@ RunMetrics ComputeRunMetrics(const TeachTrace& teach, const RunTrace& run,
   m.localization_error_rad = Summarize(series.localization_error_rad);
   m.lost_fraction = FractionAbove(series.localization_error_m, config.lost_error);
   m.collisions = Collisions(run, config);
+  std::vector<EstimateSample> track;
+  track.reserve(run.samples.size());
+  for (const PlaybackSample& p : run.samples) {
+    track.push_back({p.time, p.map_index, p.X_MR, p.X_OR, p.lost});
+  }
+  m.localizer = ComputeLocalizerHealth(track, run.updates);
 
   for (const SwitchRecord& sw : run.switches) {
     SwitchError e;

@@ -83,6 +83,15 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
     text += std::to_string(c.blocked) + " blocked (waited " + Cell(c.wait_time_s, "%.1f");
     text += " s)\n";
   }
+  // How the localizer held, by its own account, and the largest one-tick move of its estimate.
+  for (const ModeSummary& m : modes) {
+    if (m.runs == 0) continue;
+    const LocalizerHealth& h = m.aggregate.localizer;
+    text += std::string(core::EnumName(m.mode)) + ": localizer lost " +
+            Cell(h.lost_time_s, "%.1f") + " s in " + std::to_string(h.lost_spells) + " spells, " +
+            std::to_string(h.reacquisitions) + " re-acquisitions; largest single-tick jump " +
+            Cell(h.max_jump_m, "%.2f") + " m\n";
+  }
   // How the switching modes' maps were cut, judged on the drive's ground truth.
   for (const ModeSummary& m : modes) {
     const SwitchingQuality& q = m.aggregate.switching;

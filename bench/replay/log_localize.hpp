@@ -14,6 +14,7 @@
 // (bench/engine/local_truth.hpp) of the teaching drive's trace, the reference standing in for
 // ground truth in both the teach folder and this run.
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "bench/replay/log_config.hpp"
 #include "bench/replay/log_streams.hpp"
 #include "bench/replay/log_teach.hpp"
+#include "core/rng.hpp"
 #include "logs/sensor_log.hpp"
 
 namespace retrace::bench {
@@ -32,6 +34,8 @@ struct LogLocalizeSample {
   double time = 0.0;  ///< the scan's stamp (s)
   int map = 0;
   core::Pose2 X_MR;                       ///< the estimate in map `map`
+  core::Pose2 X_OR;                       ///< the odometry at the scan's stamp
+  bool lost = false;                      ///< the localizer's own verdict
   std::optional<core::Pose2> X_WR;        ///< the reference
   std::optional<core::Pose2> X_MR_truth;  ///< the local truth (reference and teach trace)
 };
@@ -53,14 +57,27 @@ struct LogLocalizeResult {
   double cpu_time_s = 0.0;
 };
 
-/// Where the localizer starts: `initial` in map 0 if given; else, with a reference and a teach
-/// trace that has one, the local truth of the first scan (the operator knows where the robot
-/// stands, as the simulator's playback starts at the teaching start); else map 0's origin.
+struct LogReplayOptions {
+  /// Where the localizer starts in map 0. Unset: with a reference and a teach trace that has
+  /// one, the local truth of the first scan (the operator knows where the robot stands, as the
+  /// simulator's playback starts at the teaching start); else map 0's origin.
+  std::optional<core::Pose2> initial;
+  /// One prediction per odometry message, as the simulator's playback predicts, instead of the
+  /// fewest arcs that follow the messages within 1 mm.
+  bool every_odometry_tick = false;
+};
+
+/// The localizer's random stream for a seed: that of playback run 0 of a scenario with the same
+/// seed, so that a simulated run recorded with `retrace run --record-log` replays with the same
+/// draws.
+core::Rng LogLocalizeRng(std::uint64_t seed);
+
+/// Drives nav::Navigator, the simulator's playback step, through the log: per scan the
+/// odometry since the previous scan (PredictBetween), the update, then one control tick.
 /// Throws core::IoError for a window without scans with odometry, core::ConfigError for a teach
 /// folder whose trace does not hold the maps it has.
 LogLocalizeResult RunLogLocalize(const logs::LogIndex& index, const LogStreams& streams,
                                  const ModeTeach& teach, const LogConfig& config,
-                                 const LogWindow& window,
-                                 const std::optional<core::Pose2>& initial = std::nullopt);
+                                 const LogWindow& window, const LogReplayOptions& options = {});
 
 }  // namespace retrace::bench

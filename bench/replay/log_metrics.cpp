@@ -93,6 +93,12 @@ LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const TeachTrac
 LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLocalizeSeries& series,
                                      const nav::TeachBundle& bundle, const MetricsConfig& config) {
   LogLocalizeMetrics m;
+  std::vector<EstimateSample> track;
+  track.reserve(run.samples.size());
+  for (const LogLocalizeSample& s : run.samples) {
+    track.push_back({s.time, s.map, s.X_MR, s.X_OR, s.lost});
+  }
+  m.localizer = ComputeLocalizerHealth(track, run.updates);
   m.scans = static_cast<int>(run.samples.size());
   m.updates = static_cast<int>(run.updates.size());
   m.switches = static_cast<int>(run.switches.size());
@@ -145,7 +151,8 @@ nlohmann::json ToJson(const LogLocalizeMetrics& m) {
           {"localization_error_on_route_m", ToJson(m.localization_error_on_route_m)},
           {"rejected_fraction", io::JsonNumber(m.rejected_fraction)},
           {"update_time_ms", ToJson(m.update_time_ms)},
-          {"real_time_factor", io::JsonNumber(m.real_time_factor)}};
+          {"real_time_factor", io::JsonNumber(m.real_time_factor)},
+          {"localizer", ToJson(m.localizer)}};
 }
 
 }  // namespace retrace::bench

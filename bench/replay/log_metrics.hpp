@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "bench/metrics/localizer_health.hpp"
 #include "bench/metrics/metrics.hpp"
 #include "bench/replay/log_localize.hpp"
 #include "nav/teach_bundle.hpp"
@@ -58,6 +59,7 @@ struct LogLocalizeMetrics {
   double rejected_fraction = kMetricNaN;
   Summary update_time_ms;
   double real_time_factor = kMetricNaN;
+  LocalizerHealth localizer;  ///< over the scans, as for a simulated run
 };
 
 /// The series of `run` against the teach trace `teach` (its reference X_WR: without one, the

@@ -556,7 +556,8 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   const nlohmann::json r = ToJson(metrics[0]);
   ExpectKeys(r, {"run", "seed", "outcome", "success", "samples", "time_s", "path_length_m",
                  "progress_m", "tracking_error_m", "localization_error_m", "localization_error_rad",
-                 "lost_fraction", "collisions", "switch_error", "dynamic_points", "social", "cpu"});
+                 "lost_fraction", "localizer", "collisions", "switch_error", "dynamic_points",
+                 "social", "cpu"});
   ExpectKeys(r["tracking_error_m"], {"mean", "rms", "p95", "max", "count"});
   ExpectKeys(r["collisions"],
              {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",
@@ -591,6 +592,7 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                  "localization_error_m",
                  "localization_error_rad",
                  "lost_fraction",
+                 "localizer",
                  "repeatability_m",
                  "repeatability_max_spread_m",
                  "repeatability_stations_used",
@@ -617,6 +619,8 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   ExpectKeys(a["tracking_error_m"], {"pooled", "run_mean"});
   ExpectKeys(a["tracking_error_m"]["pooled"], {"mean", "rms", "p95", "max", "count"});
   ExpectKeys(a["lost_fraction"], {"pooled", "run_mean"});
+  ExpectKeys(a["localizer"],
+             {"lost_time_s", "lost_spells", "reacquisitions", "max_jump_m", "max_jump_time_s"});
   ExpectKeys(a["switch_error"], {"count", "mean_m", "max_m", "mean_rad", "max_rad"});
   ExpectKeys(a["collisions"],
              {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",

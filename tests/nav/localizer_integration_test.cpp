@@ -123,9 +123,9 @@ TEST(Localizer, RejectionOnAStratifiedSampleMatchesAllParticlesInTheRoom) {
   EXPECT_NEAR(sampled.mean_error(), full.mean_error(), 0.01);
 }
 
-TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
+TEST(Localizer, RecoveryTrialFindsAKidnappedRobotAgain) {
   const int kSeeds = 10;
-  int recovered = 0, injected_any = 0, ok_without = 0;
+  int recovered = 0, reacquired_any = 0, ok_without = 0;
   double sum_err = 0.0;
   for (int seed = 0; seed < kSeeds; ++seed) {
     for (const bool augmented : {true, false}) {
@@ -144,7 +144,7 @@ TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
       const bool ok = r.final_position_error < 0.2 && r.final_heading_error < core::DegToRad(5.0);
       if (augmented) {
         recovered += ok ? 1 : 0;
-        injected_any += r.injected > 0 ? 1 : 0;
+        reacquired_any += r.reacquisitions > 0 ? 1 : 0;
         sum_err += r.final_position_error;
       } else {
         ok_without += ok ? 1 : 0;
@@ -154,9 +154,9 @@ TEST(Localizer, AugmentedMclInjectsAfterKidnappingAndRecovers) {
   std::printf(
       "[ report ] kidnapping by 1.5 m and 20 deg: augmented MCL recovered on %d/%d seeds (mean "
       "final "
-      "error %.3f m), injected on %d/%d; without augmentation recovered on %d/%d\n",
-      recovered, kSeeds, sum_err / kSeeds, injected_any, kSeeds, ok_without, kSeeds);
-  EXPECT_EQ(injected_any, kSeeds);
+      "error %.3f m), a trial won on %d/%d; without recovery recovered on %d/%d\n",
+      recovered, kSeeds, sum_err / kSeeds, reacquired_any, kSeeds, ok_without, kSeeds);
+  EXPECT_GE(reacquired_any, 8);
   EXPECT_GE(recovered, 8);
   EXPECT_GT(recovered, ok_without);
 }

@@ -127,7 +127,8 @@ struct RunResult {
   int updates = 0;
   int tp = 0, fp = 0, fn = 0;
   int tested = 0;  // beams tested for rejection
-  int injected = 0;
+  int trials = 0;        // updates with a recovery trial running
+  int reacquisitions = 0;  // trials that replaced the belief
 };
 
 inline RunResult DriveAndLocalize(Localizer& loc, Drive& drive, int updates, bool walkers,
@@ -145,7 +146,8 @@ inline RunResult DriveAndLocalize(Localizer& loc, Drive& drive, int updates, boo
     const LocalizerUpdate u = loc.Update(scan);
     if (!u.ran) continue;
     ++res.updates;
-    res.injected += u.injected;
+    res.trials += u.trial_updates > 0 ? 1 : 0;
+    res.reacquisitions += u.reacquired ? 1 : 0;
     for (std::size_t i = 0; i < u.beams.size(); ++i) {
       if (u.beams[i] == BeamUse::kUnused) continue;
       const bool rejected = u.beams[i] == BeamUse::kRejected;

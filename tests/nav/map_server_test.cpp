@@ -87,14 +87,46 @@ TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
   EXPECT_NEAR(out.remaining, 2.0, 0.25);
 }
 
-TEST(MapServer, SwitchIsDueOnlyAtTheEndOfANonLastPath) {
+TEST(MapServer, DecidesOnTheEndOfThePathByGoalOrRemainingArc) {
   MapServer server(TwoMaps(core::Pose2(4.0, 0.0, 0.0)));
   FollowerOutput out;
   out.goal_reached = false;
-  EXPECT_FALSE(server.SwitchDue(out));
+  out.remaining = 0.2;
+  EXPECT_EQ(server.Decide(out), MapStep::kStay);
+  out.remaining = MapServer::kPathEndTolerance;  // a log's estimate that passed the end
+  EXPECT_EQ(server.Decide(out), MapStep::kNext);
+  out.remaining = 0.2;
   out.goal_reached = true;
-  EXPECT_TRUE(server.SwitchDue(out));
+  EXPECT_EQ(server.Decide(out), MapStep::kNext);
   EXPECT_THROW(MapServer(TeachBundle{}), core::ConfigError);
+}
+
+TEST(MapServer, WrapsOnlyALoopWhenLoopingIsOn) {
+  // Paths of 4 m and 2 m along x: the route ends 6 m from where it began. Within a 1 m radius
+  // it is no loop, within 100 m it is; looping off never wraps.
+  const TeachBundle straight = TwoMaps(core::Pose2(4.0, 0.0, 0.0));
+  LoopConfig loop;
+  loop.enabled = true;
+  loop.closure_radius = 1.0;
+  loop.drift = 0.0;
+  MapServer line(straight, loop);
+  EXPECT_FALSE(line.loops());
+  Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(1));
+  PathFollower follower{PathFollowerConfig{}};
+  line.Start(localizer, follower);
+  localizer.Initialize(core::Pose2::Identity(), 0.01, 0.01);
+  line.SwitchToNext(localizer, follower);
+  FollowerOutput end;
+  end.goal_reached = true;
+  EXPECT_EQ(line.Decide(end), MapStep::kDone);
+  loop.closure_radius = 100.0;  // everything closes within 100 m
+  MapServer ring(straight, loop);
+  EXPECT_TRUE(ring.loops());
+  ring.Start(localizer, follower);
+  ring.SwitchToNext(localizer, follower);
+  EXPECT_EQ(ring.Decide(end), MapStep::kWrap);
+  loop.enabled = false;
+  EXPECT_FALSE(MapServer(straight, loop).loops());
 }
 
 }  // namespace

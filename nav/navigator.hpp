@@ -1,0 +1,60 @@
+#pragma once
+// One step of the repeating robot's navigation (docs/DESIGN.md §5, "One navigation step"): the
+// localizer, the map server and the path follower, driven by odometry increments, scans and
+// control ticks. The simulator's playback and a log's replay are two sources of the same inputs
+// and call exactly this: predict on every odometry increment, update on every scan, and at every
+// control tick the follower's command from the estimate and the map server's one rule for
+// switching maps or wrapping a loop. Obstacle avoidance, which needs a robot to command, stays
+// with the caller.
+
+#include <optional>
+
+#include "core/laser_scan.hpp"
+#include "core/pose2.hpp"
+#include "core/rng.hpp"
+#include "core/twist.hpp"
+#include "nav/localizer.hpp"
+#include "nav/map_server.hpp"
+#include "nav/path_follower.hpp"
+#include "nav/robot_geometry.hpp"
+#include "nav/teach_bundle.hpp"
+
+namespace retrace::nav {
+
+/// What one control tick decided.
+struct NavigatorTick {
+  FollowerOutput follow;                ///< the follower's output, after any switch
+  std::optional<MapSwitch> map_switch;  ///< the switch or wrap made at this tick
+  bool wrapped = false;                 ///< map_switch went from the last map back to map 0
+  bool route_done = false;              ///< at the end of the last path (and no loop to go on)
+};
+
+class Navigator {
+ public:
+  /// Throws core::ConfigError for an invalid config or a bundle without maps.
+  Navigator(const LocalizerConfig& localizer, const PathFollowerConfig& follower,
+            const RobotGeometry& robot, TeachBundle bundle, const LoopConfig& loop,
+            core::Rng localizer_rng);
+
+  /// Map 0 and path 0, and the particles drawn around X_M0R (Localizer::Initialize).
+  void Start(const core::Pose2& X_M0R, double sigma_xy, double sigma_theta);
+  /// One odometry increment (robot frame).
+  void OnOdometry(const core::OdometryDelta& delta) { localizer_.Predict(delta); }
+  /// One scan (LiDAR frame); the update is gated on motion (Localizer::Update).
+  LocalizerUpdate OnScan(const core::LaserScan& scan) { return localizer_.Update(scan); }
+  /// One control tick, dt s after the previous one: the follower on the estimate, then the map
+  /// server's rule (MapServer::Decide); after a switch the follower runs again on the new path.
+  NavigatorTick OnControlTick(double dt);
+
+  core::Pose2 Estimate() const { return localizer_.Estimate(); }
+  const Localizer& localizer() const { return localizer_; }
+  const MapServer& server() const { return server_; }
+  const PathFollower& follower() const { return follower_; }
+
+ private:
+  Localizer localizer_;
+  PathFollower follower_;
+  MapServer server_;
+};
+
+}  // namespace retrace::nav
