@@ -52,11 +52,19 @@ struct Trajectory {
 
 /// maps.png (paper Fig. 1): the world with the whole route and switch points, then every
 /// partial map in its own frame with its path, start and switch point.
+/// What the teaching figure's route is, for its titles: a log's drive has no ground truth.
+enum class RouteSource {
+  kGroundTruth,  ///< the simulator's X_WR
+  kReference,    ///< a log's reference trajectory X_WR
+  kOdometry,     ///< a log without a reference: the odometry X_OR, in the odometry frame O
+};
+
 struct MapsFigureData {
   WorldShapes world;
-  std::vector<core::Pose2> route;         ///< teaching ground truth X_WR
+  std::vector<core::Pose2> route;         ///< teaching ground truth X_WR (see route_source)
   std::vector<core::Pose2> switch_poses;  ///< ground truth X_WR where map k ended, k = 0, 1, ...
   std::vector<PartialMapView> maps;
+  RouteSource route_source = RouteSource::kGroundTruth;
 };
 
 /// maps_compare.png (paper Fig. 6): maps of the same route side by side, each in its own

@@ -1,6 +1,7 @@
 // maps.png (paper Fig. 1), maps_compare.png (Fig. 6) and the world overview.
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
@@ -67,17 +68,20 @@ FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::p
   Header header;
   header.title = options.title.empty() ? "Teaching: the route in the world and its partial maps"
                                        : options.title;
+  const std::string route_title = MapsRouteTitle(data.route_source);
+  std::string top_title = route_title;
+  top_title[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(top_title[0])));
   header.subtitle = std::to_string(n) + " partial map" + (n == 1 ? "" : "s") +
-                    Format(", route %.0f m. Top: ground truth in the world frame W. Bottom: each "
-                           "map in its own frame M_k, built from odometry.",
-                           internal::PathLength(data.route));
+                    Format(", route %.0f m. Top: ", internal::PathLength(data.route)) + top_title +
+                    ". Bottom: each map in its own frame M_k, built from odometry.";
   for (std::size_t k = 0; k < std::min<std::size_t>(n, 6); ++k) {
     header.legend.push_back({"map " + std::to_string(k) + " path", MapColor(static_cast<int>(k)),
                              LegendSymbol::kLine, Marker::kDisc, 3.0});
   }
   header.legend.push_back(internal::StartLegend());
   if (!data.switch_poses.empty()) header.legend.push_back(internal::SwitchLegend());
-  header.legend.push_back(internal::WorldLegend());
+  // A log's figure has no world to draw: no buildings, walls or trees to explain.
+  if (!data.world.empty()) header.legend.push_back(internal::WorldLegend());
   header.legend.push_back({"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch});
 
   // Top: the world around the route.
@@ -111,7 +115,7 @@ FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::p
   std::vector<PanelInfo> panels;
   const auto splits = internal::SplitAtSwitches(data.route, data.switch_poses);
   panels.push_back(internal::RenderMapPanel(
-      fig, world_rect, world_box, "world", "Ground truth in the world frame W", options.supersample,
+      fig, world_rect, world_box, "world", route_title, options.supersample,
       [&](GlCanvas& c) {
         internal::DrawWorld(c, data.world);
         for (std::size_t k = 0; k < splits.size(); ++k) {
@@ -148,7 +152,21 @@ FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::p
         [&](GlCanvas& c) { DrawMapLayers(c, m, MapColor(ki)); },
         internal::MapFrameStyle(ki)));
   }
-  return internal::FinishFigure(fig, png, std::move(panels));
+  FigureInfo info = internal::FinishFigure(fig, png, std::move(panels));
+  for (const LegendEntry& entry : header.legend) info.legend.push_back(entry.label);
+  return info;
+}
+
+std::string MapsRouteTitle(RouteSource source) {
+  switch (source) {
+    case RouteSource::kGroundTruth:
+      return "Ground truth in the world frame W";
+    case RouteSource::kReference:
+      return "Reference trajectory in the world frame W";
+    case RouteSource::kOdometry:
+      return "Odometry (no reference) in the odometry frame O";
+  }
+  return "Route";
 }
 
 FigureInfo RenderMapsCompareFigure(const MapsCompareFigureData& data,

@@ -40,6 +40,7 @@ struct PanelInfo {
   int width = 0;     ///< plot area size (px)
   int height = 0;
   Box2 box;          ///< the frame's region shown: min at the bottom-left corner
+  std::string title = {};  ///< the title written above a map panel
 
   /// The figure pixel position of a point in the panel's frame (x right, y up).
   Vec2 ToFigurePixel(const Vec2& p) const {
@@ -53,15 +54,22 @@ struct FigureInfo {
   int width = 0;
   int height = 0;
   std::vector<PanelInfo> panels;
+  std::vector<std::string> legend;  ///< the header legend's labels, in order (maps.png)
 
   /// The panel called `name`; aborts if there is none.
   const PanelInfo& Panel(std::string_view name) const;
 };
 
 /// maps.png: panel "world" (W) with the route coloured per map, start and switch points, then
-/// panels "map0", "map1", ... (each in its M_k) with path, start and switch point.
+/// panels "map0", "map1", ... (each in its M_k) with path, start and switch point. The world
+/// panel is titled MapsRouteTitle(data.route_source); the legend explains the world's shapes
+/// only where there are some.
 FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::path& png,
                             const FigureOptions& options = {});
+
+/// The title of maps.png's world panel: "Ground truth in the world frame W", "Reference
+/// trajectory in the world frame W" or "Odometry (no reference) in the odometry frame O".
+std::string MapsRouteTitle(RouteSource source);
 
 /// maps_compare.png: panels "map0", "map1", ... side by side, each in its own frame.
 FigureInfo RenderMapsCompareFigure(const MapsCompareFigureData& data,

@@ -147,7 +147,7 @@ int RunLogTeachCommand(const LogTeachOptions& options, const std::string& comman
         const std::filesystem::path figures =
             folder.path() / std::string(core::EnumName(teach.mode)) / "figures";
         std::filesystem::create_directories(figures);
-        RenderTeachMaps(teach, {}, figures / "maps.png");
+        RenderTeachMaps(teach, {}, figures / "maps.png", viz::RouteSource::kReference);
       }
     } catch (const viz::RenderError& e) {
       figure_notes.push_back(std::string("figures not rendered: ") + e.what());

@@ -198,10 +198,11 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, d
 }
 
 std::filesystem::path RenderTeachMaps(const ModeTeach& teach, const viz::WorldShapes& world,
-                                      const std::filesystem::path& png) {
+                                      const std::filesystem::path& png, viz::RouteSource truth) {
   viz::MapsFigureData maps;
   maps.world = world;
   maps.route = teach.trace.X_WR.empty() ? teach.trace.X_OR : teach.trace.X_WR;
+  maps.route_source = teach.trace.X_WR.empty() ? viz::RouteSource::kOdometry : truth;
   maps.switch_poses = SwitchPosesW(teach);
   maps.maps = MapViews(teach);
   return viz::RenderMapsFigure(maps, png).path;

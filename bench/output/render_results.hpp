@@ -25,10 +25,11 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, d
 
 /// maps.png of one mode's teaching (paper Fig. 1): `world` (may be empty, as for a log) with the
 /// taught trajectory coloured per map, then every partial map in its own frame. The trajectory
-/// is the truth where the trace has one, else the odometry. Returns the file written; throws
-/// like RenderResults.
+/// is the truth where the trace has one (`truth` says what it is: a log's is its reference),
+/// else the odometry, titled so. Returns the file written; throws like RenderResults.
 std::filesystem::path RenderTeachMaps(const ModeTeach& teach, const viz::WorldShapes& world,
-                                      const std::filesystem::path& png);
+                                      const std::filesystem::path& png,
+                                      viz::RouteSource truth = viz::RouteSource::kGroundTruth);
 
 /// Renders every figure the folder's data allows; returns the files written. Throws
 /// core::IoError for unreadable results and viz::RenderError when OSMesa cannot render (the

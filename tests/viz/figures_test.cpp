@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <type_traits>
@@ -85,6 +86,29 @@ TEST_F(FiguresTest, MapsFigureShowsRouteWorldAndEachMap) {
   // The switch marker (gold) at the end of map 0's path.
   EXPECT_TRUE(ColorNear(PixelAt(img, m0, Vec2(14, 0)), palette::kSwitch));
   EXPECT_EQ(Bytes(info), Bytes(RenderMapsFigure(d, tmp_.path() / "maps2.png")));
+}
+
+// A log's teaching drive without a reference: the route is its odometry, and there is no world
+// whose buildings and trees the legend would explain.
+TEST_F(FiguresTest, MapsFigureOfALogWithoutReferenceIsTitledOdometryWithoutWorldLegend) {
+  MapsFigureData d = SmallMaps();
+  const FigureInfo sim = RenderMapsFigure(d, tmp_.path() / "sim.png");
+  EXPECT_EQ(sim.Panel("world").title, "Ground truth in the world frame W");
+  EXPECT_NE(std::find(sim.legend.begin(), sim.legend.end(), "buildings, walls, trees"),
+            sim.legend.end());
+
+  d.world = {};
+  d.route_source = RouteSource::kOdometry;
+  const FigureInfo log = RenderMapsFigure(d, tmp_.path() / "log.png");
+  EXPECT_EQ(log.Panel("world").title, "Odometry (no reference) in the odometry frame O");
+  for (const std::string& label : log.legend) {
+    EXPECT_EQ(label.find("buildings"), std::string::npos) << label;
+    EXPECT_EQ(label.find("trees"), std::string::npos) << label;
+  }
+  EXPECT_NE(std::find(log.legend.begin(), log.legend.end(), "map 0 path"), log.legend.end());
+  d.route_source = RouteSource::kReference;
+  EXPECT_EQ(RenderMapsFigure(d, tmp_.path() / "ref.png").Panel("world").title,
+            "Reference trajectory in the world frame W");
 }
 
 TEST_F(FiguresTest, MapsFigureNeedsMapsAndAWritablePath) {

@@ -87,7 +87,7 @@ PanelInfo RenderMapPanel(cv::Mat& fig, const MapPanelRect& rect, const Box2& vie
                             rect.tile.x + rect.tile.width - TextExtent(title, style).width / 2 - 6);
   PutText(fig, title, cv::Point(cx, rect.tile.y + 8), Align::kCenter, VAlign::kTop, style);
   return PanelInfo{name, rect.plot.x, rect.plot.y, rect.plot.width, rect.plot.height,
-                   view.VisibleBox()};
+                   view.VisibleBox(), title};
 }
 
 cv::Point FigurePoint(const PanelInfo& panel, const Vec2& p) {
