@@ -76,13 +76,18 @@ std::string DescribeLog(const logs::LogIndex& index) {
     out << line;
   }
 
-  if (!index.scan_topic.empty()) {
-    const logs::ScanGeometry& s = index.scan;
-    out << "scans:      " << index.scan_topic << ": " << s.scans << " scans of " << s.beams
-        << " beams over " << Degrees(s.field_of_view(), 1) << " deg from "
-        << Degrees(s.angle_min, 1) << " deg, " << Degrees(s.angle_increment, 3)
+  // Every scan topic (a bag may hold the raw and a filtered scan); the one used is marked when
+  // there are several.
+  for (const logs::ScanStream& stream : index.scan_streams) {
+    const logs::ScanGeometry& s = stream.geometry;
+    if (s.scans == 0) continue;
+    const bool used = stream.topic == index.scan_topic;
+    out << "scans:      " << stream.topic
+        << (used && index.scan_streams.size() > 1 ? " (used)" : "") << ": " << s.scans
+        << " scans of " << s.beams << " beams over " << Degrees(s.field_of_view(), 1)
+        << " deg from " << Degrees(s.angle_min, 1) << " deg, " << Degrees(s.angle_increment, 3)
         << " deg apart; ranges " << FixedText(s.range_min, 2) << " to " << FixedText(s.range_max, 2)
-        << " m; frame " << (index.laser_frame.empty() ? "-" : index.laser_frame) << "\n";
+        << " m; frame " << (stream.frame.empty() ? "-" : stream.frame) << "\n";
   }
   if (!index.odometry_source.empty() && !index.odometry.empty()) {
     out << "odometry:   " << index.odometry_source << ": " << index.odometry.size() << " poses, "
@@ -92,7 +97,7 @@ std::string DescribeLog(const logs::LogIndex& index) {
   }
   if (!index.mount_source.empty())
     out << "mount:      X_RL " << Pose(index.X_RL) << " from " << index.mount_source << "\n";
-  if (index.reference.empty() && !index.scan_topic.empty()) {
+  if (index.reference.empty() && !index.scan_streams.empty()) {
     out << "reference:  none (a corrected log's odometry is its reference: "
            "--synthetic-odometry draws drifting odometry from it)\n";
   } else if (!index.reference.empty()) {
@@ -100,6 +105,12 @@ std::string DescribeLog(const logs::LogIndex& index) {
         << FixedText(logs::PathLength(index.reference), 1) << " m\n";
   }
   for (const std::string& note : index.notes) out << "note:       " << note << "\n";
+  // Several topics of a stream are described; only the commands that use it must choose.
+  if (index.needs_choice) {
+    std::string choice = index.problem;
+    if (choice.starts_with(index.name + ": ")) choice.erase(0, index.name.size() + 2);
+    out << "choose:     " << choice << " (log-teach, log-localize)\n";
+  }
   std::string text = out.str();
   if (!text.empty() && text.back() == '\n') text.pop_back();
   return text;
@@ -108,7 +119,7 @@ std::string DescribeLog(const logs::LogIndex& index) {
 int RunLogInfoCommand(const LogInfoOptions& options) {
   const logs::LogIndex index = logs::IndexLog(options.log, options.streams);
   std::cout << DescribeLog(index) << "\n";
-  logs::RequireUsable(index);
+  if (!index.needs_choice) logs::RequireUsable(index);
   return 0;
 }
 
