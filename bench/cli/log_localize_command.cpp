@@ -217,6 +217,8 @@ int RunLogLocalizeCommand(const LogLocalizeOptions& options, const std::string& 
       {"from_s", core::FormatNumber(run.first_s)},
       {"to_s", core::FormatNumber(run.last_s)}};
   manifest.notes = index.notes;
+  if (const std::string off_route = OffRouteWarning(series); !off_route.empty())
+    manifest.notes.push_back("warning: " + off_route);
   if (!streams.reference.empty() && teach.trace.X_WR.empty()) {
     manifest.notes.push_back(
         "the teach folder has no reference (gt.tum): no local truth, so no "
@@ -237,7 +239,8 @@ int RunLogLocalizeCommand(const LogLocalizeOptions& options, const std::string& 
   folder.Commit();
   std::cout << index.name << ": " << SummaryText(metrics, run, options.run.out) << figure_note
             << "\n";
-  for (const std::string& note : manifest.notes) std::cout << "  note: " << note << "\n";
+  for (const std::string& note : manifest.notes)
+    std::cout << "  " << (note.starts_with("warning: ") ? "" : "note: ") << note << "\n";
   return 0;
 }
 

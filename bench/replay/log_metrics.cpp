@@ -1,7 +1,9 @@
 #include "bench/replay/log_metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <unordered_map>
@@ -153,6 +155,22 @@ nlohmann::json ToJson(const LogLocalizeMetrics& m) {
           {"update_time_ms", ToJson(m.update_time_ms)},
           {"real_time_factor", io::JsonNumber(m.real_time_factor)},
           {"localizer", ToJson(m.localizer)}};
+}
+
+std::string OffRouteWarning(const LogLocalizeSeries& series) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (double d : series.path_distance_m) {
+    if (std::isfinite(d)) nearest = std::min(nearest, d);
+  }
+  if (!std::isfinite(nearest) || nearest <= kOnRoute) return {};
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the localized window never comes within %.1f m of the taught route (at the "
+                "nearest %.1f m): it does not repeat the taught drive, and errors off the route "
+                "say little about the method; localize a part of the log that drives the taught "
+                "route again",
+                kOnRoute, nearest);
+  return text;
 }
 
 }  // namespace retrace::bench

@@ -21,6 +21,7 @@
 // Without a reference only the last three exist; the others are null.
 
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "bench/metrics/localizer_health.hpp"
@@ -70,5 +71,11 @@ LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLoca
                                      const nav::TeachBundle& bundle, const MetricsConfig& config);
 
 nlohmann::json ToJson(const LogLocalizeMetrics& metrics);
+
+/// A warning for a run that never comes within kOnRoute of the taught route (its reference
+/// against the teaching drive's): not a repeat of the taught route, so its errors, all off the
+/// route, say little about the method. Empty when the run comes back onto the route somewhere,
+/// or has no reference to tell.
+std::string OffRouteWarning(const LogLocalizeSeries& series);
 
 }  // namespace retrace::bench
