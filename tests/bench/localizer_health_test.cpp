@@ -38,7 +38,7 @@ TEST(LocalizerHealth, IgnoresTheFrameChangeOfAMapSwitchAndCountsReacquisitions) 
   track[7].X_MR.y -= 3.0;
   for (std::size_t k = 12; k < track.size(); ++k) {
     track[k].map = 1;
-    track[k].X_MR = core::Pose2(-40.0 + 0.05 * static_cast<double>(k), 7.0, 1.0);
+    track[k].X_MR = core::Pose2(-40.0 + 0.05 * static_cast<double>(k), 7.0, 0.0);
   }
   std::vector<LocalizerSample> updates(3);
   updates[1].reacquired = true;
