@@ -68,8 +68,8 @@ std::vector<ModeTeach> FinishModeRecorders(std::vector<ModeRecorder>& recorders,
   for (ModeRecorder& r : recorders) {
     ModeTeach m;
     m.mode = r.mode;
+    m.bundle = r.recorder.Finish();  // first: it integrates the keyframes held back (online)
     m.match_counts = r.recorder.match_counts();
-    m.bundle = r.recorder.Finish();
     m.online_switches = r.recorder.online_switches();
     m.trace = trace;
     m.trace.maps = MapTraces(r.recorder, m.bundle.maps.size(), time, X_WR);

@@ -132,10 +132,6 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
   }
 
   result.modes = FinishModeRecorders(recorders, trace, trace.time, trace.X_WR);
-  // With online switching the recorders hold the latest scans back and Finish() matches them:
-  // the counts are only complete now (FinishModeRecorders reads them before Finish()).
-  for (std::size_t i = 0; i < recorders.size(); ++i)
-    result.modes[i].match_counts = recorders[i].recorder.match_counts();
   result.cpu_time_s = ThreadCpuSeconds() - cpu_start;
   return result;
 }
