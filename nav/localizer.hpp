@@ -84,7 +84,7 @@ struct AugmentedMclConfig {
   double path_sigma_theta = 0.3;  ///< rad, around the taught heading
   int confirm_updates = 5;        ///< scans a trial must explain before it may win
   int max_updates = 25;           ///< scans after which a trial that has not won ends
-  double margin = 10.0;           ///< nats by which a trial's evidence must beat the belief's
+  double margin = 30.0;           ///< nats by which a trial's evidence must beat the belief's
   double free_threshold = 0.25;   ///< a cell is free when its probability <= this
 
   template <class V>
