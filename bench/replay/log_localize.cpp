@@ -121,6 +121,139 @@ core::Rng LogLocalizeRng(std::uint64_t seed) {
   return core::Rng(seed).Split("playback").Split(0).Split("localizer");
 }
 
+namespace {
+
+// A loop is driven again after its last map (nav::LoopConfig).
+nav::LoopConfig LoopOf(const LogConfig& config) {
+  return {.enabled = true,
+          .closure_radius = config.route.revisit_radius,
+          .drift = config.route.online_drift,
+          .min_sigma_xy = config.playback.initial_sigma_xy,
+          .min_sigma_theta =
+              std::max(core::DegToRad(config.playback.initial_sigma_yaw_deg), kWrapSigmaTheta)};
+}
+
+// The replay of one log: per scan, the navigator's step and what the metrics keep of it.
+class LogReplay {
+ public:
+  LogReplay(const LogStreams& streams, const ModeTeach& teach, const LogConfig& config,
+            const LogWindow& window, const LogReplayOptions& options)
+      : streams_(streams),
+        config_(config),
+        options_(options),
+        from_log_start_(window.from_s <= 0.0),
+        nav_(config.nav.localizer, config.nav.follower, streams.robot, teach.bundle,
+             LoopOf(config), LogLocalizeRng(config.seed)),
+        feed_(streams.odometry, options.every_odometry_tick) {
+    result_.loop = nav_.server().loops();
+    if (!streams.reference.empty() && !teach.trace.X_WR.empty()) {
+      local_.emplace(teach.trace, config.metrics.match_window,
+                     config.metrics.match_fallback_distance);
+    }
+  }
+
+  void OnScan(const logs::ScanMessage& m, double t) {
+    const double stamp = m.scan.stamp;
+    const std::optional<core::Pose2> X_OR = logs::PoseAt(streams_.odometry, stamp);
+    if (!X_OR) {
+      ++result_.scans_outside;
+      return;
+    }
+    const std::optional<core::Pose2> X_WR =
+        streams_.reference.empty() ? std::nullopt : logs::PoseAt(streams_.reference, stamp);
+    std::optional<core::Pose2> X_MR_truth;
+    if (local_ && X_WR) X_MR_truth = local_->InMap(*X_WR);
+    Predict(stamp, t, *X_OR, X_MR_truth);
+    const double dt = previous_stamp_ ? std::max(stamp - *previous_stamp_, 1e-3) : 0.1;
+    previous_stamp_ = stamp;
+    result_.last_s = t;
+
+    const double cpu0 = ThreadCpuSeconds();
+    const nav::LocalizerUpdate update = nav_.OnScan(m.scan);
+    if (update.ran) {
+      result_.updates.push_back(ScoreUpdate(update, stamp, ThreadCpuSeconds() - cpu0, {}));
+    }
+    const core::Pose2 before = nav_.Estimate();
+    const nav::NavigatorTick tick = nav_.OnControlTick(dt);
+    if (!tick.map_switch) KeepSnapshot(m.scan, update, tick, before, X_WR, X_MR_truth);
+    if (tick.map_switch) {
+      OnSwitch(stamp, tick, X_WR);
+      if (local_ && X_WR) X_MR_truth = local_->InMap(*X_WR);
+    } else if (tick.route_done) {
+      result_.laps_completed = std::max(result_.laps_completed, 1);
+    }
+    result_.samples.push_back({stamp, static_cast<int>(nav_.server().index()), nav_.Estimate(),
+                               *X_OR, nav_.localizer().lost(), X_WR, X_MR_truth});
+  }
+
+  LogLocalizeResult Finish(double cpu_time_s) {
+    result_.cpu_time_s = cpu_time_s;
+    return std::move(result_);
+  }
+  bool empty() const { return result_.samples.empty(); }
+
+ private:
+  // The first scan starts the navigator (at `initial`, else at the local truth, else at map 0's
+  // origin); every later one gets the odometry since the one before.
+  void Predict(double stamp, double t, const core::Pose2& X_OR,
+               const std::optional<core::Pose2>& X_MR_truth) {
+    if (previous_stamp_) {
+      feed_.To(nav_, stamp, X_OR);
+      return;
+    }
+    result_.first_s = t;
+    const core::Pose2 start = options_.initial
+                                  ? *options_.initial
+                                  : (X_MR_truth ? *X_MR_truth : core::Pose2::Identity());
+    nav_.Start(start, config_.playback.initial_sigma_xy,
+               core::DegToRad(config_.playback.initial_sigma_yaw_deg));
+    feed_.Start(nav_, stamp, X_OR, from_log_start_);
+  }
+
+  // Fig. 4 and 5: the update with the most rejected beams on the taught route (the estimate
+  // within kOnRoute of its path) while localized (within metrics.lost_error of the local truth,
+  // when there is one). Off the route a map misses what the scan sees, and those beams are
+  // rejected for that.
+  void KeepSnapshot(const core::LaserScan& scan, const nav::LocalizerUpdate& update,
+                    const nav::NavigatorTick& tick, const core::Pose2& X_MR,
+                    const std::optional<core::Pose2>& X_WR,
+                    const std::optional<core::Pose2>& X_MR_truth) {
+    if (!update.ran || update.beams_rejected <= most_rejected_ ||
+        std::abs(tick.follow.lateral_error) > kOnRoute ||
+        (X_MR_truth && Compare(X_MR, *X_MR_truth).distance > config_.metrics.lost_error)) {
+      return;
+    }
+    most_rejected_ = update.beams_rejected;
+    result_.snapshot = CaptureSnapshot(nav_.localizer(), update, scan, {}, scan.stamp,
+                                       static_cast<int>(nav_.server().index()),
+                                       X_WR.value_or(core::Pose2::Identity()),
+                                       X_MR_truth.value_or(X_MR), {});
+  }
+
+  // A map switch or a loop's wrap: recorded, and the local truth re-anchored in the new map.
+  void OnSwitch(double stamp, const nav::NavigatorTick& tick,
+                const std::optional<core::Pose2>& X_WR) {
+    if (tick.wrapped) ++result_.laps_completed;
+    result_.switches.push_back({stamp, static_cast<int>(tick.map_switch->from),
+                                static_cast<int>(tick.map_switch->to),
+                                X_WR.value_or(core::Pose2::Identity()), tick.map_switch->X_MnR});
+    if (local_) local_->Enter(tick.map_switch->to);
+  }
+
+  const LogStreams& streams_;
+  const LogConfig& config_;
+  const LogReplayOptions& options_;
+  bool from_log_start_;
+  nav::Navigator nav_;
+  OdometryFeed feed_;
+  std::optional<LocalTruthAcrossMaps> local_;
+  std::optional<double> previous_stamp_;
+  int most_rejected_ = -1;
+  LogLocalizeResult result_;
+};
+
+}  // namespace
+
 LogLocalizeResult RunLogLocalize(const logs::LogIndex& index, const LogStreams& streams,
                                  const ModeTeach& teach, const LogConfig& config,
                                  const LogWindow& window, const LogReplayOptions& options) {
@@ -131,96 +264,15 @@ LogLocalizeResult RunLogLocalize(const logs::LogIndex& index, const LogStreams& 
                                            ") do not match its maps (" +
                                            std::to_string(teach.bundle.maps.size()) + ")");
   }
-  const bool truth = !streams.reference.empty() && !teach.trace.X_WR.empty();
-  // A loop is driven again after its last map (nav::LoopConfig).
-  const nav::LoopConfig loop{
-      .enabled = true,
-      .closure_radius = config.route.revisit_radius,
-      .drift = config.route.online_drift,
-      .min_sigma_xy = config.playback.initial_sigma_xy,
-      .min_sigma_theta =
-          std::max(core::DegToRad(config.playback.initial_sigma_yaw_deg), kWrapSigmaTheta)};
-  nav::Navigator nav(config.nav.localizer, config.nav.follower, streams.robot, teach.bundle, loop,
-                     LogLocalizeRng(config.seed));
-
-  LogLocalizeResult result;
-  result.loop = nav.server().loops();
-  std::optional<LocalTruthAcrossMaps> local;
-  if (truth) {
-    local.emplace(teach.trace, config.metrics.match_window,
-                  config.metrics.match_fallback_distance);
-  }
-  std::optional<double> previous_stamp;
-  OdometryFeed feed(streams.odometry, options.every_odometry_tick);
-  int most_rejected = -1;
-
-  logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double t) {
-    const double stamp = m.scan.stamp;
-    const std::optional<core::Pose2> X_OR = logs::PoseAt(streams.odometry, stamp);
-    if (!X_OR) {
-      ++result.scans_outside;
-      return;
-    }
-    const std::optional<core::Pose2> X_WR =
-        streams.reference.empty() ? std::nullopt : logs::PoseAt(streams.reference, stamp);
-    std::optional<core::Pose2> X_MR_truth;
-    if (local && X_WR) X_MR_truth = local->InMap(*X_WR);
-
-    if (!previous_stamp) {
-      result.first_s = t;
-      const core::Pose2 start =
-          options.initial ? *options.initial
-                          : (X_MR_truth ? *X_MR_truth : core::Pose2::Identity());
-      nav.Start(start, config.playback.initial_sigma_xy,
-                core::DegToRad(config.playback.initial_sigma_yaw_deg));
-      feed.Start(nav, stamp, *X_OR, window.from_s <= 0.0);
-    } else {
-      feed.To(nav, stamp, *X_OR);
-    }
-    const double dt = previous_stamp ? std::max(stamp - *previous_stamp, 1e-3) : 0.1;
-    previous_stamp = stamp;
-    result.last_s = t;
-
-    const double cpu0 = ThreadCpuSeconds();
-    const nav::LocalizerUpdate update = nav.OnScan(m.scan);
-    if (update.ran) result.updates.push_back(ScoreUpdate(update, stamp, ThreadCpuSeconds() - cpu0, {}));
-    const core::Pose2 before = nav.Estimate();
-    const nav::NavigatorTick tick = nav.OnControlTick(dt);
-    // Fig. 4 and 5: the update with the most rejected beams on the taught route (the estimate
-    // within kOnRoute of its path) while localized (within metrics.lost_error of the local
-    // truth, when there is one). Off the route a map misses what the scan sees, and those
-    // beams are rejected for that.
-    if (update.ran && !tick.map_switch && update.beams_rejected > most_rejected &&
-        std::abs(tick.follow.lateral_error) <= kOnRoute &&
-        (!X_MR_truth || Compare(before, *X_MR_truth).distance <= config.metrics.lost_error)) {
-      most_rejected = update.beams_rejected;
-      const core::Pose2 centre = X_MR_truth ? *X_MR_truth : before;
-      result.snapshot = CaptureSnapshot(nav.localizer(), update, m.scan, {}, stamp,
-                                        static_cast<int>(nav.server().index()),
-                                        X_WR.value_or(core::Pose2::Identity()), centre, {});
-    }
-    if (tick.map_switch) {
-      if (tick.wrapped) ++result.laps_completed;
-      result.switches.push_back({stamp, static_cast<int>(tick.map_switch->from),
-                                 static_cast<int>(tick.map_switch->to),
-                                 X_WR.value_or(core::Pose2::Identity()), tick.map_switch->X_MnR});
-      if (local) {
-        local->Enter(tick.map_switch->to);
-        if (X_WR) X_MR_truth = local->InMap(*X_WR);
-      }
-    } else if (tick.route_done) {
-      result.laps_completed = std::max(result.laps_completed, 1);
-    }
-    result.samples.push_back({stamp, static_cast<int>(nav.server().index()), nav.Estimate(),
-                              *X_OR, nav.localizer().lost(), X_WR, X_MR_truth});
-  });
-  if (result.samples.empty()) {
+  LogReplay replay(streams, teach, config, window, options);
+  logs::ReadScans(index, window.from_s, window.to_s,
+                  [&](const logs::ScanMessage& m, double t) { replay.OnScan(m, t); });
+  if (replay.empty()) {
     throw core::IoError(index.name + ": no scan with odometry between " +
                         core::FormatNumber(window.from_s) + " and " +
                         core::FormatNumber(window.to_s) + " s of the log");
   }
-  result.cpu_time_s = ThreadCpuSeconds() - cpu_start;
-  return result;
+  return replay.Finish(ThreadCpuSeconds() - cpu_start);
 }
 
 }  // namespace retrace::bench
