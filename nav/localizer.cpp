@@ -250,16 +250,8 @@ void Localizer::Predict(const core::OdometryDelta& delta) {
   estimate_ = c ? c->X_MR : anchor_;
 }
 
-LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
-  LocalizerUpdate out;
-  out.particles = static_cast<int>(particles_.size());
-  if (field_ == nullptr || particles_.empty()) return out;
-  const bool moved =
-      std::hypot(odometry_since_update_.x, odometry_since_update_.y) >= config_.update_distance ||
-      std::abs(odometry_since_update_.theta) >= core::DegToRad(config_.update_angle_deg);
-  if (!moved && !force_update_) return out;
-
-  // Select every beam_step-th valid finite reading inside the configured limits.
+std::vector<int> Localizer::SelectBeams(const core::LaserScan& scan) const {
+  // Every beam_step-th valid finite reading inside the configured limits.
   const double lo = std::max(scan.range_min, robot_.range_min);
   const double hi = std::min(scan.range_max, robot_.range_max);
   std::vector<int> tested;
@@ -269,6 +261,56 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
     if (r < lo || r > hi) continue;
     tested.push_back(static_cast<int>(i));
   }
+  return tested;
+}
+
+std::vector<std::uint8_t> Localizer::TestDynamic(const core::LaserScan& scan,
+                                                 const std::vector<int>& tested,
+                                                 std::span<const core::Pose2> X_ML,
+                                                 LocalizerUpdate* out) const {
+  if (!config_.rejection.enabled) return std::vector<std::uint8_t>(tested.size(), 0);
+  const std::size_t n = particles_.size();
+  std::vector<double> prior(n);
+  for (std::size_t j = 0; j < n; ++j) prior[j] = particles_[j].weight;
+  double range_sum = 0.0;
+  for (const int i : tested) range_sum += scan.ranges[static_cast<std::size_t>(i)];
+  out->spread = EndpointSpread(X_ML, prior, range_sum / static_cast<double>(tested.size()));
+  std::vector<core::Pose2> sample_X;
+  std::vector<double> sample_w;
+  StratifiedSample(X_ML, prior, config_.rejection.particles, &sample_X, &sample_w);
+  out->rejection_particles = static_cast<int>(sample_X.size());
+  DynamicBeamResult result;
+  TestDynamicBeams(*beam_model_, *caster_, sample_X, sample_w, scan, tested,
+                   config_.rejection.chi, RayCastMethod::kSphereTracing, &result);
+  return std::move(result.dynamic);
+}
+
+void Localizer::UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out) {
+  const AugmentedMclConfig& aug = config_.augmented;
+  if (any_beam) {
+    if (!averages_started_) {
+      w_slow_ = w_fast_ = w_avg;
+      averages_started_ = true;
+    } else {
+      w_slow_ += aug.alpha_slow * (w_avg - w_slow_);
+      w_fast_ += aug.alpha_fast * (w_avg - w_fast_);
+    }
+  }
+  out->w_avg = w_avg;
+  out->w_slow = w_slow_;
+  out->w_fast = w_fast_;
+  lost_ = averages_started_ && w_fast_ < aug.trigger_ratio * w_slow_;
+}
+
+LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
+  LocalizerUpdate out;
+  out.particles = static_cast<int>(particles_.size());
+  if (field_ == nullptr || particles_.empty()) return out;
+  const bool moved =
+      std::hypot(odometry_since_update_.x, odometry_since_update_.y) >= config_.update_distance ||
+      std::abs(odometry_since_update_.theta) >= core::DegToRad(config_.update_angle_deg);
+  if (!moved && !force_update_) return out;
+  const std::vector<int> tested = SelectBeams(scan);
   if (tested.empty()) return out;  // keep the gate open for the next scan
   out.ran = true;
   out.beams_tested = static_cast<int>(tested.size());
@@ -279,24 +321,9 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   std::vector<core::Pose2> X_ML(n);
   for (std::size_t j = 0; j < n; ++j) X_ML[j] = particles_[j].X_MR * robot_.X_RL;
 
-  // Dynamic scan point rejection (eq. 7-9).
+  // Dynamic scan point rejection (eq. 7-9); the kept beams' end points in L.
+  const std::vector<std::uint8_t> dynamic = TestDynamic(scan, tested, X_ML, &out);
   out.beams.assign(scan.size(), BeamUse::kUnused);
-  std::vector<std::uint8_t> dynamic(tested.size(), 0);
-  if (config_.rejection.enabled) {
-    DynamicBeamResult result;
-    std::vector<double> prior(n);
-    for (std::size_t j = 0; j < n; ++j) prior[j] = particles_[j].weight;
-    std::vector<core::Pose2> sample_X;
-    std::vector<double> sample_w;
-    double range_sum = 0.0;
-    for (const int i : tested) range_sum += scan.ranges[static_cast<std::size_t>(i)];
-    out.spread = EndpointSpread(X_ML, prior, range_sum / static_cast<double>(tested.size()));
-    StratifiedSample(X_ML, prior, config_.rejection.particles, &sample_X, &sample_w);
-    out.rejection_particles = static_cast<int>(sample_X.size());
-    TestDynamicBeams(*beam_model_, *caster_, sample_X, sample_w, scan, tested,
-                     config_.rejection.chi, RayCastMethod::kSphereTracing, &result);
-    dynamic = std::move(result.dynamic);
-  }
   std::vector<double> xs, ys;
   for (std::size_t b = 0; b < tested.size(); ++b) {
     const std::size_t i = static_cast<std::size_t>(tested[b]);
@@ -326,23 +353,9 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   for (std::size_t j = 0; j < n; ++j) particles_[j].weight = w[j];
   out.n_eff = EffectiveSampleSize(w);
 
-  // Short- and long-term averages of the measurement likelihood; lost while the short one is
-  // far below the long one.
-  const AugmentedMclConfig& aug = config_.augmented;
-  if (!xs.empty()) {
-    if (!averages_started_) {
-      w_slow_ = w_fast_ = w_avg;
-      averages_started_ = true;
-    } else {
-      w_slow_ += aug.alpha_slow * (w_avg - w_slow_);
-      w_fast_ += aug.alpha_fast * (w_avg - w_fast_);
-    }
-  }
-  out.w_avg = w_avg;
-  out.w_slow = w_slow_;
-  out.w_fast = w_fast_;
-  lost_ = averages_started_ && w_fast_ < aug.trigger_ratio * w_slow_;
-  if (aug.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
+  // Lost while the short-term average likelihood is far below the long-term one; recovery.
+  UpdateAverages(w_avg, !xs.empty(), &out);
+  if (config_.augmented.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
 
   if (!out.reacquired && out.n_eff < config_.resample_ess_ratio * static_cast<double>(n)) {
     particles_ = config_.kld.enabled ? ResampleKld(w) : ResampleFixed(w);

@@ -266,6 +266,13 @@ class Localizer {
 
  private:
   void ResetAverages();
+  std::vector<int> SelectBeams(const core::LaserScan& scan) const;
+  // Per tested beam, 1 where eq. (9) finds it dynamic; fills out's spread and particle count.
+  std::vector<std::uint8_t> TestDynamic(const core::LaserScan& scan, const std::vector<int>& tested,
+                                        std::span<const core::Pose2> X_ML,
+                                        LocalizerUpdate* out) const;
+  // w_slow, w_fast and the lost state after an update whose average likelihood is w_avg.
+  void UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out);
   std::vector<Particle> ResampleFixed(const std::vector<double>& weights);
   std::vector<Particle> ResampleKld(const std::vector<double>& weights);
   std::vector<core::Pose2> RecoveryHypotheses();
