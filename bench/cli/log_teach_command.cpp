@@ -35,10 +35,13 @@ std::string ModeLine(const ModeTeach& teach) {
                      std::to_string(teach.bundle.maps.size()) +
                      (teach.bundle.maps.size() == 1 ? " map" : " maps");
   if (!teach.online_switches.empty()) {
-    line += ", switched online at";
-    for (const nav::OnlineSwitch& s : teach.online_switches)
-      line += " " + FixedText(s.travelled, 1);
-    line += " m of odometry";
+    line += ", switched online after";
+    for (std::size_t i = 0; i < teach.online_switches.size(); ++i) {
+      const nav::OnlineSwitch& s = teach.online_switches[i];
+      line += (i ? ", " : " ") + FixedText(s.travelled, 1) + " m (" +
+              std::string(core::EnumName(s.reason)) + ")";
+    }
+    line += " of odometry";
   }
   if (teach.mode == MapMode::kScanMatched) {
     const auto& c = teach.match_counts;
