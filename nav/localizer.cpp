@@ -199,6 +199,7 @@ void Localizer::Restart(const core::Pose2& X_MR) {
   trial_.Stop();
   lost_ = false;
   estimate_ = anchor_ = X_MR;
+  estimate_stale_ = false;
   challenger_updates_ = 0;
   const std::optional<ClusterMean> c = ClusterAround(particles_, X_MR);
   if (c) estimate_ = c->X_MR;
@@ -246,8 +247,16 @@ void Localizer::Predict(const core::OdometryDelta& delta) {
   if (trial_.running()) trial_.Predict(delta, noise, rng_);
   anchor_ = core::IntegrateOdometry(anchor_, delta);
   challenger_ = core::IntegrateOdometry(challenger_, delta);
-  const std::optional<ClusterMean> c = ClusterAround(particles_, anchor_);
-  estimate_ = c ? c->X_MR : anchor_;
+  estimate_stale_ = true;  // the cluster's mean, computed when asked (predictions run at 50 Hz)
+}
+
+core::Pose2 Localizer::Estimate() const {
+  if (estimate_stale_) {
+    const std::optional<ClusterMean> c = ClusterAround(particles_, anchor_);
+    estimate_ = c ? c->X_MR : anchor_;
+    estimate_stale_ = false;
+  }
+  return estimate_;
 }
 
 std::vector<int> Localizer::SelectBeams(const core::LaserScan& scan) const {
@@ -314,6 +323,7 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   if (tested.empty()) return out;  // keep the gate open for the next scan
   out.ran = true;
   out.beams_tested = static_cast<int>(tested.size());
+  Estimate();  // as of the prediction, before the weights change: recovery draws around it
   force_update_ = false;
   odometry_since_update_ = core::Pose2::Identity();
 
@@ -418,6 +428,7 @@ void Localizer::FollowCluster(bool jump) {
     }
   }
   estimate_ = anchor_;
+  estimate_stale_ = false;
 }
 
 std::vector<Particle> Localizer::ResampleFixed(const std::vector<double>& weights) {
@@ -486,7 +497,7 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
   };
   for (int k = 0; k < count; ++k) {
     if (k < near || (recovery_poses_.empty() && free_cells_.empty())) {
-      out.push_back(around(estimate_, aug.near_sigma_xy, aug.near_sigma_theta));
+      out.push_back(around(Estimate(), aug.near_sigma_xy, aug.near_sigma_theta));
     } else if (!recovery_poses_.empty()) {
       const core::Pose2& X = recovery_poses_[rng_.UniformIndex(recovery_poses_.size())];
       out.push_back(around(X, aug.path_sigma_xy, aug.path_sigma_theta));
@@ -500,7 +511,7 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
 Eigen::Matrix3d Localizer::Covariance() const {
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   if (particles_.empty()) return cov;
-  const core::Pose2 mean = estimate_;
+  const core::Pose2 mean = Estimate();
   double total = 0.0;
   for (const Particle& p : particles_) {
     const Eigen::Vector3d d(p.X_MR.x - mean.x, p.X_MR.y - mean.y,
@@ -513,7 +524,7 @@ Eigen::Matrix3d Localizer::Covariance() const {
 
 void Localizer::ApplyMapSwitch(const core::OccupancyGrid& next_map, const core::Pose2& X_new_old) {
   for (Particle& p : particles_) p.X_MR = X_new_old * p.X_MR;  // eq. (1)
-  estimate_ = X_new_old * estimate_;
+  estimate_ = X_new_old * Estimate();
   anchor_ = X_new_old * anchor_;
   challenger_ = X_new_old * challenger_;
   SetMap(next_map);

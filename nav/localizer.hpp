@@ -246,7 +246,7 @@ class Localizer {
   /// kClusterAngle) while the followed cluster still holds a tenth of its weight: then only
   /// after the main cluster has stayed there for augmented.confirm_updates updates. A single
   /// update therefore cannot carry the estimate far. The identity before Initialize.
-  core::Pose2 Estimate() const { return estimate_; }
+  core::Pose2 Estimate() const;
   /// Weighted covariance of all particles' (x, y, θ) around Estimate() (m², m·rad, rad²); θ
   /// differences wrapped to [-π, π).
   Eigen::Matrix3d Covariance() const;
@@ -300,7 +300,8 @@ class Localizer {
   bool lost_ = false;
   // The estimate and the cluster it follows (moved by every prediction); a main cluster seen
   // elsewhere, and for how many updates in a row.
-  core::Pose2 estimate_;
+  mutable core::Pose2 estimate_;
+  mutable bool estimate_stale_ = false;
   core::Pose2 anchor_;
   core::Pose2 challenger_;
   int challenger_updates_ = 0;
