@@ -57,6 +57,33 @@ class ObserverFeed {
   double last_switch_ = -std::numeric_limits<double>::infinity();
 };
 
+// The navigation stack at the start of a run: it believes the robot is at map 0's origin.
+nav::Navigator StartNavigator(const Scenario& scenario, const nav::TeachBundle& bundle,
+                              const core::Rng& rng) {
+  const ScenarioConfig& config = scenario.config;
+  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle,
+                     nav::LoopConfig{}, rng.Split("localizer"));
+  nav.Start(core::Pose2::Identity(), config.playback.initial_sigma_xy,
+            core::DegToRad(config.playback.initial_sigma_yaw_deg));
+  return nav;
+}
+
+// Step 2 of the loop: predict from the odometry increment, update with the scan (scored), and
+// keep the scan for avoidance.
+void Localize(const sim::SimStep& s, const sim::Simulator& simulator, nav::Navigator& nav,
+              RunRecorder& recorder, ObserverFeed& feed, std::optional<core::LaserScan>* latest) {
+  if (s.odometry) nav.OnOdometry(*s.odometry);
+  if (!s.lidar) return;
+  const double cpu0 = ThreadCpuSeconds();
+  const nav::LocalizerUpdate update = nav.OnScan(s.lidar->scan);
+  if (update.ran) {
+    recorder.OnUpdate(nav.localizer(), update, *s.lidar, s.time, ThreadCpuSeconds() - cpu0,
+                      nav.server().index(), simulator);
+  }
+  *latest = s.lidar->scan;
+  feed.OnScan(*s.lidar, update);
+}
+
 }  // namespace
 
 core::Rng PlaybackRng(const ScenarioConfig& config, int run) {
@@ -75,12 +102,8 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
   stepper.SetTap(tap);
   ScriptedEvents events(config.events, EventPhase::kPlayback);
   RouteProgress route_progress(scenario.route);
-  // The navigation stack: it believes the robot is at map 0's origin.
-  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle,
-                     nav::LoopConfig{}, rng.Split("localizer"));
+  nav::Navigator nav = StartNavigator(scenario, bundle, rng);
   nav::ObstacleAvoidance avoidance(config.nav.avoidance, scenario.robot);
-  nav.Start(core::Pose2::Identity(), config.playback.initial_sigma_xy,
-            core::DegToRad(config.playback.initial_sigma_yaw_deg));
   RunRecorder recorder(run, rng.seed(), teach, config.metrics, scenario.robot.radius);
   EndConditions end(config.limits, timeout_s);
   ObserverFeed feed(observer);
@@ -92,17 +115,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
     // 1. Step the world; the sensors that came due.
     const sim::SimStep s = stepper.Step(command);
     // 2. Localize: prediction from each odometry increment, correction from each scan.
-    if (s.odometry) nav.OnOdometry(*s.odometry);
-    if (s.lidar) {
-      const double cpu0 = ThreadCpuSeconds();
-      const nav::LocalizerUpdate update = nav.OnScan(s.lidar->scan);
-      if (update.ran) {
-        recorder.OnUpdate(nav.localizer(), update, *s.lidar, s.time, ThreadCpuSeconds() - cpu0,
-                          nav.server().index(), simulator);
-      }
-      latest_scan = s.lidar->scan;
-      feed.OnScan(*s.lidar, update);
-    }
+    Localize(s, simulator, nav, recorder, feed, &latest_scan);
     if (!stepper.ControlDue()) continue;
     const core::Pose2 X_WR = simulator.RobotPose();
     // 3. Follow the taught path; at its end, map k+1 and the pose carried over by eq. (1).
