@@ -6,6 +6,7 @@
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
+#include "core/path_projection.hpp"
 
 namespace retrace::nav {
 
@@ -21,8 +22,18 @@ MapServer::MapServer(TeachBundle bundle, const LoopConfig& loop)
   }
 }
 
-void MapServer::HandOver(Localizer& localizer, PathFollower& follower) const {
+void MapServer::HandOver(Localizer& localizer, PathFollower& follower) {
   follower.SetPath(current().path);
+  previous_tail_.clear();
+  if (HasPrevious()) {
+    const core::Path& path = bundle_.maps[PreviousIndex()].path;
+    const core::Pose2 X_this_previous = CurrentInPrevious().Inverse();
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      if (path.Length() - path.ArcLength(i) <= kPreviousPathReach)
+        previous_tail_.push_back((X_this_previous * path[i]).translation());
+    }
+  }
+  previous_tail_arc_ = core::CumulativeArcLength(previous_tail_);
   std::vector<core::Pose2> where = current().path.poses();
   const bool has_next = !IsLast() || loops_;
   if (has_next) {
@@ -44,10 +55,40 @@ void MapServer::Start(Localizer& localizer, PathFollower& follower) {
   HandOver(localizer, follower);
 }
 
-MapStep MapServer::Decide(const FollowerOutput& f) const {
-  if (!f.goal_reached && f.remaining > kPathEndTolerance) return MapStep::kStay;
-  if (!IsLast()) return MapStep::kNext;
-  return loops_ ? MapStep::kWrap : MapStep::kDone;
+MapStep MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
+                          double max_distance) const {
+  if (f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path)) {
+    if (!IsLast()) return MapStep::kNext;
+    return loops_ ? MapStep::kWrap : MapStep::kDone;
+  }
+  if (f.off_path && previous_tail_.size() >= 2 &&
+      core::ProjectOntoPath(previous_tail_, previous_tail_arc_, X_MR.translation(), 0.0,
+                            previous_tail_arc_.back())
+              .distance <= max_distance) {
+    return MapStep::kBack;
+  }
+  return MapStep::kStay;
+}
+
+core::Pose2 MapServer::CurrentInPrevious() const {
+  return index_ > 0 ? bundle_.maps[index_ - 1].X_MS : LastMapInFirst().Inverse();
+}
+
+MapSwitch MapServer::SwitchBack(Localizer& localizer, PathFollower& follower) {
+  RETRACE_CHECK(HasPrevious());
+  MapSwitch s;
+  s.from = index_;
+  s.to = PreviousIndex();
+  s.X_MkR = localizer.Estimate();
+  const core::Pose2 X_previous_this = CurrentInPrevious();
+  const bool wraps = index_ == 0;
+  index_ = s.to;
+  localizer.ApplyMapSwitch(current().grid, X_previous_this);
+  HandOver(localizer, follower);
+  if (wraps) SpreadAfterWrap(localizer);
+  follower.SetPathFromEnd(current().path, localizer.Estimate().translation(), kPreviousPathReach);
+  s.X_MnR = localizer.Estimate();
+  return s;
 }
 
 MapSwitch MapServer::SwitchToNext(Localizer& localizer, PathFollower& follower) {
@@ -82,12 +123,16 @@ MapSwitch MapServer::WrapToFirst(Localizer& localizer, PathFollower& follower) {
   index_ = 0;
   localizer.ApplyMapSwitch(current().grid, X_first_last);
   HandOver(localizer, follower);
+  SpreadAfterWrap(localizer);
+  s.X_MnR = localizer.Estimate();
+  return s;
+}
+
+void MapServer::SpreadAfterWrap(Localizer& localizer) const {
   // The chain of switch poses carries the maps' drift over the whole loop: spread the particles
   // over what that drift allows, and let the scans find the robot again.
   const double sigma_xy = std::max(loop_.min_sigma_xy, 0.5 * loop_.drift * route_length_);
   localizer.Initialize(localizer.Estimate(), sigma_xy, loop_.min_sigma_theta);
-  s.X_MnR = localizer.Estimate();
-  return s;
 }
 
 }  // namespace retrace::nav

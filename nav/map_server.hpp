@@ -5,6 +5,7 @@
 // one rule for when that happens (Decide), for the simulator's playback and a log's replay alike.
 
 #include <cstddef>
+#include <vector>
 
 #include "core/pose2.hpp"
 #include "nav/localizer.hpp"
@@ -48,6 +49,7 @@ enum class MapStep {
   kNext,  ///< at the end of a path that is not the last: switch to the next map
   kWrap,  ///< at the end of the last path of a loop with LoopConfig::enabled: back to map 0
   kDone,  ///< at the end of the last path: the route is done
+  kBack,  ///< off the current path and back on the previous map's: switch back to it
 };
 
 class MapServer {
@@ -58,6 +60,9 @@ class MapServer {
   /// Of the next map's path, this much (m) from its start also counts as where the robot can be
   /// in the current map (recovery hypotheses: the robot may be past the switch point).
   static constexpr double kNextPathReach = 20.0;
+  /// Of the previous map's path, this much (m) before its end counts as where a robot that
+  /// drives the route backwards comes back into it (Decide's kBack).
+  static constexpr double kPreviousPathReach = 20.0;
 
   /// Takes the teach bundle. Throws core::ConfigError if it holds no map.
   explicit MapServer(TeachBundle bundle, const LoopConfig& loop = {});
@@ -74,8 +79,13 @@ class MapServer {
   void Start(Localizer& localizer, PathFollower& follower);
   /// The one rule: at the end of the current path (follower goal reached, or within
   /// kPathEndTolerance of the end), the next map; after the last one, map 0 again for a loop
-  /// that is driven again, else done.
-  MapStep Decide(const FollowerOutput& follower_output) const;
+  /// that is driven again, else done. Off the current path (the follower's progress waits) and
+  /// within `max_distance` of the last kPreviousPathReach m of the previous map's path (map 0's
+  /// previous is the last map of a loop), back to the previous map: a robot driven backwards
+  /// along the route, as a recorded drive may be, is localized in the map that holds it. A
+  /// robot that follows the route never meets this case.
+  MapStep Decide(const FollowerOutput& follower_output, const core::Pose2& X_MR,
+                 double max_distance) const;
   /// Switches to the next map: the localizer gets map k+1 with every particle and the
   /// estimate transformed by eq. (1), the follower gets path k+1. Requires !IsLast().
   MapSwitch SwitchToNext(Localizer& localizer, PathFollower& follower);
@@ -88,17 +98,30 @@ class MapServer {
   /// particle becomes X_{M_0 R} = LastMapInFirst() * X_{M_n R}, then the particles are spread
   /// as LoopConfig says. Requires IsLast().
   MapSwitch WrapToFirst(Localizer& localizer, PathFollower& follower);
+  /// Back to the previous map (Decide's kBack): every particle becomes
+  /// X_{M_{k-1} R} = X_{M_{k-1} S} * X_{M_k R} (eq. (1) inverted), or, from map 0 of a loop,
+  /// X_{M_n R} = inverse(LastMapInFirst()) * X_{M_0 R} spread as after a wrap; the follower's
+  /// progress starts where the robot is on the previous path's end.
+  MapSwitch SwitchBack(Localizer& localizer, PathFollower& follower);
 
  private:
   // The current path's poses and the first kNextPathReach m of the next map's (in the current
   // map's frame): where recovery looks for the robot.
-  void HandOver(Localizer& localizer, PathFollower& follower) const;
+  void HandOver(Localizer& localizer, PathFollower& follower);
+  bool HasPrevious() const { return index_ > 0; }
+  std::size_t PreviousIndex() const { return index_ > 0 ? index_ - 1 : bundle_.maps.size() - 1; }
+  // X_{M_{k-1} M_k}: the current map's frame in the previous map's.
+  core::Pose2 CurrentInPrevious() const;
+  void SpreadAfterWrap(Localizer& localizer) const;
 
   TeachBundle bundle_;
   LoopConfig loop_;
   bool loops_ = false;
   double route_length_ = 0.0;
   std::size_t index_ = 0;
+  // The previous map's path's last kPreviousPathReach m, in the current map's frame.
+  std::vector<core::Vec2> previous_tail_;
+  std::vector<double> previous_tail_arc_;
 };
 
 }  // namespace retrace::nav

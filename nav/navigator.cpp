@@ -19,7 +19,8 @@ void Navigator::Start(const core::Pose2& X_M0R, double sigma_xy, double sigma_th
 NavigatorTick Navigator::OnControlTick(double dt) {
   NavigatorTick tick;
   tick.follow = follower_.Compute(localizer_.Estimate(), dt);
-  switch (server_.Decide(tick.follow)) {
+  switch (server_.Decide(tick.follow, localizer_.Estimate(),
+                         follower_.config().progress_max_distance)) {
     case MapStep::kStay:
       break;
     case MapStep::kDone:
@@ -27,6 +28,10 @@ NavigatorTick Navigator::OnControlTick(double dt) {
       break;
     case MapStep::kNext:
       tick.map_switch = server_.SwitchToNext(localizer_, follower_);
+      tick.follow = follower_.Compute(localizer_.Estimate(), dt);
+      break;
+    case MapStep::kBack:
+      tick.map_switch = server_.SwitchBack(localizer_, follower_);
       tick.follow = follower_.Compute(localizer_.Estimate(), dt);
       break;
     case MapStep::kWrap:

@@ -24,6 +24,12 @@ const PathFollowerConfig& Validated(const PathFollowerConfig& config) {
 void PathFollowerConfig::Validate() const {
   core::RequirePositive("look_ahead", look_ahead);
   core::RequirePositive("progress_window", progress_window);
+  core::RequirePositive("progress_max_distance", progress_max_distance);
+  if (!(rejoin_window >= progress_window)) {
+    throw core::ConfigError("rejoin_window", "must be >= progress_window (" +
+                                                 core::FormatNumber(progress_window) + "), got " +
+                                                 core::FormatNumber(rejoin_window));
+  }
   core::RequirePositive("tangent_window", tangent_window);
   core::RequirePositive("max_speed", max_speed);
   core::RequireInRange("min_speed", min_speed, 0.0, max_speed);
@@ -55,6 +61,15 @@ void PathFollower::SetPath(const core::Path& path) {
   previous_heading_ = 0.0;
   lateral_rate_ = 0.0;
   heading_rate_ = 0.0;
+}
+
+void PathFollower::SetPathFromEnd(const core::Path& path, const core::Vec2& p_M, double reach) {
+  SetPath(path);
+  const double length = path_.Length();
+  if (length <= kTinyLength) return;
+  progress_.MoveTo(core::ProjectOntoPath(path_.positions(), path_.arc_lengths(), p_M,
+                                         std::max(0.0, length - reach), length)
+                       .s);
 }
 
 double PathFollower::TangentAt(double s) const {
@@ -108,6 +123,21 @@ std::size_t PathFollower::IndexAt(double s) const {
   return lo;
 }
 
+bool PathFollower::AdvanceProgress(const core::Vec2& p_M, double length) {
+  // Monotonic progress inside the search window, starting from the first path pose; off the
+  // path it waits, unless the robot has rejoined the path a little further ahead.
+  const double s = progress_.value();
+  core::PathProjection near = core::ProjectOntoPath(path_.positions(), path_.arc_lengths(), p_M,
+                                                    s, std::min(length, s + config_.progress_window));
+  if (near.distance > config_.progress_max_distance) {
+    near = core::ProjectOntoPath(path_.positions(), path_.arc_lengths(), p_M, s,
+                                 std::min(length, s + config_.rejoin_window));
+    if (near.distance > config_.progress_max_distance) return false;
+  }
+  progress_.MoveTo(near.s);
+  return true;
+}
+
 FollowerOutput PathFollower::Compute(const core::Pose2& X_MR, double dt) {
   RETRACE_CHECK(std::isfinite(dt) && dt > 0.0);
   RETRACE_CHECK(std::isfinite(X_MR.x) && std::isfinite(X_MR.y) && std::isfinite(X_MR.theta));
@@ -119,11 +149,7 @@ FollowerOutput PathFollower::Compute(const core::Pose2& X_MR, double dt) {
   const double length = path_.Length();
   const core::Vec2 p_M = X_MR.translation();
 
-  // Monotonic progress inside the search window, starting from the first path pose.
-  if (length > kTinyLength && !goal_reached_) {
-    progress_.Advance(path_.positions(), path_.arc_lengths(), p_M,
-                      std::min(length, progress_.value() + config_.progress_window));
-  }
+  if (length > kTinyLength && !goal_reached_) out.off_path = !AdvanceProgress(p_M, length);
   const double s = progress_.value();
   const double remaining = std::max(0.0, length - s);
   const core::Vec2 end_M = path_.back().translation();

@@ -47,6 +47,15 @@ struct PathFollowerConfig {
   /// m. Progress is searched only in [s_prev, s_prev + progress_window] of arc length, so it
   /// never jumps to a later part of a path that passes nearby.
   double progress_window = 1.5;
+  /// m. The progress moves only while the robot is within this distance of the path: a robot
+  /// off the route (a wide detour, a lost estimate, a recorded drive that went elsewhere or
+  /// drove the route backwards) does not drag it along to the end of the path and its map
+  /// switch. It waits where the robot left the path.
+  double progress_max_distance = 2.0;
+  /// m. While off the path, the robot may rejoin it this far ahead of the progress (it cut a
+  /// corner or took a parallel corridor): the progress moves there once it is within
+  /// progress_max_distance of it.
+  double rejoin_window = 10.0;
   /// m. Length of the chord that defines the path tangent (and curvature) at an arc length.
   double tangent_window = 0.5;
   double max_speed = 1.0;     ///< m/s
@@ -71,6 +80,8 @@ struct PathFollowerConfig {
   void Reflect(V& v) {
     v("look_ahead", look_ahead);
     v("progress_window", progress_window);
+    v("progress_max_distance", progress_max_distance);
+    v("rejoin_window", rejoin_window);
     v("tangent_window", tangent_window);
     v("max_speed", max_speed);
     v("min_speed", min_speed);
@@ -99,6 +110,9 @@ struct FollowerOutput {
   double lateral_error = 0.0;  ///< m, > 0 when the robot is left of the path
   double heading_error = 0.0;  ///< rad, path heading minus robot heading, in [-pi, pi)
   bool goal_reached = false;
+  /// The robot was farther than progress_max_distance from the path ahead of its progress
+  /// (and rejoin_window did not find it either): the progress waited.
+  bool off_path = false;
 };
 
 /// Follows a path given in the current map frame M from the localizer's pose estimates.
@@ -112,6 +126,9 @@ class PathFollower {
   /// Starts following `path` (poses in the current map frame M) from its first pose: progress
   /// and derivative state are reset. An empty path counts as already reached.
   void SetPath(const core::Path& path);
+  /// As SetPath, but the progress starts at the robot's place on the path's last `reach`
+  /// metres (a robot that came back into this path from the next one, driving backwards).
+  void SetPathFromEnd(const core::Path& path, const core::Vec2& p_M, double reach);
   const core::Path& path() const { return path_; }
 
   /// One control step from the estimate X_MR (robot R in map M) after dt s (the control
@@ -124,6 +141,7 @@ class PathFollower {
   double CurvatureAt(double s) const;
   double SpeedLimitAhead(double s) const;
   std::size_t IndexAt(double s) const;
+  bool AdvanceProgress(const core::Vec2& p_M, double length);
 
   PathFollowerConfig config_;
   core::Path path_;

@@ -89,15 +89,19 @@ TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
 
 TEST(MapServer, DecidesOnTheEndOfThePathByGoalOrRemainingArc) {
   MapServer server(TwoMaps(core::Pose2(4.0, 0.0, 0.0)));
+  const core::Pose2 X_MR(3.9, 0.0, 0.0);
   FollowerOutput out;
   out.goal_reached = false;
   out.remaining = 0.2;
-  EXPECT_EQ(server.Decide(out), MapStep::kStay);
+  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kStay);
   out.remaining = MapServer::kPathEndTolerance;  // a log's estimate that passed the end
-  EXPECT_EQ(server.Decide(out), MapStep::kNext);
+  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kNext);
+  out.off_path = true;  // the progress is at the end, but the robot is elsewhere
+  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kStay);
+  out.off_path = false;
   out.remaining = 0.2;
   out.goal_reached = true;
-  EXPECT_EQ(server.Decide(out), MapStep::kNext);
+  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kNext);
   EXPECT_THROW(MapServer(TeachBundle{}), core::ConfigError);
 }
 
@@ -118,15 +122,54 @@ TEST(MapServer, WrapsOnlyALoopWhenLoopingIsOn) {
   line.SwitchToNext(localizer, follower);
   FollowerOutput end;
   end.goal_reached = true;
-  EXPECT_EQ(line.Decide(end), MapStep::kDone);
+  EXPECT_EQ(line.Decide(end, core::Pose2::Identity(), 2.0), MapStep::kDone);
   loop.closure_radius = 100.0;  // everything closes within 100 m
   MapServer ring(straight, loop);
   EXPECT_TRUE(ring.loops());
   ring.Start(localizer, follower);
   ring.SwitchToNext(localizer, follower);
-  EXPECT_EQ(ring.Decide(end), MapStep::kWrap);
+  EXPECT_EQ(ring.Decide(end, core::Pose2::Identity(), 2.0), MapStep::kWrap);
   loop.enabled = false;
   EXPECT_FALSE(MapServer(straight, loop).loops());
+}
+
+TEST(MapServer, SwitchesBackWhenTheRouteIsDrivenBackwards) {
+  // Map 0's path ends at its switch pose (4, 0), turned by 90 degrees: map 1 starts there
+  // heading +y in map 0. A robot in map 1 that drives back past map 1's start onto map 0's path
+  // goes back to map 0, with its pose carried by X_{M_0 S}, and the follower's progress where
+  // the robot is on path 0.
+  const core::Pose2 X_M0S(4.0, 0.0, core::kPi / 2);
+  TeachBundle bundle = TwoMaps(X_M0S);
+  bundle.maps[0].path = core::Path({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, X_M0S});
+  MapServer server(bundle);
+  Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(5));
+  PathFollower follower(PathFollowerConfig{});
+  server.Start(localizer, follower);
+  localizer.Initialize(X_M0S, 0.01, 0.01);
+  server.SwitchToNext(localizer, follower);
+
+  // In map 1, on its path: stay. Map 0's (1.5, 0) facing back is (0, 2.5) in map 1, and 2.5 m
+  // from map 1's path ahead.
+  FollowerOutput on = follower.Compute(core::Pose2(0.5, 0.0, 0.0), 0.05);
+  EXPECT_EQ(server.Decide(on, core::Pose2(0.5, 0.0, 0.0), 2.0), MapStep::kStay);
+  const core::Pose2 X_M1R = X_M0S.Inverse() * core::Pose2(1.5, 0.0, core::kPi);
+  localizer.Initialize(X_M1R, 0.01, 0.01);
+  FollowerOutput off = follower.Compute(X_M1R, 0.05);
+  ASSERT_TRUE(off.off_path);
+  EXPECT_EQ(server.Decide(off, X_M1R, 2.0), MapStep::kBack);
+  const core::Pose2 elsewhere(5.0, 5.0, 0.0);  // 5 m from both paths
+  EXPECT_EQ(server.Decide(off, elsewhere, 2.0), MapStep::kStay);
+
+  const MapSwitch s = server.SwitchBack(localizer, follower);
+  EXPECT_EQ(s.from, 1u);
+  EXPECT_EQ(s.to, 0u);
+  EXPECT_EQ(server.index(), 0u);
+  ExpectPoseNear(localizer.Estimate(), core::Pose2(1.5, 0.0, core::kPi), 0.05);
+  EXPECT_NEAR(follower.Compute(localizer.Estimate(), 0.05).remaining, 2.5, 0.05);
+  // Map 0 has no previous map (and no loop): off its path, it stays.
+  FollowerOutput lost = follower.Compute(core::Pose2(1.5, 6.0, 0.0), 0.05);
+  ASSERT_TRUE(lost.off_path);
+  EXPECT_EQ(server.Decide(lost, core::Pose2(1.5, 6.0, 0.0), 2.0), MapStep::kStay);
 }
 
 }  // namespace

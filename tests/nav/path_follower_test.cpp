@@ -296,6 +296,35 @@ TEST(PathFollower, DoesNotReportGoalWhenNearTheEndPositionEarly) {
   EXPECT_GT(first.command.v, 0.0);
 }
 
+TEST(PathFollower, ProgressWaitsOffThePathAndRejoinsAhead) {
+  // A 30 m straight path; the robot is carried 5 m to the side and along it (a drive that left
+  // the route): the progress does not creep after it, and the path's end stays far.
+  PathFollower follower({});
+  follower.SetPath(Straight(30.0));
+  EXPECT_FALSE(follower.Compute(Pose2(1.0, 0.0, 0.0), kPeriod).off_path);
+  FollowerOutput out;
+  for (int i = 0; i < 200; ++i) out = follower.Compute(Pose2(1.0 + 0.1 * i, 5.0, 0.0), kPeriod);
+  EXPECT_TRUE(out.off_path);
+  EXPECT_NEAR(out.remaining, 29.0, 1e-9);
+  // Back on the path 8 m further on (within rejoin_window): the progress moves there.
+  out = follower.Compute(Pose2(9.0, 0.5, 0.0), kPeriod);
+  EXPECT_FALSE(out.off_path);
+  EXPECT_NEAR(out.remaining, 21.0, 1e-9);
+  // Back on it 15 m further on, beyond rejoin_window: still waiting.
+  out = follower.Compute(Pose2(24.0, 0.5, 0.0), kPeriod);
+  EXPECT_TRUE(out.off_path);
+  EXPECT_NEAR(out.remaining, 21.0, 1e-9);
+}
+
+TEST(PathFollower, SetPathFromEndStartsWhereTheRobotIsOnTheEnd) {
+  PathFollower follower({});
+  follower.SetPathFromEnd(Straight(30.0), Vec2(26.0, 0.3), 20.0);
+  EXPECT_NEAR(follower.Compute(Pose2(26.0, 0.3, 0.0), kPeriod).remaining, 4.0, 1e-9);
+  // Only the last `reach` metres are searched.
+  follower.SetPathFromEnd(Straight(30.0), Vec2(2.0, 0.0), 20.0);
+  EXPECT_NEAR(follower.Compute(Pose2(2.0, 0.0, 0.0), kPeriod).remaining, 20.0, 1e-9);
+}
+
 TEST(PathFollower, EmptyPathIsReached) {
   PathFollower follower({});
   follower.SetPath(core::Path{});
@@ -325,6 +354,11 @@ TEST(PathFollower, RejectsInvalidConfigNamingTheKey) {
       "goal_tolerance");
   EXPECT_EQ(ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.kp_lateral = -1.0; }),
             "kp_lateral");
+  EXPECT_EQ(ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.rejoin_window = 1.0; }),
+            "rejoin_window");
+  EXPECT_EQ(
+      ValidationErrorKey<PathFollowerConfig>([](auto& c) { c.progress_max_distance = 0.0; }),
+      "progress_max_distance");
   PathFollowerConfig bad;
   bad.decel = 0.0;
   EXPECT_THROW(PathFollower{bad}, core::ConfigError);
