@@ -13,10 +13,4 @@ bool LaserScan::NoReturn(std::size_t i) const {
   return std::isinf(ranges[i]) && ranges[i] > 0.0f;
 }
 
-std::size_t LaserScan::CountValid() const {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < ranges.size(); ++i) n += Valid(i) ? 1 : 0;
-  return n;
-}
-
 }  // namespace retrace::core

@@ -23,7 +23,6 @@ struct LaserScan {
   bool Valid(std::size_t i) const;
   /// True if beam i reported no return (+inf): free space up to range_max along it.
   bool NoReturn(std::size_t i) const;
-  std::size_t CountValid() const;
 };
 
 }  // namespace retrace::core

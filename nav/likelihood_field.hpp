@@ -92,8 +92,6 @@ class LikelihoodField {
   double SumLogLikelihood(const core::Pose2& X_ML, const double* xs_L, const double* ys_L,
                           std::size_t n) const;
 
-  /// Row-major per-cell tables (index y * width + x).
-  const std::vector<float>& log_likelihood() const { return log_likelihood_; }
   /// Distance (m) from each cell centre to the nearest occupied cell centre, untruncated; +inf
   /// when the map has no occupied cell.
   const std::vector<float>& distance() const { return distance_; }

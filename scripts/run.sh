@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the main job: the campus scenario in all three map
-# modes (partial maps, one odometry map, a ground-truth map), writing results/campus/.
+# Installs what is missing, builds, and runs the main job: the campus scenario in all four map
+# modes (partial maps, scan-matched partial maps, one odometry map, a ground-truth map), writing
+# results/campus/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh

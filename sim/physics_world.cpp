@@ -265,19 +265,12 @@ int PhysicsWorld::AddPedestrian(const core::Vec2& p_W, double radius, double mas
   return id;
 }
 
-int PhysicsWorld::pedestrian_count() const { return static_cast<int>(impl_->pedestrians.size()); }
-
 core::Vec2 PhysicsWorld::PedestrianPosition(int id) const {
   return FromB2(impl_->Pedestrian(id)->GetPosition());
 }
 
 core::Vec2 PhysicsWorld::PedestrianVelocity(int id) const {
   return FromB2(impl_->Pedestrian(id)->GetLinearVelocity());
-}
-
-double PhysicsWorld::PedestrianRadius(int id) const {
-  impl_->Pedestrian(id);  // bounds check
-  return impl_->pedestrian_radii[static_cast<std::size_t>(id)];
 }
 
 void PhysicsWorld::SetPedestrianVelocity(int id, const core::Vec2& v_W) {

@@ -89,10 +89,8 @@ class PhysicsWorld {
   /// Adds a pedestrian as a dynamic circle (non-rotating) at p_W (m) with radius (m) and
   /// mass (kg), at rest. Returns its id: 0, 1, 2, ... in order of addition.
   int AddPedestrian(const core::Vec2& p_W, double radius, double mass);
-  int pedestrian_count() const;
   core::Vec2 PedestrianPosition(int id) const;  ///< W, m
   core::Vec2 PedestrianVelocity(int id) const;  ///< W, m/s
-  double PedestrianRadius(int id) const;        ///< m
   /// Sets a pedestrian's linear velocity in W (m/s) for the next step.
   void SetPedestrianVelocity(int id, const core::Vec2& v_W);
   /// All pedestrians as circles in W at the current time (id = pedestrian id).
