@@ -40,92 +40,134 @@ std::vector<std::size_t> Columns(const std::vector<std::string>& header,
   return out;
 }
 
-viz::SweepFigureData ReadSweep(const std::filesystem::path& file,
-                               const std::vector<std::string>& parameters,
-                               const std::vector<std::string>& metrics) {
-  const std::vector<io::CsvRecord> records = io::ReadCsvFile(file);
-  if (records.empty())
-    throw core::IoError(file.string() + ": empty file, expected a sweep's results.csv");
-  const std::vector<std::string>& header = records.front().cells;
+// The header must start with case,combo,repeat,seed and name no column twice.
+void CheckHeader(const io::CsvRecord& header_record, const std::filesystem::path& file) {
+  const std::vector<std::string>& header = header_record.cells;
   const std::vector<std::string> fixed = {"case", "combo", "repeat", "seed"};
   if (header.size() < fixed.size() || !std::equal(fixed.begin(), fixed.end(), header.begin())) {
-    Fail(file, records.front().line,
+    Fail(file, header_record.line,
          "the header must start with case,combo,repeat,seed (a sweep's results.csv)");
   }
   for (std::size_t i = 0; i < header.size(); ++i) {
     if (std::find(header.begin(), header.begin() + static_cast<std::ptrdiff_t>(i), header[i]) !=
         header.begin() + static_cast<std::ptrdiff_t>(i)) {
-      Fail(file, records.front().line,
+      Fail(file, header_record.line,
            "column " + Quoted(header[i]) + " appears twice in the header");
     }
   }
-  const std::vector<std::size_t> param_cols = Columns(header, parameters, "varied parameter", file);
-  const std::vector<std::size_t> metric_cols = Columns(header, metrics, "metric", file);
+}
 
-  viz::SweepFigureData data;
-  data.parameters = parameters;
-  data.metrics = metrics;
-  std::map<std::string, std::size_t> combo_index;           // combo cell -> combination
-  std::map<std::string, int> combo_line;                    // where each combo was first seen
-  std::map<std::pair<std::string, std::string>, int> seen;  // (combo, repeat) -> line
-  for (std::size_t r = 1; r < records.size(); ++r) {
-    const io::CsvRecord& rec = records[r];
-    if (rec.cells.size() != header.size()) {
-      Fail(file, rec.line,
-           "expected " + std::to_string(header.size()) + " cells as in the header, got " +
+// Groups the cases by combo: each combo's parameter values (the same in every repeat) and its
+// metrics per repeat.
+class CaseGrouper {
+ public:
+  CaseGrouper(const std::filesystem::path& file, std::size_t cells,
+              std::vector<std::size_t> param_cols, std::vector<std::size_t> metric_cols,
+              viz::SweepFigureData* data)
+      : file_(file),
+        cells_(cells),
+        param_cols_(std::move(param_cols)),
+        metric_cols_(std::move(metric_cols)),
+        data_(*data) {}
+
+  void Add(const io::CsvRecord& rec) {
+    if (rec.cells.size() != cells_) {
+      Fail(file_, rec.line,
+           "expected " + std::to_string(cells_) + " cells as in the header, got " +
                std::to_string(rec.cells.size()));
     }
     const std::string& combo = rec.cells[1];
     const std::string& repeat = rec.cells[2];
-    if (combo.empty()) Fail(file, rec.line, "empty combo cell");
-    const auto [where, fresh] = seen.emplace(std::make_pair(combo, repeat), rec.line);
+    if (combo.empty()) Fail(file_, rec.line, "empty combo cell");
+    const auto [where, fresh] = seen_.emplace(std::make_pair(combo, repeat), rec.line);
     if (!fresh) {
-      Fail(file, rec.line,
+      Fail(file_, rec.line,
            "combo " + Quoted(combo) + " repeat " + Quoted(repeat) +
                " appears twice (also at line " + std::to_string(where->second) + ")");
     }
-    std::vector<std::string> values;
-    for (std::size_t k = 0; k < param_cols.size(); ++k) {
-      const std::string& v = rec.cells[param_cols[k]];
-      if (v.empty()) Fail(file, rec.line, parameters[k] + ": empty value");
-      values.push_back(v);
-    }
-    auto [it, added] = combo_index.emplace(combo, data.combinations.size());
-    if (added) {
-      combo_line[combo] = rec.line;
-      viz::SweepCombination c;
-      c.values = values;
-      c.metrics.resize(metrics.size());
-      data.combinations.push_back(std::move(c));
-    }
-    viz::SweepCombination& c = data.combinations[it->second];
-    for (std::size_t k = 0; k < values.size(); ++k) {
-      if (values[k] != c.values[k]) {
-        Fail(file, rec.line,
-             "combo " + Quoted(combo) + " has " + parameters[k] + " = " + Quoted(values[k]) +
-                 " here but " + Quoted(c.values[k]) + " at line " +
-                 std::to_string(combo_line[combo]));
-      }
-    }
-    for (std::size_t k = 0; k < metric_cols.size(); ++k) {
-      const std::string& cell = rec.cells[metric_cols[k]];
+    viz::SweepCombination& c = Combination(combo, ParameterValues(rec), rec.line);
+    for (std::size_t k = 0; k < metric_cols_.size(); ++k) {
+      const std::string& cell = rec.cells[metric_cols_[k]];
       const std::optional<double> v = io::ParseCsvNumber(cell);
-      if (!v) Fail(file, rec.line, metrics[k] + ": expected a number or nan, got " + Quoted(cell));
+      if (!v) {
+        Fail(file_, rec.line,
+             data_.metrics[k] + ": expected a number or nan, got " + Quoted(cell));
+      }
       c.metrics[k].push_back(*v);
     }
   }
+
+ private:
+  std::vector<std::string> ParameterValues(const io::CsvRecord& rec) const {
+    std::vector<std::string> values;
+    for (std::size_t k = 0; k < param_cols_.size(); ++k) {
+      const std::string& v = rec.cells[param_cols_[k]];
+      if (v.empty()) Fail(file_, rec.line, data_.parameters[k] + ": empty value");
+      values.push_back(v);
+    }
+    return values;
+  }
+
+  // The combination of `combo`, added when first seen; its values must agree with `values`.
+  viz::SweepCombination& Combination(const std::string& combo,
+                                     const std::vector<std::string>& values, int line) {
+    const auto [it, added] = combo_index_.emplace(combo, data_.combinations.size());
+    if (added) {
+      combo_line_[combo] = line;
+      viz::SweepCombination c;
+      c.values = values;
+      c.metrics.resize(data_.metrics.size());
+      data_.combinations.push_back(std::move(c));
+    }
+    viz::SweepCombination& c = data_.combinations[it->second];
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      if (values[k] != c.values[k]) {
+        Fail(file_, line,
+             "combo " + Quoted(combo) + " has " + data_.parameters[k] + " = " +
+                 Quoted(values[k]) + " here but " + Quoted(c.values[k]) + " at line " +
+                 std::to_string(combo_line_[combo]));
+      }
+    }
+    return c;
+  }
+
+  const std::filesystem::path& file_;
+  std::size_t cells_;
+  std::vector<std::size_t> param_cols_;
+  std::vector<std::size_t> metric_cols_;
+  viz::SweepFigureData& data_;
+  std::map<std::string, std::size_t> combo_index_;           // combo cell -> combination
+  std::map<std::string, int> combo_line_;                    // where each combo was first seen
+  std::map<std::pair<std::string, std::string>, int> seen_;  // (combo, repeat) -> line
+};
+
+}  // namespace
+
+viz::SweepFigureData ReadSweepResults(const std::filesystem::path& file,
+                                      const std::vector<std::string>& parameters,
+                                      const std::vector<std::string>& metrics) {
+  const std::vector<io::CsvRecord> records = io::ReadCsvFile(file);
+  if (records.empty())
+    throw core::IoError(file.string() + ": empty file, expected a sweep's results.csv");
+  CheckHeader(records.front(), file);
+  const std::vector<std::string>& header = records.front().cells;
+  viz::SweepFigureData data;
+  data.parameters = parameters;
+  data.metrics = metrics;
+  std::vector<std::size_t> param_cols = Columns(header, parameters, "varied parameter", file);
+  std::vector<std::size_t> metric_cols = Columns(header, metrics, "metric", file);
+  CaseGrouper cases(file, header.size(), std::move(param_cols), std::move(metric_cols), &data);
+  for (std::size_t r = 1; r < records.size(); ++r) cases.Add(records[r]);
   if (data.combinations.empty())
     throw core::IoError(file.string() + ": holds a header but no case");
   return data;
 }
 
-}  // namespace
-
 void RenderSweepPlot(const std::filesystem::path& results_csv,
                      const std::vector<std::string>& parameters,
                      const std::vector<std::string>& metrics, const std::filesystem::path& png,
                      const std::string& title) {
-  const viz::SweepFigureData data = ReadSweep(results_csv, parameters, metrics);
+  const viz::SweepFigureData data = ReadSweepResults(results_csv, parameters, metrics);
   viz::FigureOptions options;
   // About 560 px per parameter column keeps tick labels apart; never narrower than the other
   // figures' usual 1200 px.

@@ -6,7 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "viz/sweep_figure.hpp"
+
 namespace retrace::bench {
+
+/// Reads a sweep's results.csv strictly, as RenderSweepPlot does: one combination per combo
+/// cell, in order of first appearance, with its parameter values as written and each metric's
+/// value per repeat (NaN for "nan"). Throws core::IoError as RenderSweepPlot.
+viz::SweepFigureData ReadSweepResults(const std::filesystem::path& results_csv,
+                                      const std::vector<std::string>& parameters,
+                                      const std::vector<std::string>& metrics);
 
 /// Reads a sweep's results.csv (header: case,combo,repeat,seed, then the varied parameters,
 /// then the metrics; NaN written as "nan") and renders `png` (viz::RenderSweepFigure: one row

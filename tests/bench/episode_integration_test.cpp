@@ -54,8 +54,12 @@ TEST(Episode, SmallScenarioPlaybackSucceedsWithPlausibleMetrics) {
   EXPECT_LT(m.switch_error_max_m, 0.5);
   EXPECT_NEAR(m.path_length_m, scenario.route_length, 0.1 * scenario.route_length);
   EXPECT_EQ(m.collisions.pedestrian_incidents, 0);
-  EXPECT_GT(m.cpu.localizer_updates, 0);  // timings are recorded (never asserted: machines vary)
-  EXPECT_GT(m.cpu.cpu_time_s, 0.0);
+  // Timings are recorded (their values are never asserted: machines vary), consistently: the
+  // run's CPU time holds its localizer updates', and the real-time factor is the ratio.
+  EXPECT_EQ(m.cpu.localizer_updates, static_cast<int>(run.updates.size()));
+  EXPECT_GT(m.cpu.localizer_updates, 0);
+  EXPECT_GE(m.cpu.cpu_time_s, 1e-3 * m.cpu.localizer_update_mean_ms * m.cpu.localizer_updates);
+  EXPECT_DOUBLE_EQ(m.cpu.real_time_factor, m.cpu.sim_time_s / m.cpu.cpu_time_s);
   EXPECT_GT(m.dynamic_points.beams_tested, 0);
 
   // The snapshot for the figures: the update with the most pedestrian beams.

@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -85,6 +87,20 @@ TEST_F(SweepPlotTest, ReadsQuotedCellsCrLfAndNan) {
       "3,1,1,2,single,\"multi\nline\",NaN\r\n";
   const std::filesystem::path file = tmp_.Write("results.csv", csv);
   const std::filesystem::path png = tmp_.path() / "sweep.png";
+  const viz::SweepFigureData data =
+      ReadSweepResults(file, {"map_mode", "a,b"}, {"tracking_error_m.pooled.rms"});
+  ASSERT_EQ(data.combinations.size(), 2u);
+  const viz::SweepCombination& quoted = data.combinations[0];
+  EXPECT_EQ(quoted.values, (std::vector<std::string>{"partial", "x, \"quoted\""}));
+  ASSERT_EQ(quoted.metrics.size(), 1u);
+  ASSERT_EQ(quoted.metrics[0].size(), 2u);  // the blank CRLF line is no case
+  EXPECT_EQ(quoted.metrics[0][0], 0.5);
+  EXPECT_TRUE(std::isnan(quoted.metrics[0][1]));
+  const viz::SweepCombination& multi = data.combinations[1];
+  EXPECT_EQ(multi.values, (std::vector<std::string>{"single", "multi\nline"}));
+  ASSERT_EQ(multi.metrics[0].size(), 2u);
+  EXPECT_EQ(multi.metrics[0][0], -std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(std::isnan(multi.metrics[0][1]));
   RenderSweepPlot(file, {"map_mode", "a,b"}, {"tracking_error_m.pooled.rms"}, png, "");
   EXPECT_GT(viz::ReadPng(png).height, 300);
 }
