@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/config.hpp"
+#include "core/segment.hpp"
 
 namespace retrace::nav {
 namespace {
@@ -11,14 +12,6 @@ namespace {
 // How far back (in revisit radii) a part of the trail must lie to count as a revisit; closer
 // parts are the road just driven, bent by a turn. As in bench/engine/switch_points.cpp.
 constexpr double kRevisitLagFactor = 3.0;
-
-// Distance from p to the segment [a, b].
-double SegmentDistance(const core::Vec2& p, const core::Vec2& a, const core::Vec2& b) {
-  const core::Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
 
 }  // namespace
 
@@ -67,7 +60,7 @@ bool RevisitDetector::OnPose(const core::Pose2& X_OR) {
     const Sample& b = trail_[i + 1];
     if (b.travelled > travelled_ - lag_) break;
     const double radius = config_.revisit_radius + config_.drift * (travelled_ - b.travelled);
-    if (SegmentDistance(p, a.p, b.p) < radius) {
+    if (core::SegmentDistance(p, a.p, b.p) < radius) {
       revisit = true;
       break;
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/check.hpp"
+#include "core/segment.hpp"
 
 namespace retrace::sim {
 
@@ -91,7 +92,7 @@ void GeometryIndex::NearbyClosestPoints(const Vec2& p, double radius,
   const auto& circles = geometry_.circles();
   for (std::uint32_t id : ids) {
     if (id < segs.size()) {
-      const Vec2 q = ClosestPointOnSegment(segs[id], p);
+      const Vec2 q = core::ClosestPointOnSegment(p, segs[id].a, segs[id].b);
       if ((q - p).squaredNorm() < radius * radius) out->push_back(q);
     } else {
       const Circle& c = circles[id - segs.size()];

@@ -9,6 +9,7 @@
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
+#include "core/segment.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -52,7 +53,7 @@ void AddedObstaclePoints(const StaticGeometry& solids, const Vec2& p, double rad
   for (const auto& ring : solids.polygons()) {
     const bool inside = PointInPolygon(ring, p);
     for (std::size_t k = 0; k < ring.size(); ++k) {
-      const Vec2 q = ClosestPointOnSegment({ring[k], ring[(k + 1) % ring.size()]}, p);
+      const Vec2 q = core::ClosestPointOnSegment(p, ring[k], ring[(k + 1) % ring.size()]);
       if ((q - p).squaredNorm() < r2) out->push_back(inside ? Vec2(2.0 * p - q) : q);
     }
   }

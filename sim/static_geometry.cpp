@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/check.hpp"
+#include "core/segment.hpp"
 
 namespace retrace::sim {
 
@@ -50,7 +51,7 @@ bool StaticGeometry::IsInside(const Vec2& p) const {
 double StaticGeometry::Clearance(const Vec2& p) const {
   if (IsInside(p)) return 0.0;
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& s : segments_) best = std::min(best, (ClosestPointOnSegment(s, p) - p).norm());
+  for (const auto& s : segments_) best = std::min(best, core::SegmentDistance(p, s.a, s.b));
   for (const auto& c : circles_) best = std::min(best, (p - c.center).norm() - c.radius);
   return best;
 }
@@ -72,14 +73,6 @@ Aabb StaticGeometry::Bounds() const {
     grow(c.center + Vec2(c.radius, c.radius));
   }
   return box;
-}
-
-Vec2 ClosestPointOnSegment(const Segment& s, const Vec2& p) {
-  const Vec2 d = s.b - s.a;
-  const double len2 = d.squaredNorm();
-  if (len2 <= 0.0) return s.a;
-  const double t = std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0);
-  return s.a + t * d;
 }
 
 bool PointInPolygon(const std::vector<Vec2>& ring, const Vec2& p) {

@@ -79,8 +79,6 @@ class StaticGeometry {
   std::vector<OccupancyMask> masks_;
 };
 
-/// Closest point on segment s to p.
-Vec2 ClosestPointOnSegment(const Segment& s, const Vec2& p);
 /// Winding-number point-in-polygon test (ring of vertices, either winding).
 bool PointInPolygon(const std::vector<Vec2>& ring, const Vec2& p);
 /// Whether segments p0-p1 and q0-q1 intersect (touching counts).

@@ -10,6 +10,7 @@
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
+#include "core/segment.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -206,7 +207,7 @@ void WalkPlanner::AddObstacles(const StaticGeometry& solids) {
       double d = std::numeric_limits<double>::infinity();
       for (std::size_t i = 0; i < ring.size(); ++i) {
         const Segment s{ring[i], ring[(i + 1) % ring.size()]};
-        d = std::min(d, (ClosestPointOnSegment(s, p) - p).norm());
+        d = std::min(d, core::SegmentDistance(p, s.a, s.b));
       }
       return d;
     });

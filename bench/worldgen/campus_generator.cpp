@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "core/segment.hpp"
 #include "sim/robot.hpp"
 #include "sim/static_geometry.hpp"
 
@@ -47,14 +48,11 @@ void RequireOutsideCorridor(std::string_view key, const Range& r, double corrido
 
 // ---- geometry --------------------------------------------------------------------------------
 
-double PointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  return (sim::ClosestPointOnSegment({a, b}, p) - p).norm();
-}
 
 double SegmentSegmentDistance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) {
   if (sim::SegmentsIntersect(a0, a1, b0, b1)) return 0.0;
-  return std::min({PointSegmentDistance(a0, b0, b1), PointSegmentDistance(a1, b0, b1),
-                   PointSegmentDistance(b0, a0, a1), PointSegmentDistance(b1, a0, a1)});
+  return std::min({core::SegmentDistance(a0, b0, b1), core::SegmentDistance(a1, b0, b1),
+                   core::SegmentDistance(b0, a0, a1), core::SegmentDistance(b1, a0, a1)});
 }
 
 // The solid area an object takes: a circle, or a simple polygon with a bounding circle for
@@ -77,7 +75,7 @@ Footprint RingFootprint(std::vector<Vec2> ring) {
 }
 
 double DistanceToSegment(const Footprint& f, const Vec2& a, const Vec2& b) {
-  if (f.ring.empty()) return std::max(0.0, PointSegmentDistance(f.center, a, b) - f.radius);
+  if (f.ring.empty()) return std::max(0.0, core::SegmentDistance(f.center, a, b) - f.radius);
   if (sim::PointInPolygon(f.ring, a)) return 0.0;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < f.ring.size(); ++i) {
@@ -96,7 +94,7 @@ double Distance(const Footprint& f, const Footprint& g) {
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < f.ring.size(); ++i) {
       best = std::min(best,
-                      PointSegmentDistance(g.center, f.ring[i], f.ring[(i + 1) % f.ring.size()]));
+                      core::SegmentDistance(g.center, f.ring[i], f.ring[(i + 1) % f.ring.size()]));
     }
     return std::max(0.0, best - g.radius);
   }
@@ -229,7 +227,7 @@ class Placer {
     for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
       const Vec2& a = polyline[i];
       const Vec2& b = polyline[i + 1];
-      if (PointSegmentDistance(f.center, a, b) - f.radius >= distance) continue;
+      if (core::SegmentDistance(f.center, a, b) - f.radius >= distance) continue;
       if (DistanceToSegment(f, a, b) < distance) return false;
     }
     return true;

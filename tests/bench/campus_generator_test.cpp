@@ -16,6 +16,7 @@
 #include "core/config.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "core/segment.hpp"
 #include "io/config_yaml.hpp"
 #include "io/route_file.hpp"
 #include "sim/pedestrians.hpp"
@@ -41,7 +42,7 @@ const std::vector<std::uint64_t> kSeeds{1, 2, 3, 4};
 double DistanceToRoute(const std::vector<Vec2>& route, const Vec2& p) {
   double best = 1e9;
   for (std::size_t i = 0; i + 1 < route.size(); ++i) {
-    best = std::min(best, (sim::ClosestPointOnSegment({route[i], route[i + 1]}, p) - p).norm());
+    best = std::min(best, core::SegmentDistance(p, route[i], route[i + 1]));
   }
   return best;
 }

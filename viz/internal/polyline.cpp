@@ -4,19 +4,9 @@
 #include <cmath>
 #include <utility>
 
+#include "core/segment.hpp"
+
 namespace retrace::viz::internal {
-namespace {
-
-// Distance from p to the segment ab.
-double SegmentDistance(const core::Vec2& p, const core::Vec2& a, const core::Vec2& b) {
-  const core::Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  if (len2 <= 0.0) return (p - a).norm();
-  const double t = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
-}
-
-}  // namespace
 
 std::vector<core::Vec2> SimplifyPolyline(const std::vector<core::Vec2>& points, double tolerance) {
   // Radial pass: consecutive points closer than the tolerance to the last kept one go.
@@ -47,7 +37,7 @@ std::vector<core::Vec2> SimplifyPolyline(const std::vector<core::Vec2>& points, 
     double worst = -1.0;
     std::size_t worst_k = i;
     for (std::size_t k = i + 1; k < j; ++k) {
-      const double d = SegmentDistance(radial[k], radial[i], radial[j]);
+      const double d = core::SegmentDistance(radial[k], radial[i], radial[j]);
       if (d > worst) {
         worst = d;
         worst_k = k;

@@ -16,6 +16,7 @@
 #include "core/check.hpp"
 #include "core/path_projection.hpp"
 #include "core/pose2.hpp"
+#include "core/segment.hpp"
 
 namespace retrace::bench::internal {
 
@@ -28,13 +29,6 @@ inline constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 // otherwise give zero-length segments without a direction.
 inline constexpr double kDuplicateDistance = 1e-9;
 
-inline double SegmentDistance2(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double len2 = d.squaredNorm();
-  double t = len2 > 0.0 ? (p - a).dot(d) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return (p - (a + t * d)).squaredNorm();
-}
 
 // A uniform grid over items (segments, or points as zero-length segments) for exact nearest
 // queries: rings of cells around the query are searched until no unvisited cell can hold a
@@ -70,7 +64,7 @@ class NearestGrid {
         for (long long x = x0; x <= x1; ++x) {
           const Vec2 centre = origin_ + Vec2((static_cast<double>(x) + 0.5) * cell_,
                                              (static_cast<double>(y) + 0.5) * cell_);
-          if (single || SegmentDistance2(centre, a[i], b[i]) <= half_diagonal * half_diagonal) {
+          if (single || core::SegmentDistanceSquared(centre, a[i], b[i]) <= half_diagonal * half_diagonal) {
             entries.emplace_back(static_cast<std::size_t>(y * nx_ + x), i);
           }
         }
@@ -224,7 +218,7 @@ class TaughtPath {
   std::size_t segments() const { return points_.size() <= 1 ? points_.size() : points_.size() - 1; }
   std::size_t End(std::size_t i) const { return std::min(i + 1, points_.size() - 1); }
   double Dist2(std::size_t i, const Vec2& p) const {
-    return SegmentDistance2(p, points_[i], points_[End(i)]);
+    return core::SegmentDistanceSquared(p, points_[i], points_[End(i)]);
   }
 
   std::vector<Vec2> points_;
