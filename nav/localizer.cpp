@@ -111,6 +111,7 @@ void AugmentedMclConfig::Validate() const {
   core::RequireInRange("alpha_fast", alpha_fast, 0.0, 1.0);
   core::RequireGreater("alpha_fast", alpha_fast, "alpha_slow", alpha_slow);
   core::RequireInRange("trigger_ratio", trigger_ratio, 0.0, 1.0);
+  core::RequirePositive("path_reach", path_reach);
   core::RequireIntInRange("hypotheses", hypotheses, 1, 1'000'000);
   core::RequireInRange("near_fraction", near_fraction, 0.0, 1.0);
   core::RequireNonNegative("near_sigma_xy", near_sigma_xy);
@@ -495,11 +496,20 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
     return core::Pose2(X.x + sigma_xy * rng_.Normal(), X.y + sigma_xy * rng_.Normal(),
                        X.theta + sigma_theta * rng_.Normal());
   };
+  // The taught poses within path_reach of the estimate; all of them when none is.
+  const core::Pose2 estimate = Estimate();
+  std::vector<std::size_t> reachable;
+  for (std::size_t i = 0; i < recovery_poses_.size(); ++i) {
+    if (core::Distance(recovery_poses_[i], estimate) <= aug.path_reach) reachable.push_back(i);
+  }
+  if (reachable.empty()) {
+    for (std::size_t i = 0; i < recovery_poses_.size(); ++i) reachable.push_back(i);
+  }
   for (int k = 0; k < count; ++k) {
     if (k < near || (recovery_poses_.empty() && free_cells_.empty())) {
-      out.push_back(around(Estimate(), aug.near_sigma_xy, aug.near_sigma_theta));
+      out.push_back(around(estimate, aug.near_sigma_xy, aug.near_sigma_theta));
     } else if (!recovery_poses_.empty()) {
-      const core::Pose2& X = recovery_poses_[rng_.UniformIndex(recovery_poses_.size())];
+      const core::Pose2& X = recovery_poses_[reachable[rng_.UniformIndex(reachable.size())]];
       out.push_back(around(X, aug.path_sigma_xy, aug.path_sigma_theta));
     } else {
       out.push_back(FreeCellPose());

@@ -82,6 +82,8 @@ struct AugmentedMclConfig {
   double near_sigma_theta = 0.3;  ///< rad
   double path_sigma_xy = 1.0;     ///< m, around the taught path's poses
   double path_sigma_theta = 0.3;  ///< rad, around the taught heading
+  /// m: only the taught poses this close to the estimate (the whole path when none is)
+  double path_reach = 10.0;
   int confirm_updates = 5;        ///< scans a trial must explain before it may win
   int max_updates = 25;           ///< scans after which a trial that has not won ends
   double margin = 30.0;           ///< nats by which a trial's evidence must beat the belief's
@@ -99,6 +101,7 @@ struct AugmentedMclConfig {
     v("near_sigma_theta", near_sigma_theta);
     v("path_sigma_xy", path_sigma_xy);
     v("path_sigma_theta", path_sigma_theta);
+    v("path_reach", path_reach);
     v("confirm_updates", confirm_updates);
     v("max_updates", max_updates);
     v("margin", margin);
