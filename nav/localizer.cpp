@@ -295,6 +295,26 @@ std::vector<std::uint8_t> Localizer::TestDynamic(const core::LaserScan& scan,
   return std::move(result.dynamic);
 }
 
+void Localizer::KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
+                              const std::vector<std::uint8_t>& dynamic, LocalizerUpdate* out,
+                              std::vector<double>* xs, std::vector<double>* ys) const {
+  out->beams.assign(scan.size(), BeamUse::kUnused);
+  for (std::size_t b = 0; b < tested.size(); ++b) {
+    const std::size_t i = static_cast<std::size_t>(tested[b]);
+    if (dynamic[b] != 0) {
+      out->beams[i] = BeamUse::kRejected;
+      ++out->beams_rejected;
+      continue;
+    }
+    out->beams[i] = BeamUse::kUsed;
+    const double r = scan.ranges[i];
+    const double a = scan.Angle(i);
+    xs->push_back(r * std::cos(a));
+    ys->push_back(r * std::sin(a));
+  }
+  out->beams_used = static_cast<int>(xs->size());
+}
+
 void Localizer::UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out) {
   const AugmentedMclConfig& aug = config_.augmented;
   if (any_beam) {
@@ -334,22 +354,8 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
 
   // Dynamic scan point rejection (eq. 7-9); the kept beams' end points in L.
   const std::vector<std::uint8_t> dynamic = TestDynamic(scan, tested, X_ML, &out);
-  out.beams.assign(scan.size(), BeamUse::kUnused);
   std::vector<double> xs, ys;
-  for (std::size_t b = 0; b < tested.size(); ++b) {
-    const std::size_t i = static_cast<std::size_t>(tested[b]);
-    if (dynamic[b] != 0) {
-      out.beams[i] = BeamUse::kRejected;
-      ++out.beams_rejected;
-      continue;
-    }
-    out.beams[i] = BeamUse::kUsed;
-    const double r = scan.ranges[i];
-    const double a = scan.Angle(i);
-    xs.push_back(r * std::cos(a));
-    ys.push_back(r * std::sin(a));
-  }
-  out.beams_used = static_cast<int>(xs.size());
+  KeptEndPoints(scan, tested, dynamic, &out, &xs, &ys);
 
   // Weighting in log space (eq. 5-6); weights carry over between updates until resampled.
   std::vector<double> log_w(n), w(n);

@@ -280,6 +280,10 @@ class Localizer {
   std::vector<Particle> ResampleKld(const std::vector<double>& weights);
   std::vector<core::Pose2> RecoveryHypotheses();
   core::Pose2 FreeCellPose();
+  // The end points (L) of the tested beams the rejection kept; marks every beam's use in `out`.
+  void KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
+                     const std::vector<std::uint8_t>& dynamic, LocalizerUpdate* out,
+                     std::vector<double>* xs, std::vector<double>* ys) const;
   void RunRecovery(std::span<const double> xs, std::span<const double> ys,
                    double belief_evidence, LocalizerUpdate* out);
   void FollowCluster(bool jump);

@@ -138,6 +138,57 @@ bool PathFollower::AdvanceProgress(const core::Vec2& p_M, double length) {
   return true;
 }
 
+PathFollower::TrackingErrors PathFollower::ErrorsAt(const core::Pose2& X_MR, double s,
+                                                   double remaining) const {
+  // Beyond the end of the path (or on a path without length) the reference is the bearing to
+  // the last pose, with no lateral term.
+  const double length = path_.Length();
+  const core::Vec2 p_M = X_MR.translation();
+  const core::Vec2 end_M = path_.back().translation();
+  const core::Pose2 ref = path_.AtArcLength(s);
+  double reference_heading = length > kTinyLength ? TangentAt(s) : ref.theta;
+  const core::Vec2 d = p_M - ref.translation();
+  const double c = std::cos(reference_heading);
+  const double sn = std::sin(reference_heading);
+  TrackingErrors e;
+  e.lateral = -sn * d.x() + c * d.y();
+  const double along = c * d.x() + sn * d.y();
+  e.past_end = remaining <= kTinyLength && (along > 0.0 || length <= kTinyLength);
+  if (e.past_end) {
+    reference_heading = std::atan2(end_M.y() - p_M.y(), end_M.x() - p_M.x());
+    e.lateral = 0.0;
+  } else {
+    e.curvature = CurvatureAt(s);
+  }
+  e.heading = core::AngleDiff(reference_heading, X_MR.theta);
+  e.lateral_clipped =
+      std::clamp(e.lateral, -config_.lateral_error_clip, config_.lateral_error_clip);
+  return e;
+}
+
+void PathFollower::FilterRates(const TrackingErrors& e, double dt) {
+  // Real derivatives: finite differences over the control period, low-pass filtered.
+  if (have_previous_) {
+    const double alpha = dt / (config_.derivative_filter_tau + dt);
+    const double lateral_raw = (e.lateral_clipped - previous_lateral_) / dt;
+    const double heading_raw = core::AngleDiff(e.heading, previous_heading_) / dt;
+    lateral_rate_ += alpha * (lateral_raw - lateral_rate_);
+    heading_rate_ += alpha * (heading_raw - heading_rate_);
+  }
+  have_previous_ = true;
+  previous_lateral_ = e.lateral_clipped;
+  previous_heading_ = e.heading;
+}
+
+double PathFollower::Speed(const TrackingErrors& e, double s, double remaining,
+                           double distance_to_end) const {
+  // Heading error, curvature ahead, stop at the end of the path; floor; never < 0.
+  double v = config_.max_speed * std::max(0.0, std::cos(e.heading));
+  if (!e.past_end) v = std::min(v, SpeedLimitAhead(s));
+  v = std::min(v, std::sqrt(2.0 * config_.decel * (e.past_end ? distance_to_end : remaining)));
+  return std::clamp(v, config_.min_speed, config_.max_speed);
+}
+
 FollowerOutput PathFollower::Compute(const core::Pose2& X_MR, double dt) {
   RETRACE_CHECK(std::isfinite(dt) && dt > 0.0);
   RETRACE_CHECK(std::isfinite(X_MR.x) && std::isfinite(X_MR.y) && std::isfinite(X_MR.theta));
@@ -148,74 +199,34 @@ FollowerOutput PathFollower::Compute(const core::Pose2& X_MR, double dt) {
   }
   const double length = path_.Length();
   const core::Vec2 p_M = X_MR.translation();
-
   if (length > kTinyLength && !goal_reached_) out.off_path = !AdvanceProgress(p_M, length);
   const double s = progress_.value();
   const double remaining = std::max(0.0, length - s);
-  const core::Vec2 end_M = path_.back().translation();
-  const double distance_to_end = (p_M - end_M).norm();
+  const double distance_to_end = (p_M - path_.back().translation()).norm();
   out.index = IndexAt(s);
   out.remaining = remaining;
-
   if (goal_reached_) {
     out.index = path_.size() - 1;
     out.goal_reached = true;
     return out;
   }
 
-  // Errors at the projection. Beyond the end of the path (or on a path without length) the
-  // reference is the bearing to the last pose, with no lateral term.
-  const core::Pose2 ref = path_.AtArcLength(s);
-  double reference_heading = length > kTinyLength ? TangentAt(s) : ref.theta;
-  const core::Vec2 d = p_M - ref.translation();
-  const double c = std::cos(reference_heading);
-  const double sn = std::sin(reference_heading);
-  double lateral = -sn * d.x() + c * d.y();
-  const double along = c * d.x() + sn * d.y();
-  double kappa_ff = 0.0;
-  const bool past_end = remaining <= kTinyLength && (along > 0.0 || length <= kTinyLength);
-  if (past_end) {
-    reference_heading = std::atan2(end_M.y() - p_M.y(), end_M.x() - p_M.x());
-    lateral = 0.0;
-  } else {
-    kappa_ff = CurvatureAt(s);
-  }
-  const double heading = core::AngleDiff(reference_heading, X_MR.theta);
-  const double lateral_clipped =
-      std::clamp(lateral, -config_.lateral_error_clip, config_.lateral_error_clip);
-
-  // Real derivatives: finite differences over the control period, low-pass filtered.
-  if (have_previous_) {
-    const double alpha = dt / (config_.derivative_filter_tau + dt);
-    const double lateral_raw = (lateral_clipped - previous_lateral_) / dt;
-    const double heading_raw = core::AngleDiff(heading, previous_heading_) / dt;
-    lateral_rate_ += alpha * (lateral_raw - lateral_rate_);
-    heading_rate_ += alpha * (heading_raw - heading_rate_);
-  }
-  have_previous_ = true;
-  previous_lateral_ = lateral_clipped;
-  previous_heading_ = heading;
-
-  // Speed: heading error, curvature ahead, stop at the end of the path; floor; never < 0.
-  double v = config_.max_speed * std::max(0.0, std::cos(heading));
-  if (!past_end) v = std::min(v, SpeedLimitAhead(s));
-  v = std::min(v, std::sqrt(2.0 * config_.decel * (past_end ? distance_to_end : remaining)));
-  v = std::clamp(v, config_.min_speed, config_.max_speed);
-
+  const TrackingErrors e = ErrorsAt(X_MR, s, remaining);
+  FilterRates(e, dt);
+  const double v = Speed(e, s, remaining, distance_to_end);
+  out.lateral_error = e.lateral;
+  out.heading_error = e.heading;
   // The goal: close to the last pose, and the rest of the path is covered within this step.
-  out.lateral_error = lateral;
-  out.heading_error = heading;
   if (distance_to_end <= config_.goal_tolerance && remaining <= v * dt) {
     goal_reached_ = true;
     out.index = path_.size() - 1;
     out.goal_reached = true;
     return out;
   }
-
-  double omega = v * kappa_ff + config_.kp_heading * heading + config_.kd_heading * heading_rate_ -
-                 config_.kp_lateral * lateral_clipped - config_.kd_lateral * lateral_rate_;
+  double omega = v * e.curvature + config_.kp_heading * e.heading +
+                 config_.kd_heading * heading_rate_ - config_.kp_lateral * e.lateral_clipped -
+                 config_.kd_lateral * lateral_rate_;
   omega = std::clamp(omega, -config_.max_yaw_rate, config_.max_yaw_rate);
-
   out.command = {v, omega};
   RETRACE_CHECK(out.command.v >= 0.0 && std::isfinite(out.command.omega));
   return out;

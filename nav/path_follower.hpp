@@ -142,6 +142,17 @@ class PathFollower {
   double SpeedLimitAhead(double s) const;
   std::size_t IndexAt(double s) const;
   bool AdvanceProgress(const core::Vec2& p_M, double length);
+  // The errors at arc length s (the control law's e_y, e_psi, kappa).
+  struct TrackingErrors {
+    double lateral = 0.0;          // m
+    double lateral_clipped = 0.0;  // m, to +-lateral_error_clip
+    double heading = 0.0;          // rad
+    double curvature = 0.0;        // 1/m, 0 past the end
+    bool past_end = false;         // the reference is the bearing to the last pose
+  };
+  TrackingErrors ErrorsAt(const core::Pose2& X_MR, double s, double remaining) const;
+  void FilterRates(const TrackingErrors& e, double dt);
+  double Speed(const TrackingErrors& e, double s, double remaining, double distance_to_end) const;
 
   PathFollowerConfig config_;
   core::Path path_;
