@@ -15,15 +15,8 @@ std::string Cell(double v, const char* format = "%.3f") {
   return buffer;
 }
 
-}  // namespace
-
-ModeSummary SummarizeMode(MapMode mode, const AggregateMetrics& aggregate) {
-  return {mode, aggregate.runs, aggregate.successes, aggregate};
-}
-
-std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>& modes,
-                        const TeachSpeed& teach, const std::filesystem::path& out,
-                        double wall_time_s) {
+// The scenario's line: route length and how its maps are cut.
+std::string ScenarioLine(const Scenario& scenario) {
   const std::vector<double>& switch_points = scenario.config.route.switch_points.value;
   std::string text = "scenario " + scenario.config.name + ": route " +
                      Cell(scenario.route_length, "%.1f") + " m, ";
@@ -39,6 +32,12 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
     text += switch_points.empty() ? " none needed)" : " m)";
   }
   text += "\n";
+  return text;
+}
+
+// One row per mode of the main numbers.
+std::string MainTable(const std::vector<ModeSummary>& modes) {
+  std::string text;
   char line[512];
   std::snprintf(line, sizeof line, "%-12s %8s %9s %9s %9s %9s %9s %9s %9s %7s\n", "mode", "success",
                 "track_rms", "track_max", "loc_rms", "loc_max", "repeat", "switch_mx", "coll_ped",
@@ -66,7 +65,12 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
                   collisions.c_str(), Cell(a.cpu.real_time_factor, "%.0f").c_str());
     text += line;
   }
-  // How each mode treated the people around it (social metrics, means per run).
+  return text;
+}
+
+// How each mode treated the people around it (social metrics, means per run).
+std::string SocialLines(const std::vector<ModeSummary>& modes) {
+  std::string text;
   for (const ModeSummary& m : modes) {
     if (m.runs == 0) continue;
     const SocialStats& so = m.aggregate.social;
@@ -83,7 +87,12 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
     text += std::to_string(c.blocked) + " blocked (waited " + Cell(c.wait_time_s, "%.1f");
     text += " s)\n";
   }
-  // How the localizer held, by its own account, and the largest one-tick move of its estimate.
+  return text;
+}
+
+// How the localizer held, by its own account, and the largest one-tick move of its estimate.
+std::string LocalizerLines(const std::vector<ModeSummary>& modes) {
+  std::string text;
   for (const ModeSummary& m : modes) {
     if (m.runs == 0) continue;
     const LocalizerHealth& h = m.aggregate.localizer;
@@ -92,7 +101,12 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
             std::to_string(h.reacquisitions) + " re-acquisitions; largest single-tick jump " +
             Cell(h.max_jump_m, "%.2f") + " m\n";
   }
-  // How the switching modes' maps were cut, judged on the drive's ground truth.
+  return text;
+}
+
+// How the switching modes' maps were cut, judged on the drive's ground truth.
+std::string SwitchingLines(const std::vector<ModeSummary>& modes) {
+  std::string text;
   for (const ModeSummary& m : modes) {
     const SwitchingQuality& q = m.aggregate.switching;
     if (!SwitchesMaps(m.mode) || q.maps == 0) continue;
@@ -109,6 +123,20 @@ std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>
     }
     text += cut + "\n";
   }
+  return text;
+}
+
+}  // namespace
+
+ModeSummary SummarizeMode(MapMode mode, const AggregateMetrics& aggregate) {
+  return {mode, aggregate.runs, aggregate.successes, aggregate};
+}
+
+std::string SummaryText(const Scenario& scenario, const std::vector<ModeSummary>& modes,
+                        const TeachSpeed& teach, const std::filesystem::path& out,
+                        double wall_time_s) {
+  std::string text = ScenarioLine(scenario) + MainTable(modes) + SocialLines(modes) +
+                     LocalizerLines(modes) + SwitchingLines(modes);
   text +=
       "(m; track = distance to the taught trajectory, loc = localization error in the map, repeat "
       "= "
