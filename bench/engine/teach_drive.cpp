@@ -92,6 +92,37 @@ void RequireSwitchingModeIfOnline(const Scenario& scenario, const std::vector<Ma
                               asked);
 }
 
+namespace {
+
+core::WorldError TeacherStuck(const Scenario& scenario, double timeout, const core::Pose2& X_WR,
+                              const sim::Teacher& teacher) {
+  return core::WorldError(scenario.source.string() +
+                          ": the teacher did not finish the route within " +
+                          core::FormatNumber(timeout) + " s; stuck at (" +
+                          core::FormatNumber(X_WR.x) + ", " + core::FormatNumber(X_WR.y) + "), " +
+                          core::FormatNumber(teacher.Progress()) + " m along the route");
+}
+
+// The recorders' share of one simulator step: the pose of each mode's source at an odometry
+// tick, the scan.
+void FeedRecorders(const sim::SimStep& s, const sim::Simulator& simulator,
+                   const core::Pose2& X_RW_start, std::vector<ModeRecorder>& recorders) {
+  if (s.odometry) {
+    const core::Pose2 X_WR = simulator.RobotPose();
+    for (ModeRecorder& r : recorders) {
+      // The consistent map's pose source is ground truth, expressed from the start so that
+      // its frame M_0 is the teaching start like the odometry maps'.
+      r.recorder.OnPose(r.mode == MapMode::kConsistent ? X_RW_start * X_WR
+                                                       : simulator.OdometryPose());
+    }
+  }
+  if (s.lidar) {
+    for (ModeRecorder& r : recorders) r.recorder.OnScan(s.lidar->scan);
+  }
+}
+
+}  // namespace
+
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,
                           const ProgressFn& progress, SensorTap* tap) {
   const double cpu_start = ThreadCpuSeconds();
@@ -105,10 +136,8 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   ScriptedEvents events(config.events, EventPhase::kTeach);
 
   RequireSwitchingModeIfOnline(scenario, modes);
-  std::optional<nav::OnlineSwitchingConfig> online;
-  if (scenario.switching_online()) {
-    online = config.route.OnlineSwitching();
-  }
+  const std::optional<nav::OnlineSwitchingConfig> online =
+      scenario.switching_online() ? std::optional(config.route.OnlineSwitching()) : std::nullopt;
   std::vector<ModeRecorder> recorders =
       MakeModeRecorders(modes, config.nav, scenario.robot, online);
   // The odometry ticks, for the per-map traces.
@@ -131,13 +160,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
       trace.X_WR.push_back(X_WR);
       trace.X_OR.push_back(simulator.OdometryPose());
       if (teacher.Done()) break;
-      if (simulator.time() > timeout) {
-        throw core::WorldError(
-            scenario.source.string() + ": the teacher did not finish the route within " +
-            core::FormatNumber(timeout) + " s; stuck at (" + core::FormatNumber(X_WR.x) + ", " +
-            core::FormatNumber(X_WR.y) + "), " + core::FormatNumber(teacher.Progress()) +
-            " m along the route");
-      }
+      if (simulator.time() > timeout) throw TeacherStuck(scenario, timeout, X_WR, teacher);
       command = teacher.Command(X_WR, stepper.control_dt());
       // The operator's switch signal, given as the teacher's progress passes a switch point
       // (none are listed with online switching).
@@ -148,19 +171,10 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
     }
     const sim::SimStep s = stepper.Step(command);
     if (s.odometry) {
-      const core::Pose2 X_WR = simulator.RobotPose();
       tick_time.push_back(s.time);
-      tick_X_WR.push_back(X_WR);
-      for (ModeRecorder& r : recorders) {
-        // The consistent map's pose source is ground truth, expressed from the start so that
-        // its frame M_0 is the teaching start like the odometry maps'.
-        r.recorder.OnPose(r.mode == MapMode::kConsistent ? X_RW_start * X_WR
-                                                         : simulator.OdometryPose());
-      }
+      tick_X_WR.push_back(simulator.RobotPose());
     }
-    if (s.lidar) {
-      for (ModeRecorder& r : recorders) r.recorder.OnScan(s.lidar->scan);
-    }
+    FeedRecorders(s, simulator, X_RW_start, recorders);
   }
 
   if (tap != nullptr) tap->OnEnd();
