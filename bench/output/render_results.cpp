@@ -126,6 +126,37 @@ core::Pose2 PoseFrom(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
+// The snapshot's scan points in M (from the true pose X_ML of the LiDAR), with their labels.
+std::vector<viz::ScanPoint> ScanPointsOf(const nlohmann::json& scan, const core::Pose2& X_ML,
+                                         bool simulated) {
+  const double angle_min = scan.at("angle_min").get<double>(),
+               increment = scan.at("angle_increment").get<double>();
+  std::vector<viz::ScanPoint> points;
+  for (std::size_t i = 0; i < scan.at("ranges").size(); ++i) {
+    const nlohmann::json& r = scan.at("ranges")[i];
+    if (!r.is_number()) continue;  // no return (written as null)
+    const double range = r.get<double>(), a = angle_min + static_cast<double>(i) * increment;
+    viz::ScanPoint point;
+    point.point = X_ML * core::Vec2(range * std::cos(a), range * std::sin(a));
+    point.rejected = scan.at("use")[i].get<int>() == 2;
+    point.hits_pedestrian = simulated && scan.at("pedestrian")[i].get<int>() == 1;
+    points.push_back(point);
+  }
+  return points;
+}
+
+// One of the snapshot's likelihood grids (log values, origin at the lower-left cell corner).
+viz::LikelihoodGrid LikelihoodGridOf(const nlohmann::json& l, const char* key) {
+  viz::LikelihoodGrid g;
+  g.width = g.height = l.at("size").get<int>();
+  g.resolution = l.at("resolution").get<double>();
+  g.origin = core::Vec2(l.at("origin").at(0).get<double>() - 0.5 * g.resolution,
+                        l.at("origin").at(1).get<double>() - 0.5 * g.resolution);
+  for (const auto& v : l.at(key)) g.values.push_back(v.get<double>());
+  g.log_values = true;
+  return g;
+}
+
 }  // namespace
 
 void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, double robot_radius,
@@ -156,40 +187,18 @@ void RenderSnapshot(const std::filesystem::path& file, const ModeTeach& teach, d
   snap.estimate = PoseFrom(j.at("X_MR_estimate"));
   snap.truth = truth;
   const nlohmann::json& scan = j.at("scan");
-  const double angle_min = scan.at("angle_min").get<double>(),
-               increment = scan.at("angle_increment").get<double>();
-  const core::Pose2 X_ML = truth * X_RL;
   // A log's snapshot knows no pedestrians: its per-beam labels are empty.
   const bool simulated = !scan.at("pedestrian").empty();
   snap.simulated = simulated;
-  for (std::size_t i = 0; i < scan.at("ranges").size(); ++i) {
-    const nlohmann::json& r = scan.at("ranges")[i];
-    if (!r.is_number()) continue;  // no return (written as null)
-    const double range = r.get<double>(), a = angle_min + static_cast<double>(i) * increment;
-    viz::ScanPoint point;
-    point.point = X_ML * core::Vec2(range * std::cos(a), range * std::sin(a));
-    point.rejected = scan.at("use")[i].get<int>() == 2;
-    point.hits_pedestrian = simulated && scan.at("pedestrian")[i].get<int>() == 1;
-    snap.scan.push_back(point);
-  }
+  snap.scan = ScanPointsOf(scan, truth * X_RL, simulated);
   snap.pedestrians = pedestrians;
   snap.robot_radius = robot_radius;
   written->push_back(viz::RenderSnapshotFigure(snap, figures / "snapshot.png").path);
 
   const nlohmann::json& l = j.at("likelihood");
-  auto grid = [&](const char* key) {
-    viz::LikelihoodGrid g;
-    g.width = g.height = l.at("size").get<int>();
-    g.resolution = l.at("resolution").get<double>();
-    g.origin = core::Vec2(l.at("origin").at(0).get<double>() - 0.5 * g.resolution,
-                          l.at("origin").at(1).get<double>() - 0.5 * g.resolution);
-    for (const auto& v : l.at(key)) g.values.push_back(v.get<double>());
-    g.log_values = true;
-    return g;
-  };
   viz::LikelihoodFigureData like;
-  like.without_rejection = grid("all_beams");
-  like.with_rejection = grid("static_beams");
+  like.without_rejection = LikelihoodGridOf(l, "all_beams");
+  like.with_rejection = LikelihoodGridOf(l, "static_beams");
   like.true_pose = truth;
   like.pedestrians = pedestrians;
   like.time_s = snap.time_s;
@@ -208,106 +217,101 @@ std::filesystem::path RenderTeachMaps(const ModeTeach& teach, const viz::WorldSh
   return viz::RenderMapsFigure(maps, png).path;
 }
 
-std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& out) {
-  std::vector<std::filesystem::path> written;
-  std::vector<std::pair<std::string, ModeTeach>> teaches;
-  viz::ComparisonFigureData comparison;
-  for (const auto& [mode, name] : core::EnumTraits<MapMode>::kNames) {
-    const std::string mode_name(name);
-    const std::filesystem::path dir = out / mode_name;
-    if (!std::filesystem::is_directory(dir / "teach")) continue;
-    ModeTeach teach = ReadTeachFolder(dir / "teach", mode);
-    const RunSetup setup = ReadRunSetup(dir);
-    const viz::WorldShapes shapes = WorldShapesOf(setup.world.geometry);
-    const std::filesystem::path figures = dir / "figures";
-    std::filesystem::create_directories(figures);
+namespace {
 
-    written.push_back(RenderTeachMaps(teach, shapes, figures / "maps.png"));
-    const std::vector<core::Pose2> switch_poses = SwitchPosesW(teach);
-
-    const std::vector<RunTrace> runs = ReadRuns(dir);
-    if (!runs.empty()) {
-      viz::PlaybackFigureData playback;
-      playback.mode = mode_name;
-      playback.world = shapes;
-      playback.target = teach.trace.X_WR;
-      playback.switch_poses = switch_poses;
-      viz::ErrorsFigureData errors;
-      errors.mode = mode_name;
-      const std::vector<std::string> labels = RunLabels(dir, runs);
-      for (std::size_t i = 0; i < runs.size(); ++i) {
-        std::vector<core::Pose2> poses;
-        for (const PlaybackSample& s : runs[i].samples) poses.push_back(s.X_WR);
-        playback.runs.push_back({labels[i], poses});
-        const RunSeries series = ComputeRunSeries(teach.trace, runs[i], setup.metrics);
-        errors.runs.push_back(
-            {labels[i], series.progress_m, series.tracking_error_m, series.localization_error_m});
+// Arc length of the teaching ground truth up to the end of each map but the last.
+std::vector<double> SwitchArcLengths(const TeachTrace& trace) {
+  std::vector<double> out;
+  double s = 0.0;
+  for (std::size_t k = 0; k + 1 < trace.maps.size(); ++k) {
+    const core::Vec2 end = trace.maps[k].X_WR.back().translation();
+    double best = 1e300, arc = 0.0;
+    for (std::size_t i = 1; i < trace.X_WR.size(); ++i) {
+      arc += (trace.X_WR[i].translation() - trace.X_WR[i - 1].translation()).norm();
+      const double d = (trace.X_WR[i].translation() - end).norm();
+      if (arc >= s && d < best) {
+        best = d;
+        s = arc;
       }
-      double s = 0.0;
-      for (std::size_t k = 0; k + 1 < teach.trace.maps.size(); ++k) {
-        // Arc length of the teaching ground truth up to the end of map k.
-        const core::Vec2 end = teach.trace.maps[k].X_WR.back().translation();
-        double best = 1e300, arc = 0.0;
-        for (std::size_t i = 1; i < teach.trace.X_WR.size(); ++i) {
-          arc += (teach.trace.X_WR[i].translation() - teach.trace.X_WR[i - 1].translation()).norm();
-          const double d = (teach.trace.X_WR[i].translation() - end).norm();
-          if (arc >= s && d < best) {
-            best = d;
-            s = arc;
-          }
-          if (best < 0.05) break;
-        }
-        errors.switch_arc_lengths.push_back(s);
-      }
-      written.push_back(viz::RenderPlaybackFigure(
-                            playback, figures / ("playback_" + std::string(mode_name) + ".png"))
-                            .path);
-      written.push_back(viz::RenderErrorsFigure(errors, figures / "errors.png").path);
-
-      viz::OdometryFigureData odometry;
-      odometry.world = shapes;
-      odometry.drives.push_back({"teaching", teach.trace.X_WR, teach.trace.X_OR});
-      std::vector<core::Pose2> run_truth, run_odom;
-      for (const PlaybackSample& p : runs.front().samples) {
-        run_truth.push_back(p.X_WR);
-        run_odom.push_back(p.X_OR);
-      }
-      odometry.drives.push_back({"playback run 0", run_truth, run_odom});
-      written.push_back(viz::RenderOdometryFigure(odometry, figures / "odometry.png").path);
-
-      if (std::filesystem::exists(dir / "runs/0/snapshot.json")) {
-        RenderSnapshot(dir / "runs/0/snapshot.json", teach, setup.robot_radius, figures, &written);
-      }
+      if (best < 0.05) break;
     }
-
-    if (std::filesystem::exists(dir / "metrics.json")) {
-      const nlohmann::json a = io::ReadJsonFile(dir / "metrics.json").at("aggregate");
-      auto value = [](const nlohmann::json& v) {
-        return v.is_number() ? v.get<double>() : std::nan("");
-      };
-      viz::ModeMetrics m;
-      m.mode = mode_name;
-      m.metrics.push_back({"success rate", value(a.at("success_rate"))});
-      m.metrics.push_back(
-          {"tracking RMS (m)", value(a.at("tracking_error_m").at("pooled").at("rms"))});
-      m.metrics.push_back(
-          {"localization RMS (m)", value(a.at("localization_error_m").at("pooled").at("rms"))});
-      m.metrics.push_back({"repeatability (m)", value(a.at("repeatability_m"))});
-      comparison.modes.push_back(std::move(m));
-    }
-    teaches.emplace_back(mode_name, std::move(teach));
+    out.push_back(s);
   }
-  if (teaches.empty())
-    throw core::IoError(out.string() +
-                        ": holds no results of `retrace run` (no <mode>/teach folder)");
+  return out;
+}
 
+// A mode's figures of its playback runs: the drives, their errors, the odometry of the teaching
+// drive and run 0, and run 0's snapshot.
+void RenderRunFigures(const std::filesystem::path& dir, const std::string& mode_name,
+                      const ModeTeach& teach, const RunSetup& setup,
+                      const viz::WorldShapes& shapes, const std::vector<RunTrace>& runs,
+                      std::vector<std::filesystem::path>* written) {
+  const std::filesystem::path figures = dir / "figures";
+  viz::PlaybackFigureData playback;
+  playback.mode = mode_name;
+  playback.world = shapes;
+  playback.target = teach.trace.X_WR;
+  playback.switch_poses = SwitchPosesW(teach);
+  viz::ErrorsFigureData errors;
+  errors.mode = mode_name;
+  const std::vector<std::string> labels = RunLabels(dir, runs);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    std::vector<core::Pose2> poses;
+    for (const PlaybackSample& s : runs[i].samples) poses.push_back(s.X_WR);
+    playback.runs.push_back({labels[i], poses});
+    const RunSeries series = ComputeRunSeries(teach.trace, runs[i], setup.metrics);
+    errors.runs.push_back(
+        {labels[i], series.progress_m, series.tracking_error_m, series.localization_error_m});
+  }
+  errors.switch_arc_lengths = SwitchArcLengths(teach.trace);
+  written->push_back(
+      viz::RenderPlaybackFigure(playback, figures / ("playback_" + mode_name + ".png")).path);
+  written->push_back(viz::RenderErrorsFigure(errors, figures / "errors.png").path);
+
+  viz::OdometryFigureData odometry;
+  odometry.world = shapes;
+  odometry.drives.push_back({"teaching", teach.trace.X_WR, teach.trace.X_OR});
+  std::vector<core::Pose2> run_truth, run_odom;
+  for (const PlaybackSample& p : runs.front().samples) {
+    run_truth.push_back(p.X_WR);
+    run_odom.push_back(p.X_OR);
+  }
+  odometry.drives.push_back({"playback run 0", run_truth, run_odom});
+  written->push_back(viz::RenderOdometryFigure(odometry, figures / "odometry.png").path);
+
+  if (std::filesystem::exists(dir / "runs/0/snapshot.json")) {
+    RenderSnapshot(dir / "runs/0/snapshot.json", teach, setup.robot_radius, figures, written);
+  }
+}
+
+// The comparison figure's numbers of one mode, from its metrics.json aggregate.
+viz::ModeMetrics ModeMetricsOf(const std::string& mode_name, const nlohmann::json& a) {
+  auto value = [](const nlohmann::json& v) {
+    return v.is_number() ? v.get<double>() : std::nan("");
+  };
+  viz::ModeMetrics m;
+  m.mode = mode_name;
+  m.metrics.push_back({"success rate", value(a.at("success_rate"))});
+  m.metrics.push_back(
+      {"tracking RMS (m)", value(a.at("tracking_error_m").at("pooled").at("rms"))});
+  m.metrics.push_back(
+      {"localization RMS (m)", value(a.at("localization_error_m").at("pooled").at("rms"))});
+  m.metrics.push_back({"repeatability (m)", value(a.at("repeatability_m"))});
+  return m;
+}
+
+// The figures across modes: their metrics side by side, and the consistent map against the
+// single odometry map.
+void RenderAcrossModes(const std::filesystem::path& out, viz::ComparisonFigureData comparison,
+                       const std::vector<std::pair<std::string, ModeTeach>>& teaches,
+                       std::vector<std::filesystem::path>* written) {
   std::filesystem::create_directories(out / "figures");
   if (comparison.modes.size() > 1) {
     comparison.scenario = out.filename().string();
     comparison.note =
         "Each mode: the playback runs of one teaching drive; RMS over all the runs' samples "
         "(retrace compare gives confidence intervals over seeds).";
-    written.push_back(
+    written->push_back(
         viz::RenderComparisonFigure(comparison, out / "figures" / "comparison.png").path);
   }
   viz::MapsCompareFigureData compare;
@@ -321,9 +325,38 @@ std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& ou
     }
   }
   if (compare.maps.size() == 2) {
-    written.push_back(
+    written->push_back(
         viz::RenderMapsCompareFigure(compare, out / "figures" / "maps_compare.png").path);
   }
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> RenderResults(const std::filesystem::path& out) {
+  std::vector<std::filesystem::path> written;
+  std::vector<std::pair<std::string, ModeTeach>> teaches;
+  viz::ComparisonFigureData comparison;
+  for (const auto& [mode, name] : core::EnumTraits<MapMode>::kNames) {
+    const std::string mode_name(name);
+    const std::filesystem::path dir = out / mode_name;
+    if (!std::filesystem::is_directory(dir / "teach")) continue;
+    ModeTeach teach = ReadTeachFolder(dir / "teach", mode);
+    const RunSetup setup = ReadRunSetup(dir);
+    const viz::WorldShapes shapes = WorldShapesOf(setup.world.geometry);
+    std::filesystem::create_directories(dir / "figures");
+    written.push_back(RenderTeachMaps(teach, shapes, dir / "figures" / "maps.png"));
+    const std::vector<RunTrace> runs = ReadRuns(dir);
+    if (!runs.empty()) RenderRunFigures(dir, mode_name, teach, setup, shapes, runs, &written);
+    if (std::filesystem::exists(dir / "metrics.json")) {
+      comparison.modes.push_back(
+          ModeMetricsOf(mode_name, io::ReadJsonFile(dir / "metrics.json").at("aggregate")));
+    }
+    teaches.emplace_back(mode_name, std::move(teach));
+  }
+  if (teaches.empty())
+    throw core::IoError(out.string() +
+                        ": holds no results of `retrace run` (no <mode>/teach folder)");
+  RenderAcrossModes(out, std::move(comparison), teaches, &written);
   return written;
 }
 
