@@ -250,10 +250,9 @@ std::optional<core::Pose2> StaticChain(const Gathered& g, const std::string& bas
   return std::nullopt;  // a cycle
 }
 
-// Chooses the streams of a ROS log; returns the error of an ambiguous choice (empty: none).
-std::string ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+void ChooseRosScans(const StreamChoice& choice, Gathered& g, LogIndex& index,
+                    std::string& ambiguous) {
   const std::string& log = index.name;
-  std::string ambiguous;
   index.scan_topic = Choose(log, "laser scans (sensor_msgs/msg/LaserScan)", "--scan-topic",
                             choice.scan_topic, Keys(g.scans), index, ambiguous);
   if (index.scan_topic.empty() && ambiguous.empty())
@@ -265,43 +264,56 @@ std::string ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) 
     index.scan = g.scans[index.scan_topic];
     index.laser_frame = g.scan_frame[index.scan_topic];
   }
+}
 
+// Without an odometry topic, the odometry is tf's transform from the odom frame to the robot's
+// base frame: the one chosen, or the only frame tf moves there.
+void ChooseTfOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+  const std::string& log = index.name;
+  std::string base = choice.base_frame;
+  if (base.empty()) {
+    if (g.tf_odometry.size() > 1) {
+      throw core::IoError(log + ": no odometry topic, and tf moves several frames in " +
+                          Quote(choice.odom_frame) + "; choose the robot's with --base-frame");
+    }
+    if (!g.tf_odometry.empty()) base = g.tf_odometry.begin()->first;
+  }
+  const auto it = g.tf_odometry.find(base);
+  if (it == g.tf_odometry.end()) {
+    throw core::IoError(
+        log + ": no odometry: no nav_msgs/msg/Odometry topic and no tf transform " + "from " +
+        Quote(choice.odom_frame) + (base.empty() ? std::string() : " to " + Quote(base)));
+  }
+  g.RequireForward(&it->second, it->second.size(), "tf", index);
+  index.odometry = std::move(it->second);
+  index.base_frame = base;
+  index.odometry_source = "tf " + choice.odom_frame + " -> " + base;
+}
+
+// Returns false when nothing more can be chosen.
+bool ChooseRosOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index,
+                       std::string& ambiguous) {
   const std::string odometry_topic =
-      Choose(log, "odometry (nav_msgs/msg/Odometry)", "--odometry-topic", choice.odometry_topic,
-             Keys(g.odometry), index, ambiguous);
+      Choose(index.name, "odometry (nav_msgs/msg/Odometry)", "--odometry-topic",
+             choice.odometry_topic, Keys(g.odometry), index, ambiguous);
   if (!odometry_topic.empty()) {
     g.RequireForward(&g.odometry[odometry_topic], g.odometry[odometry_topic].size(), odometry_topic,
                      index);
     index.odometry = std::move(g.odometry[odometry_topic]);
     index.base_frame = g.odometry_child[odometry_topic];
     index.odometry_source = odometry_topic + " (nav_msgs/msg/Odometry)";
-  } else {
-    std::string base = choice.base_frame;
-    if (!ambiguous.empty() && g.odometry.size() > 1) {
-      // Several odometry topics: tf is not the odometry, and nothing more can be chosen.
-      return ambiguous;
-    }
-    if (base.empty()) {
-      if (g.tf_odometry.size() > 1) {
-        throw core::IoError(log + ": no odometry topic, and tf moves several frames in " +
-                            Quote(choice.odom_frame) + "; choose the robot's with --base-frame");
-      }
-      if (!g.tf_odometry.empty()) base = g.tf_odometry.begin()->first;
-    }
-    const auto it = g.tf_odometry.find(base);
-    if (it == g.tf_odometry.end()) {
-      throw core::IoError(
-          log + ": no odometry: no nav_msgs/msg/Odometry topic and no tf transform " + "from " +
-          Quote(choice.odom_frame) + (base.empty() ? std::string() : " to " + Quote(base)));
-    }
-    g.RequireForward(&it->second, it->second.size(), "tf", index);
-    index.odometry = std::move(it->second);
-    index.base_frame = base;
-    index.odometry_source = "tf " + choice.odom_frame + " -> " + base;
+    return true;
   }
+  // Several odometry topics: tf is not the odometry, and nothing more can be chosen.
+  if (!ambiguous.empty() && g.odometry.size() > 1) return false;
+  ChooseTfOdometry(choice, g, index);
+  return true;
+}
 
+void ChooseRosReference(const StreamChoice& choice, Gathered& g, LogIndex& index,
+                        std::string& ambiguous) {
   const std::string reference_topic =
-      Choose(log, "poses (geometry_msgs/msg/PoseStamped)", "--reference-topic",
+      Choose(index.name, "poses (geometry_msgs/msg/PoseStamped)", "--reference-topic",
              choice.reference_topic, Keys(g.poses), index, ambiguous);
   if (!reference_topic.empty()) {
     g.RequireForward(&g.poses[reference_topic], g.poses[reference_topic].size(), reference_topic,
@@ -309,8 +321,10 @@ std::string ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) 
     index.reference = std::move(g.poses[reference_topic]);
     index.reference_source = reference_topic + " (geometry_msgs/msg/PoseStamped)";
   }
+}
 
-  if (index.scan_topic.empty()) return ambiguous;  // no scans chosen: no mount to find
+// The LiDAR's mount on the robot from tf_static; a log without one gets a note, not an error.
+void FindRosMount(const Gathered& g, LogIndex& index) {
   if (const std::optional<core::Pose2> X_RL = StaticChain(g, index.base_frame, index.laser_frame)) {
     index.X_RL = *X_RL;
     index.mount_source = index.base_frame == index.laser_frame
@@ -323,6 +337,16 @@ std::string ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) 
                           " to the scans' " + "frame " + Quote(index.laser_frame) +
                           ": the LiDAR is assumed at the robot's origin, facing forward");
   }
+}
+
+// Chooses the streams of a ROS log; returns the error of an ambiguous choice (empty: none).
+std::string ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+  std::string ambiguous;
+  ChooseRosScans(choice, g, index, ambiguous);
+  if (!ChooseRosOdometry(choice, g, index, ambiguous)) return ambiguous;
+  ChooseRosReference(choice, g, index, ambiguous);
+  if (index.scan_topic.empty()) return ambiguous;  // no scans chosen: no mount to find
+  FindRosMount(g, index);
   return ambiguous;
 }
 

@@ -40,23 +40,7 @@ std::string Pose(const core::Pose2& p) {
          " deg)";
 }
 
-}  // namespace
-
-void AddLogInfoOptions(CLI::App* cmd, LogInfoOptions* options) {
-  cmd->add_option("log", options->log,
-                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
-                  "rosbag2 folder")
-      ->required();
-  AddStreamOptions(cmd, &options->streams);
-}
-
-std::string DescribeLog(const logs::LogIndex& index) {
-  std::ostringstream out;
-  std::uint64_t messages = 0;
-  for (const logs::LogTopic& t : index.topics) messages += t.messages;
-  out << index.name << ": " << logs::LogFormatName(index.format) << ", "
-      << Duration(index.duration_s()) << ", " << messages << " messages\n";
-
+void WriteTopicTable(std::ostream& out, const logs::LogIndex& index) {
   std::size_t topic_width = 5;
   std::size_t type_width = 4;
   for (const logs::LogTopic& t : index.topics) {
@@ -75,9 +59,11 @@ std::string DescribeLog(const logs::LogIndex& index) {
                   Rate(t.messages, t.last_s - t.first_s).c_str());
     out << line;
   }
+}
 
-  // Every scan topic (a bag may hold the raw and a filtered scan); the one used is marked when
-  // there are several.
+// Every scan topic (a bag may hold the raw and a filtered scan); the one used is marked when
+// there are several.
+void WriteScanStreams(std::ostream& out, const logs::LogIndex& index) {
   for (const logs::ScanStream& stream : index.scan_streams) {
     const logs::ScanGeometry& s = stream.geometry;
     if (s.scans == 0) continue;
@@ -89,6 +75,9 @@ std::string DescribeLog(const logs::LogIndex& index) {
         << " deg apart; ranges " << FixedText(s.range_min, 2) << " to " << FixedText(s.range_max, 2)
         << " m; frame " << (stream.frame.empty() ? "-" : stream.frame) << "\n";
   }
+}
+
+void WriteOdometryAndMount(std::ostream& out, const logs::LogIndex& index) {
   if (!index.odometry_source.empty() && !index.odometry.empty()) {
     out << "odometry:   " << index.odometry_source << ": " << index.odometry.size() << " poses, "
         << FixedText(logs::PathLength(index.odometry), 1) << " m driven over "
@@ -97,6 +86,9 @@ std::string DescribeLog(const logs::LogIndex& index) {
   }
   if (!index.mount_source.empty())
     out << "mount:      X_RL " << Pose(index.X_RL) << " from " << index.mount_source << "\n";
+}
+
+void WriteReference(std::ostream& out, const logs::LogIndex& index) {
   if (index.reference.empty() && !index.scan_streams.empty()) {
     out << "reference:  none (a corrected log's odometry is its reference: "
            "--synthetic-odometry draws drifting odometry from it)\n";
@@ -104,6 +96,28 @@ std::string DescribeLog(const logs::LogIndex& index) {
     out << "reference:  " << index.reference_source << ": " << index.reference.size() << " poses, "
         << FixedText(logs::PathLength(index.reference), 1) << " m\n";
   }
+}
+
+}  // namespace
+
+void AddLogInfoOptions(CLI::App* cmd, LogInfoOptions* options) {
+  cmd->add_option("log", options->log,
+                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
+                  "rosbag2 folder")
+      ->required();
+  AddStreamOptions(cmd, &options->streams);
+}
+
+std::string DescribeLog(const logs::LogIndex& index) {
+  std::ostringstream out;
+  std::uint64_t messages = 0;
+  for (const logs::LogTopic& t : index.topics) messages += t.messages;
+  out << index.name << ": " << logs::LogFormatName(index.format) << ", "
+      << Duration(index.duration_s()) << ", " << messages << " messages\n";
+  WriteTopicTable(out, index);
+  WriteScanStreams(out, index);
+  WriteOdometryAndMount(out, index);
+  WriteReference(out, index);
   for (const std::string& note : index.notes) out << "note:       " << note << "\n";
   // Several topics of a stream are described; only the commands that use it must choose.
   if (index.needs_choice) {

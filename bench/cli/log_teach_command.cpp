@@ -54,6 +54,70 @@ std::string ModeLine(const ModeTeach& teach) {
   return line;
 }
 
+LogManifestInfo TeachManifest(const logs::LogIndex& index, const LogStreams& streams,
+                              const LogTeachResult& result, MapMode mode, const LogConfig& config,
+                              const std::string& command_line, double wall_time_s) {
+  LogManifestInfo manifest;
+  manifest.command_line = command_line;
+  manifest.fields = {
+      {"log", index.name},
+      {"log_format", std::string(logs::LogFormatName(index.format))},
+      {"mode", std::string(core::EnumName(mode))},
+      {"scan_topic", index.scan_topic},
+      {"odometry", streams.odometry_source},
+      {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
+      {"lidar_mount", index.mount_source},
+      {"from_s", core::FormatNumber(result.first_s)},
+      {"to_s", core::FormatNumber(result.last_s)},
+      {"scans", std::to_string(result.scans)}};
+  manifest.notes = index.notes;
+  manifest.config_yaml = io::ConfigToYaml(config);
+  manifest.wall_time_s = wall_time_s;
+  return manifest;
+}
+
+// Returns the notes to print: a figure that cannot be rendered does not fail the teach.
+std::vector<std::string> RenderTeachFigures(const std::filesystem::path& folder,
+                                            const LogTeachResult& result) {
+  std::vector<std::string> notes;
+  try {
+    for (const ModeTeach& teach : result.modes) {
+      const std::filesystem::path figures =
+          folder / std::string(core::EnumName(teach.mode)) / "figures";
+      std::filesystem::create_directories(figures);
+      RenderTeachMaps(teach, {}, figures / "maps.png", viz::RouteSource::kReference);
+    }
+  } catch (const viz::RenderError& e) {
+    notes.push_back(std::string("figures not rendered: ") + e.what());
+  }
+  return notes;
+}
+
+void PrintTeachSummary(const logs::LogIndex& index, const LogStreams& streams,
+                       const LogTeachResult& result, const std::vector<std::string>& figure_notes) {
+  std::cout << index.name << ": taught " << FixedText(result.last_s - result.first_s, 1)
+            << " s of the log (" << FixedText(result.first_s, 1) << " to "
+            << FixedText(result.last_s, 1) << " s), " << result.scans << " scans, "
+            << FixedText(result.driven_m, 1) << " m driven";
+  if (result.scans_outside > 0)
+    std::cout << "; " << result.scans_outside << " scans without odometry or reference skipped";
+  std::cout << "\n  odometry:  " << streams.odometry_source << "\n  reference: "
+            << (streams.reference_source.empty() ? "none" : streams.reference_source) << "\n";
+  if (!result.switch_points.empty()) {
+    std::cout << "  switch points:";
+    for (double s : result.switch_points) std::cout << " " << ArcLengthText(s);
+    std::cout << "\n";
+  }
+  for (const ModeTeach& teach : result.modes) std::cout << "  " << ModeLine(teach) << "\n";
+  for (const std::string& note : index.notes) std::cout << "  note: " << note << "\n";
+  for (const std::string& note : figure_notes) std::cout << "  " << note << "\n";
+  const double log_s = result.last_s - result.first_s;
+  std::cout << "teaching: " << FixedText(log_s, 1) << " s of log in "
+            << FixedText(result.cpu_time_s, 2) << " s of CPU ("
+            << FixedText(result.cpu_time_s > 0 ? log_s / result.cpu_time_s : 0.0, 0)
+            << "x real time)\n";
+}
+
 }  // namespace
 
 void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options) {
@@ -122,63 +186,18 @@ int RunLogTeachCommand(const LogTeachOptions& options, const std::string& comman
   const double wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   for (const ModeTeach& teach : result.modes) {
-    const std::string mode(core::EnumName(teach.mode));
-    const std::filesystem::path dir = folder.path() / mode;
+    const std::filesystem::path dir = folder.path() / std::string(core::EnumName(teach.mode));
     WriteTeachFolder(dir / "teach", teach);
-    LogManifestInfo manifest;
-    manifest.command_line = command_line;
-    manifest.fields = {
-        {"log", index.name},
-        {"log_format", std::string(logs::LogFormatName(index.format))},
-        {"mode", mode},
-        {"scan_topic", index.scan_topic},
-        {"odometry", streams.odometry_source},
-        {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
-        {"lidar_mount", index.mount_source},
-        {"from_s", core::FormatNumber(result.first_s)},
-        {"to_s", core::FormatNumber(result.last_s)},
-        {"scans", std::to_string(result.scans)}};
-    manifest.notes = index.notes;
-    manifest.config_yaml = io::ConfigToYaml(config);
-    manifest.wall_time_s = wall_time_s;
+    const LogManifestInfo manifest =
+        TeachManifest(index, streams, result, teach.mode, config, command_line, wall_time_s);
     io::WriteFileAtomic(dir / "manifest.yaml", LogManifestYaml(manifest));
   }
   std::vector<std::string> figure_notes;
-  if (options.run.figures) {
-    try {
-      for (const ModeTeach& teach : result.modes) {
-        const std::filesystem::path figures =
-            folder.path() / std::string(core::EnumName(teach.mode)) / "figures";
-        std::filesystem::create_directories(figures);
-        RenderTeachMaps(teach, {}, figures / "maps.png", viz::RouteSource::kReference);
-      }
-    } catch (const viz::RenderError& e) {
-      figure_notes.push_back(std::string("figures not rendered: ") + e.what());
-    }
-  }
+  if (options.run.figures) figure_notes = RenderTeachFigures(folder.path(), result);
   folder.Commit();
 
-  std::cout << index.name << ": taught " << FixedText(result.last_s - result.first_s, 1)
-            << " s of the log (" << FixedText(result.first_s, 1) << " to "
-            << FixedText(result.last_s, 1) << " s), " << result.scans << " scans, "
-            << FixedText(result.driven_m, 1) << " m driven";
-  if (result.scans_outside > 0)
-    std::cout << "; " << result.scans_outside << " scans without odometry or reference skipped";
-  std::cout << "\n  odometry:  " << streams.odometry_source << "\n  reference: "
-            << (streams.reference_source.empty() ? "none" : streams.reference_source) << "\n";
-  if (!result.switch_points.empty()) {
-    std::cout << "  switch points:";
-    for (double s : result.switch_points) std::cout << " " << ArcLengthText(s);
-    std::cout << "\n";
-  }
-  for (const ModeTeach& teach : result.modes) std::cout << "  " << ModeLine(teach) << "\n";
-  for (const std::string& note : index.notes) std::cout << "  note: " << note << "\n";
-  for (const std::string& note : figure_notes) std::cout << "  " << note << "\n";
-  const double log_s = result.last_s - result.first_s;
-  std::cout << "teaching: " << FixedText(log_s, 1) << " s of log in "
-            << FixedText(result.cpu_time_s, 2) << " s of CPU ("
-            << FixedText(result.cpu_time_s > 0 ? log_s / result.cpu_time_s : 0.0, 0)
-            << "x real time)\nresults: " << options.run.out.string() << "\n";
+  PrintTeachSummary(index, streams, result, figure_notes);
+  std::cout << "results: " << options.run.out.string() << "\n";
   return 0;
 }
 
