@@ -2,69 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <optional>
-#include <unordered_map>
 #include <utility>
 
 #include "bench/engine/local_truth.hpp"
 #include "bench/metrics/metrics_json.hpp"
+#include "core/nearest_grid.hpp"
 #include "io/json_writer.hpp"
 
 namespace retrace::bench {
-
-namespace {
-
-// Nearest-neighbour distances to a set of points, through a grid of 1 m buckets searched ring by
-// ring outwards.
-class NearestPoint {
- public:
-  explicit NearestPoint(const std::vector<core::Vec2>& points) : points_(points) {
-    for (std::size_t i = 0; i < points_.size(); ++i) buckets_[Key(Cell(points_[i]))].push_back(i);
-  }
-
-  double Distance(const core::Vec2& p) const {
-    if (points_.empty()) return kMetricNaN;
-    const auto [cx, cy] = Cell(p);
-    double best = std::numeric_limits<double>::infinity();
-    for (long ring = 0;; ++ring) {
-      // Every point in a ring r lies at least (r - 1) * kCell away.
-      if (static_cast<double>(ring - 1) * kCell > best) return best;
-      for (long dx = -ring; dx <= ring; ++dx) {
-        for (long dy = -ring; dy <= ring; ++dy) {
-          if (std::max(std::abs(dx), std::abs(dy)) != ring) continue;
-          const auto it = buckets_.find(Key({cx + dx, cy + dy}));
-          if (it == buckets_.end()) continue;
-          for (std::size_t i : it->second) best = std::min(best, (points_[i] - p).norm());
-        }
-      }
-      if (ring > 100000) return best;  // guards a pathological spread; never reached in practice
-    }
-  }
-
- private:
-  static constexpr double kCell = 1.0;  // m
-  static std::pair<long, long> Cell(const core::Vec2& p) {
-    return {static_cast<long>(std::floor(p.x() / kCell)),
-            static_cast<long>(std::floor(p.y() / kCell))};
-  }
-  static std::uint64_t Key(std::pair<long, long> c) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.first)) << 32) |
-           static_cast<std::uint32_t>(c.second);
-  }
-  const std::vector<core::Vec2>& points_;
-  std::unordered_map<std::uint64_t, std::vector<std::size_t>> buckets_;
-};
-
-}  // namespace
 
 LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const TeachTrace& teach) {
   LogLocalizeSeries series;
   std::vector<core::Vec2> taught;
   for (const core::Pose2& X_WR : teach.X_WR) taught.push_back(X_WR.translation());
-  const NearestPoint nearest(taught);
+  // The taught trajectory as a polyline, as the simulated metrics measure it.
+  const core::PolylineDistance to_taught(taught);
   double driven = 0.0;
   std::optional<core::Vec2> previous;
   int map = -1;
@@ -87,7 +42,8 @@ LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const TeachTrac
     series.localization_error_rad.push_back(e.angle);
     // Where the robot was, not where it believed it was: the reference against the taught
     // trajectory, both in the reference's frame.
-    series.path_distance_m.push_back(nearest.Distance(s.X_WR->translation()));
+    series.path_distance_m.push_back(taught.empty() ? kMetricNaN
+                                                    : to_taught(s.X_WR->translation()));
   }
   return series;
 }

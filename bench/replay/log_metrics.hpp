@@ -7,10 +7,10 @@
 //   lost_fraction                of those scans, the share with an error above
 //                                metrics.lost_error
 //   path_distance_m              how far the log's drive was from the taught route: the
-//                                reference's distance to the teaching drive's reference, the
-//                                nearest of all its samples; a log is not driven by the
-//                                follower, so large values mean the robot was somewhere the
-//                                maps were not taught
+//                                reference's distance to the polyline of the teaching drive's
+//                                reference (as the simulated metrics measure it); a log is not
+//                                driven by the follower, so large values mean the robot was
+//                                somewhere the maps were not taught
 //   on_route_fraction            of the scans with a truth, the share within kOnRoute of the
 //                                taught path: where teach and repeat promises to localize
 //   localization_error_on_route_m  the localization error over those scans only
