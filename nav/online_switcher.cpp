@@ -7,13 +7,6 @@
 #include "core/segment.hpp"
 
 namespace retrace::nav {
-namespace {
-
-// How far back (in revisit radii) a part of the trail must lie to count as a revisit; closer
-// parts are the road just driven, bent by a turn. As in bench/engine/switch_points.cpp.
-constexpr double kRevisitLagFactor = 3.0;
-
-}  // namespace
 
 double OnlineSwitchingConfig::MaxMapLength() const {
   if (!(drift_budget > 0.0) || !(drift > 0.0)) return std::numeric_limits<double>::infinity();
@@ -40,9 +33,8 @@ void OnlineSwitchingConfig::Validate() const {
 RevisitDetector::RevisitDetector(const OnlineSwitchingConfig& config) : config_(config) {
   config_.Validate();
   max_length_ = config_.MaxMapLength();
-  // The sampling of CheckSwitchPoints: fine enough that a revisit cannot slip between samples.
-  step_ = std::clamp(config_.revisit_radius / 8.0, 0.05, 0.5);
-  lag_ = kRevisitLagFactor * config_.revisit_radius;
+  step_ = RevisitSampleStep(config_.revisit_radius);
+  lag_ = RevisitLag(config_.revisit_radius);
 }
 
 bool RevisitDetector::OnPose(const core::Pose2& X_OR) {

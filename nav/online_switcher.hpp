@@ -25,12 +25,23 @@
 // window + 2·step metres of poses and scans back and builds its maps that far behind the robot
 // (nav/teach_recorder.hpp).
 
+#include <algorithm>
 #include <vector>
 
 #include "core/config.hpp"
 #include "core/pose2.hpp"
 
 namespace retrace::nav {
+
+/// What counts as a revisit, for online switching and for the switch points planned or checked
+/// on a route (bench/engine/switch_points.hpp) alike: the earlier pass must lie more than
+/// RevisitLag(radius) of travel behind (closer parts are the road just driven, bent by a turn),
+/// and the trail is sampled every RevisitSampleStep(radius) so that a revisit cannot slip
+/// between two samples unnoticed by more than a fraction of the radius.
+constexpr double RevisitLag(double revisit_radius) { return 3.0 * revisit_radius; }
+constexpr double RevisitSampleStep(double revisit_radius) {
+  return std::clamp(revisit_radius / 8.0, 0.05, 0.5);
+}
 
 struct OnlineSwitchingConfig {
   double revisit_radius = 3.0;  ///< m (route.revisit_radius)

@@ -11,15 +11,12 @@
 #include "core/errors.hpp"
 #include "core/path_index.hpp"
 #include "core/path_projection.hpp"
+#include "nav/online_switcher.hpp"
 
 namespace retrace::bench {
 namespace {
 
 using core::Vec2;
-
-// How far back (in multiples of the revisit radius) an earlier part of the route must lie to
-// count as a revisit; closer parts are simply the road just driven, bent by a turn.
-constexpr double kRevisitLagFactor = 3.0;
 
 using core::CumulativeArcLength;
 
@@ -29,18 +26,15 @@ struct Revisit {
   double s_earlier = 0.0;  // where the route was before, within the radius
 };
 
-// Samples finely enough that a revisit cannot slip between two samples unnoticed by more than a
-// fraction of the radius.
-double SampleStep(double revisit_radius) { return std::clamp(revisit_radius / 8.0, 0.05, 0.5); }
-
 // The first sample of the stretch [s_start, s_end] that comes within revisit_radius of an
-// earlier part of the same stretch lying more than kRevisitLagFactor radii behind. Samples are
-// s_start + i·step and s_end, so CheckSwitchPoints and SuggestSwitchPoints see the same points.
+// earlier part of the same stretch lying more than nav::RevisitLag(revisit_radius) of travel
+// behind. Samples are s_start + i·step and s_end, so CheckSwitchPoints and SuggestSwitchPoints
+// see the same points.
 std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::vector<double>& cum,
                                     const core::PathIndex& index, double s_start, double s_end,
                                     double revisit_radius) {
-  const double step = SampleStep(revisit_radius);
-  const double lag = kRevisitLagFactor * revisit_radius;
+  const double step = nav::RevisitSampleStep(revisit_radius);
+  const double lag = nav::RevisitLag(revisit_radius);
   double previous = s_start;
   for (long i = 0;; ++i) {
     double s = s_start + static_cast<double>(i) * step;
