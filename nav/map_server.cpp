@@ -25,9 +25,9 @@ MapServer::MapServer(TeachBundle bundle, const LoopConfig& loop)
 void MapServer::HandOver(Localizer& localizer, PathFollower& follower) {
   follower.SetPath(current().path);
   previous_tail_.clear();
-  if (HasPrevious()) {
-    const core::Path& path = bundle_.maps[PreviousIndex()].path;
-    const core::Pose2 X_this_previous = CurrentInPrevious().Inverse();
+  if (index_ > 0) {
+    const core::Path& path = bundle_.maps[index_ - 1].path;
+    const core::Pose2 X_this_previous = bundle_.maps[index_ - 1].X_MS.Inverse();
     for (std::size_t i = 0; i < path.size(); ++i) {
       if (path.Length() - path.ArcLength(i) <= kPreviousPathReach)
         previous_tail_.push_back((X_this_previous * path[i]).translation());
@@ -70,22 +70,16 @@ MapStep MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
   return MapStep::kStay;
 }
 
-core::Pose2 MapServer::CurrentInPrevious() const {
-  return index_ > 0 ? bundle_.maps[index_ - 1].X_MS : LastMapInFirst().Inverse();
-}
-
 MapSwitch MapServer::SwitchBack(Localizer& localizer, PathFollower& follower) {
-  RETRACE_CHECK(HasPrevious());
+  RETRACE_CHECK(index_ > 0);
   MapSwitch s;
   s.from = index_;
-  s.to = PreviousIndex();
+  s.to = index_ - 1;
   s.X_MkR = localizer.Estimate();
-  const core::Pose2 X_previous_this = CurrentInPrevious();
-  const bool wraps = index_ == 0;
   index_ = s.to;
-  localizer.ApplyMapSwitch(current().grid, X_previous_this);
+  // The previous map's switch pose is the current map's frame in it: eq. (1) inverted.
+  localizer.ApplyMapSwitch(current().grid, current().X_MS);
   HandOver(localizer, follower);
-  if (wraps) SpreadAfterWrap(localizer);
   follower.SetPathFromEnd(current().path, localizer.Estimate().translation(), kPreviousPathReach);
   s.X_MnR = localizer.Estimate();
   return s;

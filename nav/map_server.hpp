@@ -80,10 +80,11 @@ class MapServer {
   /// The one rule: at the end of the current path (follower goal reached, or within
   /// kPathEndTolerance of the end), the next map; after the last one, map 0 again for a loop
   /// that is driven again, else done. Off the current path (the follower's progress waits) and
-  /// within `max_distance` of the last kPreviousPathReach m of the previous map's path (map 0's
-  /// previous is the last map of a loop), back to the previous map: a robot driven backwards
-  /// along the route, as a recorded drive may be, is localized in the map that holds it. A
-  /// robot that follows the route never meets this case.
+  /// within `max_distance` of the last kPreviousPathReach m of the previous map's path, back to
+  /// the previous map: a robot driven backwards along the route, as a recorded drive may be, is
+  /// localized in the map that holds it. A robot that follows the route never meets this case.
+  /// Map 0 has no previous map, even on a loop (stepping back over the loop's closure would
+  /// spread the particles over the chain's drift at every pass through the start).
   MapStep Decide(const FollowerOutput& follower_output, const core::Pose2& X_MR,
                  double max_distance) const;
   /// Switches to the next map: the localizer gets map k+1 with every particle and the
@@ -99,19 +100,14 @@ class MapServer {
   /// as LoopConfig says. Requires IsLast().
   MapSwitch WrapToFirst(Localizer& localizer, PathFollower& follower);
   /// Back to the previous map (Decide's kBack): every particle becomes
-  /// X_{M_{k-1} R} = X_{M_{k-1} S} * X_{M_k R} (eq. (1) inverted), or, from map 0 of a loop,
-  /// X_{M_n R} = inverse(LastMapInFirst()) * X_{M_0 R} spread as after a wrap; the follower's
-  /// progress starts where the robot is on the previous path's end.
+  /// X_{M_{k-1} R} = X_{M_{k-1} S} * X_{M_k R} (eq. (1) inverted); the follower's progress
+  /// starts where the robot is on the previous path's end. Requires index() > 0.
   MapSwitch SwitchBack(Localizer& localizer, PathFollower& follower);
 
  private:
   // The current path's poses and the first kNextPathReach m of the next map's (in the current
   // map's frame): where recovery looks for the robot.
   void HandOver(Localizer& localizer, PathFollower& follower);
-  bool HasPrevious() const { return index_ > 0; }
-  std::size_t PreviousIndex() const { return index_ > 0 ? index_ - 1 : bundle_.maps.size() - 1; }
-  // X_{M_{k-1} M_k}: the current map's frame in the previous map's.
-  core::Pose2 CurrentInPrevious() const;
   void SpreadAfterWrap(Localizer& localizer) const;
 
   TeachBundle bundle_;
