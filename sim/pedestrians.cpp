@@ -67,6 +67,70 @@ void AddedObstaclePoints(const StaticGeometry& solids, const Vec2& p, double rad
   }
 }
 
+// Distance (m) from p to the next waypoint of s, 0 without one: what a progress window measures.
+double DistanceToNextWaypoint(const PedestrianStatus& s, const Vec2& p) {
+  return s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+}
+
+// The loop waypoints of `group`, each moved to the nearest walkable point if it is not one;
+// *component is their common connected component. Throws core::WorldError (prefixed with
+// `name`) when a waypoint has no walkable point nearby or cannot be reached from waypoint 0.
+std::vector<Vec2> SnapLoopWaypoints(const PedestrianGroupConfig& group, const char* name,
+                                    const WalkPlanner& planner, int* component) {
+  std::vector<Vec2> loop;
+  int loop_component = -1;
+  for (std::size_t k = 0; k < group.waypoints.size(); ++k) {
+    const Vec2& w = group.waypoints[k];
+    std::optional<Vec2> snapped =
+        planner.IsFree(w) ? std::optional<Vec2>(w) : planner.NearestFree(w, kWaypointSnap);
+    if (!snapped) {
+      throw core::WorldError(
+          Format("%s: loop waypoint %zu (%.2f, %.2f) is inside or too close to static geometry (no "
+                 "walkable point within %.1f m)",
+                 name, k, w.x(), w.y(), kWaypointSnap));
+    }
+    const int c = planner.Component(*snapped);
+    if (k == 0) loop_component = c;
+    if (c != loop_component) {
+      throw core::WorldError(
+          Format("%s: loop waypoint %zu (%.2f, %.2f) cannot be reached on foot from waypoint 0 "
+                 "(%.2f, %.2f)",
+                 name, k, w.x(), w.y(), group.waypoints[0].x(), group.waypoints[0].y()));
+    }
+    loop.push_back(*snapped);
+  }
+  *component = loop_component;
+  return loop;
+}
+
+// Desired speed N(mean, std) clipped to two standard deviations and to a walking minimum.
+double DrawDesiredSpeed(const PedestrianGroupConfig& group, core::Rng& rng) {
+  const double lo = std::max(0.1 * group.speed_mean, group.speed_mean - 2.0 * group.speed_std);
+  const double hi = group.speed_mean + 2.0 * group.speed_std;
+  return std::clamp(rng.Normal(group.speed_mean, group.speed_std), lo, hi);
+}
+
+// Why member `n` (0-based) of `group` found no spawn point in max_tries samples: a probe (its
+// own stream split from `rng`) tells a full region from one without reachable free space.
+std::string PlacementFailure(const PedestrianGroupConfig& group, const char* name, int n,
+                             int max_tries, const WalkPlanner& planner, int component,
+                             const core::Rng& rng) {
+  const Aabb region{group.region_min, group.region_max};
+  core::Rng probe = rng.Split("probe");
+  const bool any_free = planner.SampleFreePoint(region, probe, 10000, component).has_value();
+  return Format(
+      "%s: cannot place pedestrian %d of %d in region [%.2f, %.2f]-[%.2f, %.2f] after %d "
+      "tries: %s",
+      name, n + 1, group.count, region.min.x(), region.min.y(), region.max.x(), region.max.y(),
+      max_tries,
+      any_free ? "the region is too full (fewer pedestrians, a larger region, or a robot "
+                 "start too close)"
+               : (group.mode == PedestrianMode::kLoop
+                      ? "the region has no free space connected to the loop waypoints"
+                      : "the region has no free space (inside walls or obstacles, or too "
+                        "narrow for the pedestrian radius plus margin)"));
+}
+
 }  // namespace
 
 void CrowdConfig::Validate() const {
@@ -171,26 +235,7 @@ std::vector<Pedestrians::Placement> Pedestrians::PlaceGroup(
   std::vector<Vec2> loop;
   int loop_component = -1;
   if (group.mode == PedestrianMode::kLoop) {
-    for (std::size_t k = 0; k < group.waypoints.size(); ++k) {
-      const Vec2& w = group.waypoints[k];
-      std::optional<Vec2> snapped =
-          planner.IsFree(w) ? std::optional<Vec2>(w) : planner.NearestFree(w, kWaypointSnap);
-      if (!snapped) {
-        throw core::WorldError(Format(
-            "%s: loop waypoint %zu (%.2f, %.2f) is inside or too close to static geometry (no "
-            "walkable point within %.1f m)",
-            name, k, w.x(), w.y(), kWaypointSnap));
-      }
-      const int c = planner.Component(*snapped);
-      if (k == 0) loop_component = c;
-      if (c != loop_component) {
-        throw core::WorldError(
-            Format("%s: loop waypoint %zu (%.2f, %.2f) cannot be reached on foot from waypoint 0 "
-                   "(%.2f, %.2f)",
-                   name, k, w.x(), w.y(), group.waypoints[0].x(), group.waypoints[0].y()));
-      }
-      loop.push_back(*snapped);
-    }
+    loop = SnapLoopWaypoints(group, name, planner, &loop_component);
   }
 
   std::vector<Placement> out;
@@ -203,57 +248,58 @@ std::vector<Pedestrians::Placement> Pedestrians::PlaceGroup(
     PedestrianStatus status;
     status.group = group_index;
     status.radius = group.radius;
-    // Desired speed N(mean, std) clipped to two standard deviations and to a walking minimum.
-    const double lo = std::max(0.1 * group.speed_mean, group.speed_mean - 2.0 * group.speed_std);
-    const double hi = group.speed_mean + 2.0 * group.speed_std;
-    status.desired_speed = std::clamp(walker.rng.Normal(group.speed_mean, group.speed_std), lo, hi);
+    status.desired_speed = DrawDesiredSpeed(group, walker.rng);
 
-    std::optional<Vec2> spawn;
-    for (int t = 0; t < config_.max_spawn_tries && !spawn; ++t) {
-      const auto p = planner.SampleFreePoint(region, walker.rng, 1, loop_component);
-      if (!p) continue;
-      bool ok = true;
-      for (const Circle& c : *occupied) {
-        const double min_d = c.radius + group.radius + config_.spawn_gap;
-        if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
-      }
-      for (const Circle& c : keep_clear) {
-        const double min_d = c.radius + group.radius + config_.keep_clear_gap;
-        if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
-      }
-      if (ok) spawn = p;
-    }
+    const std::optional<Vec2> spawn =
+        DrawSpawnPoint(group, planner, loop_component, keep_clear, *occupied, walker.rng);
     if (!spawn) {
-      core::Rng probe = walker.rng.Split("probe");
-      const bool any_free =
-          planner.SampleFreePoint(region, probe, 10000, loop_component).has_value();
-      throw core::WorldError(Format(
-          "%s: cannot place pedestrian %d of %d in region [%.2f, %.2f]-[%.2f, %.2f] after %d "
-          "tries: %s",
-          name, n + 1, group.count, region.min.x(), region.min.y(), region.max.x(), region.max.y(),
-          config_.max_spawn_tries,
-          any_free ? "the region is too full (fewer pedestrians, a larger region, or a robot "
-                     "start too close)"
-                   : (group.mode == PedestrianMode::kLoop
-                          ? "the region has no free space connected to the loop waypoints"
-                          : "the region has no free space (inside walls or obstacles, or too "
-                            "narrow for the pedestrian radius plus margin)")));
+      throw core::WorldError(PlacementFailure(group, name, n, config_.max_spawn_tries, planner,
+                                              loop_component, walker.rng));
     }
     occupied->push_back({*spawn, group.radius});
     if (group.mode == PedestrianMode::kLoop) {
       walker.loop_index = static_cast<std::size_t>(walker.rng.UniformIndex(loop.size()));
-      // Everyone aims at their own spot near each waypoint: a shared point would make them
-      // queue for it.
-      for (Vec2& w : walker.loop) {
-        const double angle = walker.rng.Uniform(0.0, 2.0 * core::kPi);
-        const double dist = config_.loop_spread * std::sqrt(walker.rng.Uniform());
-        const Vec2 q = w + dist * Vec2(std::cos(angle), std::sin(angle));
-        if (planner.Component(q) == loop_component && planner.ClearPath(w, q, group.radius)) w = q;
-      }
+      SpreadLoop(planner, loop_component, group.radius, &walker);
     }
     out.push_back({std::move(walker), std::move(status), *spawn});
   }
   return out;
+}
+
+std::optional<Vec2> Pedestrians::DrawSpawnPoint(const PedestrianGroupConfig& group,
+                                                const WalkPlanner& planner, int component,
+                                                const std::vector<Circle>& keep_clear,
+                                                const std::vector<Circle>& occupied,
+                                                core::Rng& rng) const {
+  const Aabb region{group.region_min, group.region_max};
+  std::optional<Vec2> spawn;
+  for (int t = 0; t < config_.max_spawn_tries && !spawn; ++t) {
+    const auto p = planner.SampleFreePoint(region, rng, 1, component);
+    if (!p) continue;
+    bool ok = true;
+    for (const Circle& c : occupied) {
+      const double min_d = c.radius + group.radius + config_.spawn_gap;
+      if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
+    }
+    for (const Circle& c : keep_clear) {
+      const double min_d = c.radius + group.radius + config_.keep_clear_gap;
+      if ((c.center - *p).squaredNorm() < min_d * min_d) ok = false;
+    }
+    if (ok) spawn = p;
+  }
+  return spawn;
+}
+
+void Pedestrians::SpreadLoop(const WalkPlanner& planner, int component, double radius,
+                             Walker* walker) const {
+  // Everyone aims at their own spot near each waypoint: a shared point would make them
+  // queue for it.
+  for (Vec2& w : walker->loop) {
+    const double angle = walker->rng.Uniform(0.0, 2.0 * core::kPi);
+    const double dist = config_.loop_spread * std::sqrt(walker->rng.Uniform());
+    const Vec2 q = w + dist * Vec2(std::cos(angle), std::sin(angle));
+    if (planner.Component(q) == component && planner.ClearPath(w, q, radius)) w = q;
+  }
 }
 
 std::vector<int> Pedestrians::Commit(std::vector<Placement>&& placements, PhysicsWorld& world) {
@@ -285,8 +331,7 @@ void Pedestrians::StartWalking(std::size_t first, bool added, const PhysicsWorld
     // lose its timing).
     const double stagger = walkers_[i].rng.Uniform(0.0, config_.stuck_time);
     walkers_[i].window_start = added ? world.time() + stagger : world.time() - stagger;
-    walkers_[i].window_distance =
-        status_[i].path.empty() ? 0.0 : (status_[i].path.front() - p).norm();
+    walkers_[i].window_distance = DistanceToNextWaypoint(status_[i], p);
   }
 }
 
@@ -349,14 +394,9 @@ void Pedestrians::AddObstacles(const StaticGeometry& solids, const PhysicsWorld&
   // Like the periodic path check in Update, but now: nobody keeps walking into a new obstacle
   // for up to a check period because its straight line was clear a moment ago.
   for (std::size_t i = 0; i < status_.size(); ++i) {
-    PedestrianStatus& s = status_[i];
+    const PedestrianStatus& s = status_[i];
     if (s.path.empty()) continue;
-    const Vec2 p = world.PedestrianPosition(s.id);
-    walkers_[i].line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
-    if (!walkers_[i].line_clear) {
-      Replan(i, p);
-      walkers_[i].window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
-    }
+    CheckLineToWaypoint(i, world.PedestrianPosition(s.id));
   }
 }
 
@@ -437,7 +477,6 @@ void Pedestrians::Update(PhysicsWorld& world) {
   if (status_.empty()) return;
   const double t = world.time();
   const double dt = world.time_step();
-  const SocialForceConfig& sf = config_.social_force;
 
   agents_.resize(status_.size());
   for (std::size_t i = 0; i < status_.size(); ++i) {
@@ -449,6 +488,7 @@ void Pedestrians::Update(PhysicsWorld& world) {
     robot_ =
         SocialAgent{world.RobotPose().translation(), world.RobotVelocityW(), world.robot_radius()};
   }
+  const SocialAgent* robot = has_robot ? &*robot_ : nullptr;
   const auto check_period =
       static_cast<std::uint64_t>(std::max(1.0, std::round(kPathCheckPeriod / dt)));
 
@@ -464,100 +504,122 @@ void Pedestrians::Update(PhysicsWorld& world) {
         w.idle_until = -1.0;
         ChooseNextGoal(i, p, t);
         w.window_start = t;
-        w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+        w.window_distance = DistanceToNextWaypoint(s, p);
       }
     } else {
-      while (!s.path.empty()) {
-        const bool last = s.path.size() == 1;
-        const double tol = last ? config_.goal_tolerance : config_.waypoint_tolerance;
-        if ((s.path.front() - p).norm() >= tol) break;
-        if (last) {
-          ++s.goals_reached;
-          ChooseNextGoal(i, p, t);
-          break;  // the new path starts afresh; checked next step
-        }
-        ++s.waypoints_passed;
-        s.path.erase(s.path.begin());
-        w.line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
-      }
+      PassReachedWaypoints(i, p, t);
       // Pushed off the straight line to the next waypoint (behind a corner, say): re-plan.
       // Staggered over pedestrians to spread the cost.
       if (!s.path.empty() && (world.step_count() + i) % check_period == 0) {
-        w.line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
-        if (!w.line_clear) {
-          Replan(i, p);
-          w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
-        }
+        CheckLineToWaypoint(i, p);
       }
       // Progress check: within stuck_time, pass a waypoint or get stuck_progress closer to it.
-      if (t - w.window_start >= config_.stuck_time) {
-        const double d = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
-        const bool progressed = s.waypoints_passed != w.window_passed ||
-                                s.goals_reached != w.window_goals ||
-                                w.window_distance - d >= config_.stuck_progress;
-        if (progressed || s.path.empty()) {
-          w.stuck_count = 0;
-        } else if (++w.stuck_count == 1) {
-          // Blocked (typically two people meeting head-on in a door): step aside for a moment
-          // to let the other one through, then re-plan. The next check comes a full window
-          // after the pause.
-          ++s.replans;
-          w.yield_until = t + w.rng.Uniform(0.5 * kYieldTime, kYieldTime);
-          w.yield_point = YieldPoint(i, p, s.path.empty() ? p : s.path.front());
-        } else {
-          ++s.goals_abandoned;
-          w.stuck_count = 0;
-          ChooseNextGoal(i, p, t);
-        }
-        w.window_start = std::max(t, w.yield_until);
-        w.window_passed = s.waypoints_passed;
-        w.window_goals = s.goals_reached;
-        w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
-      }
+      if (t - w.window_start >= config_.stuck_time) CheckProgress(i, p, t);
     }
 
     if (w.yield_until >= 0.0 && t >= w.yield_until) {
       w.yield_until = -1.0;
       Replan(i, p);
-      w.window_distance = s.path.empty() ? 0.0 : (s.path.front() - p).norm();
+      w.window_distance = DistanceToNextWaypoint(s, p);
     }
 
-    // Social force.
-    Vec2 direction = Vec2::Zero();
-    const bool yielding = w.yield_until >= 0.0;
-    if (w.idle_until < 0.0 && (yielding || !s.path.empty())) {
-      const Vec2 to = (yielding ? w.yield_point : s.path.front()) - p;
-      const double n = to.norm();
-      if (n > (yielding ? 0.1 : 1e-6)) direction = to / n;
-    }
-    neighbours_.clear();
-    const double range2 = sf.interaction_range * sf.interaction_range;
-    for (std::size_t j = 0; j < agents_.size(); ++j) {
-      if (j != i && (agents_[j].position - p).squaredNorm() < range2)
-        neighbours_.push_back(agents_[j]);
-    }
-    obstacle_points_.clear();
-    index_->NearbyClosestPoints(p, sf.obstacle_cutoff, &obstacle_points_);
-    if (!obstacles_.empty()) {
-      AddedObstaclePoints(obstacles_, p, sf.obstacle_cutoff, &obstacle_points_);
-    }
-    SelectObstaclePoints(p, &obstacle_points_);
-    SocialForceInputs in;
-    in.self = agents_[i];
-    in.direction = direction;
-    in.desired_speed = s.desired_speed;
-    in.others = neighbours_;
-    in.robot = has_robot ? &*robot_ : nullptr;
-    in.obstacle_points = obstacle_points_;
-    in.walking_line_clear = w.line_clear && !yielding;
-    const Vec2 a = SocialForce(in, sf);
-    new_velocities_[i] =
-        IntegrateVelocity(agents_[i].velocity, a, dt, sf.max_speed_factor * s.desired_speed);
+    new_velocities_[i] = SocialVelocity(i, dt, robot);
   }
   // Set after computing all, so that the result does not depend on the update order.
   for (std::size_t i = 0; i < status_.size(); ++i) {
     world.SetPedestrianVelocity(status_[i].id, new_velocities_[i]);
   }
+}
+
+void Pedestrians::PassReachedWaypoints(std::size_t i, const Vec2& p, double t) {
+  PedestrianStatus& s = status_[i];
+  while (!s.path.empty()) {
+    const bool last = s.path.size() == 1;
+    const double tol = last ? config_.goal_tolerance : config_.waypoint_tolerance;
+    if ((s.path.front() - p).norm() >= tol) break;
+    if (last) {
+      ++s.goals_reached;
+      ChooseNextGoal(i, p, t);
+      break;  // the new path starts afresh; checked next step
+    }
+    ++s.waypoints_passed;
+    s.path.erase(s.path.begin());
+    walkers_[i].line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
+  }
+}
+
+void Pedestrians::CheckLineToWaypoint(std::size_t i, const Vec2& p) {
+  const PedestrianStatus& s = status_[i];
+  Walker& w = walkers_[i];
+  w.line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
+  if (!w.line_clear) {
+    Replan(i, p);
+    w.window_distance = DistanceToNextWaypoint(s, p);
+  }
+}
+
+void Pedestrians::CheckProgress(std::size_t i, const Vec2& p, double t) {
+  PedestrianStatus& s = status_[i];
+  Walker& w = walkers_[i];
+  const double d = DistanceToNextWaypoint(s, p);
+  const bool progressed = s.waypoints_passed != w.window_passed ||
+                          s.goals_reached != w.window_goals ||
+                          w.window_distance - d >= config_.stuck_progress;
+  if (progressed || s.path.empty()) {
+    w.stuck_count = 0;
+  } else if (++w.stuck_count == 1) {
+    // Blocked (typically two people meeting head-on in a door): step aside for a moment
+    // to let the other one through, then re-plan. The next check comes a full window
+    // after the pause.
+    ++s.replans;
+    w.yield_until = t + w.rng.Uniform(0.5 * kYieldTime, kYieldTime);
+    w.yield_point = YieldPoint(i, p, s.path.empty() ? p : s.path.front());
+  } else {
+    ++s.goals_abandoned;
+    w.stuck_count = 0;
+    ChooseNextGoal(i, p, t);
+  }
+  w.window_start = std::max(t, w.yield_until);
+  w.window_passed = s.waypoints_passed;
+  w.window_goals = s.goals_reached;
+  w.window_distance = DistanceToNextWaypoint(s, p);
+}
+
+Vec2 Pedestrians::SocialVelocity(std::size_t i, double dt, const SocialAgent* robot) {
+  const SocialForceConfig& sf = config_.social_force;
+  const PedestrianStatus& s = status_[i];
+  const Walker& w = walkers_[i];
+  const Vec2 p = agents_[i].position;
+
+  Vec2 direction = Vec2::Zero();
+  const bool yielding = w.yield_until >= 0.0;
+  if (w.idle_until < 0.0 && (yielding || !s.path.empty())) {
+    const Vec2 to = (yielding ? w.yield_point : s.path.front()) - p;
+    const double n = to.norm();
+    if (n > (yielding ? 0.1 : 1e-6)) direction = to / n;
+  }
+  neighbours_.clear();
+  const double range2 = sf.interaction_range * sf.interaction_range;
+  for (std::size_t j = 0; j < agents_.size(); ++j) {
+    if (j != i && (agents_[j].position - p).squaredNorm() < range2)
+      neighbours_.push_back(agents_[j]);
+  }
+  obstacle_points_.clear();
+  index_->NearbyClosestPoints(p, sf.obstacle_cutoff, &obstacle_points_);
+  if (!obstacles_.empty()) {
+    AddedObstaclePoints(obstacles_, p, sf.obstacle_cutoff, &obstacle_points_);
+  }
+  SelectObstaclePoints(p, &obstacle_points_);
+  SocialForceInputs in;
+  in.self = agents_[i];
+  in.direction = direction;
+  in.desired_speed = s.desired_speed;
+  in.others = neighbours_;
+  in.robot = robot;
+  in.obstacle_points = obstacle_points_;
+  in.walking_line_clear = w.line_clear && !yielding;
+  const Vec2 a = SocialForce(in, sf);
+  return IntegrateVelocity(agents_[i].velocity, a, dt, sf.max_speed_factor * s.desired_speed);
 }
 
 }  // namespace retrace::sim

@@ -135,12 +135,23 @@ class Pedestrians {
                                     std::uint64_t first_member,
                                     const std::vector<Circle>& keep_clear,
                                     std::vector<Circle>* occupied) const;
+  // Steps of PlaceGroup: a spawn point clear of `occupied` and `keep_clear` (nullopt after
+  // max_spawn_tries samples), and the pedestrian's own spot near every loop waypoint.
+  std::optional<Vec2> DrawSpawnPoint(const PedestrianGroupConfig& group, const WalkPlanner& planner,
+                                     int component, const std::vector<Circle>& keep_clear,
+                                     const std::vector<Circle>& occupied, core::Rng& rng) const;
+  void SpreadLoop(const WalkPlanner& planner, int component, double radius, Walker* walker) const;
   std::vector<int> Commit(std::vector<Placement>&& placements, PhysicsWorld& world);
   void StartWalking(std::size_t first, bool added, const PhysicsWorld& world);
   const WalkPlanner& PlannerOf(std::size_t i) const;
   void ChooseNextGoal(std::size_t i, const Vec2& position, double time);
   void Replan(std::size_t i, const Vec2& position);
   Vec2 YieldPoint(std::size_t i, const Vec2& position, const Vec2& waypoint) const;
+  // Steps of Update for pedestrian i at p (W), at time t (s).
+  void PassReachedWaypoints(std::size_t i, const Vec2& p, double t);
+  void CheckLineToWaypoint(std::size_t i, const Vec2& p);
+  void CheckProgress(std::size_t i, const Vec2& p, double t);
+  Vec2 SocialVelocity(std::size_t i, double dt, const SocialAgent* robot);
 
   CrowdConfig config_;
   std::unique_ptr<GeometryIndex> index_;

@@ -75,12 +75,19 @@ WalkPlanner::WalkPlanner(const GeometryIndex& index, const Aabb& area, double pe
   const double cells_y = std::ceil(extent.y() / cell_);
   nx_ = std::max(1, static_cast<int>(cells_x));
   ny_ = std::max(1, static_cast<int>(cells_y));
-  const std::size_t n = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
 
   // Cells near a boundary are blocked. The remaining ("far") cells are each entirely inside or
   // outside the solids; when the inflation radius exceeds half a cell diagonal, a segment
   // between two neighbouring far centres cannot cross a boundary, so one inside test per
   // 8-connected component of far cells decides the whole component.
+  const std::vector<std::uint8_t> far = MeasureClearance(index);
+  ClassifyFarCells(index.geometry(), far);
+
+  LabelComponents();
+}
+
+std::vector<std::uint8_t> WalkPlanner::MeasureClearance(const GeometryIndex& index) {
+  const std::size_t n = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
   std::vector<Vec2> near;
   std::vector<std::uint8_t> far(n, 0);
   clearance_.assign(n, static_cast<float>(inflation_));
@@ -93,7 +100,12 @@ WalkPlanner::WalkPlanner(const GeometryIndex& index, const Aabb& area, double pe
       clearance_[c] = std::min(clearance_[c], static_cast<float>((q - center).norm()));
     }
   }
-  const StaticGeometry& geometry = index.geometry();
+  return far;
+}
+
+void WalkPlanner::ClassifyFarCells(const StaticGeometry& geometry,
+                                   const std::vector<std::uint8_t>& far) {
+  const std::size_t n = far.size();
   free_.assign(n, 0);
   if (inflation_ > 0.75 * cell_) {
     std::vector<std::uint8_t> seen(n, 0);
@@ -119,21 +131,18 @@ WalkPlanner::WalkPlanner(const GeometryIndex& index, const Aabb& area, double pe
         }
       }
       const bool inside = geometry.IsInside(CellCenter(static_cast<int>(c0)));
-      for (int m : members) {
-        free_[static_cast<std::size_t>(m)] = inside ? 0 : 1;
-        if (inside) clearance_[static_cast<std::size_t>(m)] = 0.0f;
-      }
+      for (int m : members) SetInside(static_cast<std::size_t>(m), inside);
     }
   } else {
     for (std::size_t c = 0; c < n; ++c) {
-      if (!far[c]) continue;
-      const bool inside = geometry.IsInside(CellCenter(static_cast<int>(c)));
-      free_[c] = inside ? 0 : 1;
-      if (inside) clearance_[c] = 0.0f;
+      if (far[c]) SetInside(c, geometry.IsInside(CellCenter(static_cast<int>(c))));
     }
   }
+}
 
-  LabelComponents();
+void WalkPlanner::SetInside(std::size_t cell, bool inside) {
+  free_[cell] = inside ? 0 : 1;
+  if (inside) clearance_[cell] = 0.0f;
 }
 
 void WalkPlanner::LabelComponents() {

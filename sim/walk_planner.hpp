@@ -93,6 +93,11 @@ class WalkPlanner {
  private:
   int CellOf(const Vec2& p) const;  // -1 outside the grid
   Vec2 CellCenter(int cell) const;
+  // Construction steps: each cell's clearance (returns which cells are "far": nothing within
+  // the inflation radius), then free or blocked for every far cell by an inside test.
+  std::vector<std::uint8_t> MeasureClearance(const GeometryIndex& index);
+  void ClassifyFarCells(const StaticGeometry& geometry, const std::vector<std::uint8_t>& far);
+  void SetInside(std::size_t cell, bool inside);  // blocked, clearance 0, if inside a solid
   void LabelComponents();
   std::optional<int> NearestFreeCell(const Vec2& p, double max_distance, int component) const;
   std::vector<int> AStar(int start, int goal) const;
