@@ -350,7 +350,9 @@ std::string ChooseRos(const StreamChoice& choice, Gathered& g, LogIndex& index) 
   return ambiguous;
 }
 
-void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+// The scan topic of a CARMEN log: the laser messages chosen, else the first of kCarmenLasers
+// the log holds.
+void ChooseCarmenScans(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   const std::string& log = index.name;
   if (!choice.scan_topic.empty()) {
     if (!g.scans.contains(choice.scan_topic)) {
@@ -375,15 +377,17 @@ void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   index.scan = g.scans[index.scan_topic];
   index.laser_frame = "laser";
   index.base_frame = "base_link";
+}
 
-  // Odometry: the robot poses of the chosen laser lines (exactly at the scans), else ODOM.
+// Odometry: the robot poses of the chosen laser lines (exactly at the scans), else ODOM.
+void ChooseCarmenOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   std::string odometry = choice.odometry_topic;
   if (odometry.empty()) {
     odometry = g.odometry.contains(index.scan_topic) ? index.scan_topic : "ODOM";
   }
   if (!g.odometry.contains(odometry)) {
     throw core::IoError(
-        log + ": no odometry" +
+        index.name + ": no odometry" +
         (choice.odometry_topic.empty()
              ? std::string(": no ODOM lines and ") + index.scan_topic + " lines carry no robot pose"
              : " in " + Quote(odometry) + " lines"));
@@ -392,17 +396,23 @@ void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   index.odometry = std::move(g.odometry[odometry]);
   index.odometry_source =
       odometry == "ODOM" ? "ODOM lines" : "the robot pose of the " + odometry + " lines";
+}
 
+void ChooseCarmenReference(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   const std::string reference = choice.reference_topic.empty() ? "TRUEPOS" : choice.reference_topic;
   if (g.poses.contains(reference)) {
     g.RequireForward(&g.poses[reference], g.poses[reference].size(), reference, index);
     index.reference = std::move(g.poses[reference]);
     index.reference_source = reference + " lines";
   } else if (!choice.reference_topic.empty()) {
-    throw core::IoError(log + ": --reference-topic " + Quote(reference) +
+    throw core::IoError(index.name + ": --reference-topic " + Quote(reference) +
                         ": the log has no such lines (CARMEN's reference is TRUEPOS)");
   }
+}
 
+// The LiDAR's mount from the laser lines' laser and robot poses; lines without a laser pose get a
+// note, not an error.
+void FindCarmenMount(Gathered& g, LogIndex& index) {
   const std::optional<core::Pose2>& mount = g.carmen_mount[index.scan_topic];
   if (mount) {
     index.X_RL = *mount;
@@ -415,6 +425,15 @@ void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
                           " lines carry no laser pose: the LiDAR is assumed at " +
                           "the robot's origin, facing forward");
   }
+}
+
+// Chooses the streams of a CARMEN log (a choice is never ambiguous: the laser messages have an
+// order).
+void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
+  ChooseCarmenScans(choice, g, index);
+  ChooseCarmenOdometry(choice, g, index);
+  ChooseCarmenReference(choice, g, index);
+  FindCarmenMount(g, index);
 }
 
 void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choice,
@@ -567,16 +586,29 @@ std::string OtherClockNote(const Gathered& g, const LogIndex& index, std::int64_
          "first scan";
 }
 
-}  // namespace
+// Counts message `m` into its topic (listed at its first message): how many, its first and last
+// log times, and where its earliest and latest log times are.
+void CountMessage(const RawMessage& m, Gathered& g, LogIndex& index) {
+  auto [it, added] = g.topic_index.try_emplace(std::string(m.topic), index.topics.size());
+  if (added) {
+    index.topics.push_back({std::string(m.topic), std::string(m.type), 0, 0.0, 0.0});
+    index.topics.back().first_s = static_cast<double>(m.log_time_ns);
+    g.log_times[std::string(m.topic)] = {m.log_time_ns, m.log_time_ns, g.place, g.place};
+  }
+  LogTopic& topic = index.topics[it->second];
+  ++topic.messages;
+  topic.last_s = static_cast<double>(m.log_time_ns);
+  Gathered::LogTimes& times = g.log_times.find(m.topic)->second;
+  if (m.log_time_ns < times.min_ns) times = {m.log_time_ns, times.max_ns, g.place, times.max_place};
+  if (m.log_time_ns > times.max_ns) times = {times.min_ns, m.log_time_ns, times.min_place, g.place};
+}
 
-LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice) {
-  LogIndex index;
-  index.name = path.string();
-  index.format = DetectLogFormat(path);
+// The first pass over the log: counts every message into its topic and the log's span, and
+// gathers the streams to choose from.
+void GatherLog(const std::filesystem::path& path, const StreamChoice& choice, Gathered& g,
+               LogIndex& index) {
   const std::unique_ptr<MessageSource> source = OpenLog(path);
   const auto* carmen = dynamic_cast<const CarmenReader*>(source.get());
-
-  Gathered g;
   RawMessage m;
   std::uint64_t number = 0;
   while (source->Next(m)) {
@@ -585,30 +617,25 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice)
                                 : "message " + std::to_string(number);
     if (number == 1) index.start_ns = m.log_time_ns;
     index.end_ns = std::max(index.end_ns, m.log_time_ns);
-    auto [it, added] = g.topic_index.try_emplace(std::string(m.topic), index.topics.size());
-    if (added) {
-      index.topics.push_back({std::string(m.topic), std::string(m.type), 0, 0.0, 0.0});
-      index.topics.back().first_s = static_cast<double>(m.log_time_ns);
-      g.log_times[std::string(m.topic)] = {m.log_time_ns, m.log_time_ns, g.place, g.place};
-    }
-    LogTopic& topic = index.topics[it->second];
-    ++topic.messages;
-    topic.last_s = static_cast<double>(m.log_time_ns);
-    Gathered::LogTimes& times = g.log_times.find(m.topic)->second;
-    if (m.log_time_ns < times.min_ns)
-      times = {m.log_time_ns, times.max_ns, g.place, times.max_place};
-    if (m.log_time_ns > times.max_ns)
-      times = {times.min_ns, m.log_time_ns, times.min_place, g.place};
+    CountMessage(m, g, index);
     Gather(m, number, choice, index.name, g);
   }
   if (number == 0) throw core::IoError(index.name + ": the log holds no message");
   index.start_ns = std::min(index.start_ns, index.end_ns);
+}
+
+// The scan streams, in the order of their topics' first messages.
+void ListScanStreams(Gathered& g, LogIndex& index) {
   for (const LogTopic& t : index.topics) {
     const auto scans = g.scans.find(t.topic);
     if (scans != g.scans.end())
       index.scan_streams.push_back({t.topic, g.scan_frame[t.topic], scans->second});
   }
+}
 
+// Chooses the streams and checks them. A log that cannot be used is still described: why is kept
+// in `problem` (with `needs_choice` when choosing a stream would do).
+void ChooseStreams(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   try {
     std::string ambiguous;
     if (index.format == LogFormat::kCarmen) {
@@ -631,9 +658,16 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice)
   } catch (const core::IoError& e) {
     index.problem = e.what();
   }
+}
 
-  // Log times for people count from the first scan (of the chosen stream, else of any).
-  index.origin_ns = index.start_ns;
+// The log times of the first and the last scan.
+struct ScanLogTimes {
+  std::int64_t first_ns = 0;
+  std::int64_t last_ns = 0;
+};
+
+// The log times of the scans of the chosen stream, else of any; none in a log without scans.
+std::optional<ScanLogTimes> FindScanLogTimes(const LogIndex& index) {
   std::optional<std::int64_t> scans_from, scans_to;
   for (const ScanStream& stream : index.scan_streams) {
     if (stream.geometry.scans == 0) continue;
@@ -643,18 +677,45 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice)
     scans_to =
         std::max(scans_to.value_or(stream.geometry.last_log_ns), stream.geometry.last_log_ns);
   }
-  if (scans_from) index.origin_ns = *scans_from;
+  if (!scans_from) return std::nullopt;
+  return ScanLogTimes{*scans_from, *scans_to};
+}
+
+// Counts the topics' first and last log times (gathered in ns) in seconds from `origin_ns`.
+void SetLogOrigin(std::int64_t origin_ns, LogIndex& index) {
+  index.origin_ns = origin_ns;
   for (LogTopic& t : index.topics) {
     t.first_s = (t.first_s - static_cast<double>(index.origin_ns)) * 1e-9;
     t.last_s = (t.last_s - static_cast<double>(index.origin_ns)) * 1e-9;
   }
+}
+
+// Notes the scan streams (the chosen one, else all) whose angle_max disagrees with their beams.
+void NoteInconsistentAngleMax(Gathered& g, LogIndex& index) {
   for (const ScanStream& stream : index.scan_streams) {
     if (!index.scan_topic.empty() && stream.topic != index.scan_topic) continue;
     if (stream.geometry.inconsistent_angle_max > 0)
       index.notes.push_back(AngleMaxNote(stream, g.scan_quirks[stream.topic]));
   }
-  if (scans_from) {
-    const std::string note = OtherClockNote(g, index, *scans_from, *scans_to);
+}
+
+}  // namespace
+
+LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice) {
+  LogIndex index;
+  index.name = path.string();
+  index.format = DetectLogFormat(path);
+  Gathered g;
+  GatherLog(path, choice, g, index);
+  ListScanStreams(g, index);
+  ChooseStreams(choice, g, index);
+
+  // Log times for people count from the first scan (of the chosen stream, else of any).
+  const std::optional<ScanLogTimes> scans = FindScanLogTimes(index);
+  SetLogOrigin(scans ? scans->first_ns : index.start_ns, index);
+  NoteInconsistentAngleMax(g, index);
+  if (scans) {
+    const std::string note = OtherClockNote(g, index, scans->first_ns, scans->last_ns);
     if (!note.empty()) index.notes.push_back(note);
   }
   return index;
