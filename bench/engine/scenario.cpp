@@ -157,6 +157,88 @@ void ScenarioConfig::Validate() const {
   }
 }
 
+namespace {
+
+// The route, validated, and whether it can be driven in each phase's world (blocked during
+// playback is a warning: a closed gate on the route is a legitimate experiment, the robot must
+// stop); the start pose faces along the first segment.
+void LoadRoute(const std::filesystem::path& file, Scenario* scenario) {
+  const ScenarioConfig& config = scenario->config;
+  const std::filesystem::path dir = file.parent_path();
+  scenario->route =
+      config.route.file.empty() ? config.route.points : io::ReadRouteFile(dir / config.route.file);
+  try {
+    sim::ValidateRoute(scenario->route);
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError(e.key_path(), Where(file) + e.what(), true);
+  }
+  scenario->route_length = RouteLength(scenario->route);
+  const double radius = config.sim.robot.radius;
+  try {
+    sim::CheckRouteIsDrivable(scenario->teach_world.geometry, scenario->route, radius);
+  } catch (const core::WorldError& e) {
+    throw core::WorldError(Where(file) + "the route is not drivable while teaching: " + e.what());
+  }
+  try {
+    sim::CheckRouteIsDrivable(scenario->playback_world.geometry, scenario->route, radius);
+  } catch (const core::WorldError& e) {
+    scenario->playback_blocked = std::string("the route is blocked during playback: ") + e.what();
+  }
+  const core::Vec2 d = scenario->route[1] - scenario->route[0];
+  scenario->X_W_start =
+      core::Pose2(scenario->route[0].x(), scenario->route[0].y(), std::atan2(d.y(), d.x()));
+}
+
+// The switch points: `auto` resolved once, here (the effective config and the manifest hold the
+// points chosen), checked against the route, and moved to (automatic) or warned about
+// (hand-picked) the best-constrained place of their window.
+void ResolveSwitchPoints(Scenario* scenario) {
+  ScenarioConfig& config = scenario->config;
+  if (config.route.switch_points.is(SwitchPlanning::kAuto)) {
+    config.route.switch_points = {std::nullopt,
+                                  SuggestSwitchPoints(scenario->route, config.route.revisit_radius)};
+    scenario->switch_points_auto = true;
+  }
+  std::vector<double>& switch_points = config.route.switch_points.value;
+  // Checked first: JudgeSwitchPlaces needs points inside the route. Online points are judged
+  // after teaching, against the drive's ground truth (bench/metrics/switching.hpp).
+  if (!scenario->switching_online()) {
+    scenario->warnings =
+        CheckSwitchPoints(scenario->route, switch_points, config.route.revisit_radius);
+  }
+  if (config.route.min_switch_constraint <= 0.0 || switch_points.empty()) return;
+  // Automatic points move back to the best place of their window (switching earlier never
+  // makes a map revisit itself); hand-picked ones stay and are warned about.
+  std::vector<SwitchPlace> places =
+      JudgeSwitchPlaces(*scenario, switch_points, config.route.switch_window);
+  if (scenario->switch_points_auto) {
+    for (std::size_t k = 0; k < places.size(); ++k) {
+      switch_points[k] = places[k].best_s;
+      places[k] = {places[k].best_s, places[k].best_constraint, places[k].best_s,
+                   places[k].best_constraint};
+    }
+  }
+  if (scenario->switch_points_auto)
+    scenario->warnings =
+        CheckSwitchPoints(scenario->route, switch_points, config.route.revisit_radius);
+  for (std::string& w : SwitchPlaceWarnings(places, config.route.min_switch_constraint))
+    scenario->warnings.push_back(std::move(w));
+}
+
+// Every event placed along the route lies on it.
+void CheckEventsOnRoute(const Scenario& scenario) {
+  for (std::size_t i = 0; i < scenario.config.events.size(); ++i) {
+    const EventConfig& event = scenario.config.events[i];
+    if (event.at_route_s && *event.at_route_s > scenario.route_length) {
+      throw core::ConfigError(
+          "events." + std::to_string(i) + ".at_route_s",
+          "lies beyond the route's end (" + core::FormatNumber(scenario.route_length) + " m)");
+    }
+  }
+}
+
+}  // namespace
+
 Scenario LoadScenario(const std::filesystem::path& file,
                       const std::vector<io::ConfigOverride>& overrides) {
   Scenario scenario;
@@ -167,78 +249,14 @@ Scenario LoadScenario(const std::filesystem::path& file,
                       "the robot's geometry is stated once, for the simulator and the navigation "
                       "stack alike: set");
   scenario.config = io::ReadConfig<ScenarioConfig>(root, file.string(), overrides);
-  ScenarioConfig& config = scenario.config;
-  const std::filesystem::path dir = file.parent_path();
-  scenario.robot = RobotGeometryOf(config.sim);
-
-  const sim::World world = sim::LoadWorld(dir / config.world);
-  scenario.teach_world = PhaseWorld(world, config.teach_only);
-  scenario.playback_world = PhaseWorld(world, config.playback_only);
-
-  scenario.route =
-      config.route.file.empty() ? config.route.points : io::ReadRouteFile(dir / config.route.file);
+  scenario.robot = RobotGeometryOf(scenario.config.sim);
+  const sim::World world = sim::LoadWorld(file.parent_path() / scenario.config.world);
+  scenario.teach_world = PhaseWorld(world, scenario.config.teach_only);
+  scenario.playback_world = PhaseWorld(world, scenario.config.playback_only);
+  LoadRoute(file, &scenario);
   try {
-    sim::ValidateRoute(scenario.route);
-  } catch (const core::ConfigError& e) {
-    throw core::ConfigError(e.key_path(), Where(file) + e.what(), true);
-  }
-  scenario.route_length = RouteLength(scenario.route);
-  const double radius = config.sim.robot.radius;
-  try {
-    sim::CheckRouteIsDrivable(scenario.teach_world.geometry, scenario.route, radius);
-  } catch (const core::WorldError& e) {
-    throw core::WorldError(Where(file) + "the route is not drivable while teaching: " + e.what());
-  }
-  try {
-    sim::CheckRouteIsDrivable(scenario.playback_world.geometry, scenario.route, radius);
-  } catch (const core::WorldError& e) {
-    // A closed gate on the route during playback is a legitimate experiment (the robot must
-    // stop), so this is a warning, not an error.
-    scenario.playback_blocked = std::string("the route is blocked during playback: ") + e.what();
-  }
-  const core::Vec2 d = scenario.route[1] - scenario.route[0];
-  scenario.X_W_start =
-      core::Pose2(scenario.route[0].x(), scenario.route[0].y(), std::atan2(d.y(), d.x()));
-  try {
-    if (config.route.switch_points.is(SwitchPlanning::kAuto)) {
-      // Resolved once, here: the effective config (and the manifest) holds the points chosen.
-      config.route.switch_points = {
-          std::nullopt, SuggestSwitchPoints(scenario.route, config.route.revisit_radius)};
-      scenario.switch_points_auto = true;
-    }
-    std::vector<double>& switch_points = config.route.switch_points.value;
-    // Checked first: JudgeSwitchPlaces needs points inside the route. Online points are judged
-    // after teaching, against the drive's ground truth (bench/metrics/switching.hpp).
-    if (!scenario.switching_online()) {
-      scenario.warnings =
-          CheckSwitchPoints(scenario.route, switch_points, config.route.revisit_radius);
-    }
-    if (config.route.min_switch_constraint > 0.0 && !switch_points.empty()) {
-      // Automatic points move back to the best place of their window (switching earlier never
-      // makes a map revisit itself); hand-picked ones stay and are warned about.
-      std::vector<SwitchPlace> places =
-          JudgeSwitchPlaces(scenario, switch_points, config.route.switch_window);
-      if (scenario.switch_points_auto) {
-        for (std::size_t k = 0; k < places.size(); ++k) {
-          switch_points[k] = places[k].best_s;
-          places[k] = {places[k].best_s, places[k].best_constraint, places[k].best_s,
-                       places[k].best_constraint};
-        }
-      }
-      if (scenario.switch_points_auto)
-        scenario.warnings =
-            CheckSwitchPoints(scenario.route, switch_points, config.route.revisit_radius);
-      for (std::string& w : SwitchPlaceWarnings(places, config.route.min_switch_constraint))
-        scenario.warnings.push_back(std::move(w));
-    }
-    for (std::size_t i = 0; i < config.events.size(); ++i) {
-      const EventConfig& event = config.events[i];
-      if (event.at_route_s && *event.at_route_s > scenario.route_length) {
-        throw core::ConfigError(
-            "events." + std::to_string(i) + ".at_route_s",
-            "lies beyond the route's end (" + core::FormatNumber(scenario.route_length) + " m)");
-      }
-    }
+    ResolveSwitchPoints(&scenario);
+    CheckEventsOnRoute(scenario);
   } catch (const core::ConfigError& e) {
     if (e.located()) throw;
     throw core::ConfigError(e.key_path(), Where(file) + e.what(), true);
