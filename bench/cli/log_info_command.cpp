@@ -101,10 +101,7 @@ void WriteReference(std::ostream& out, const logs::LogIndex& index) {
 }  // namespace
 
 void AddLogInfoOptions(CLI::App* cmd, LogInfoOptions* options) {
-  cmd->add_option("log", options->log,
-                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
-                  "rosbag2 folder")
-      ->required();
+  AddLogArgument(cmd, &options->log);
   AddStreamOptions(cmd, &options->streams);
 }
 

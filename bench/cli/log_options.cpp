@@ -11,6 +11,13 @@ std::string FixedText(double v, int digits) {
   return buffer;
 }
 
+void AddLogArgument(CLI::App* cmd, std::filesystem::path* log) {
+  cmd->add_option("log", *log,
+                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
+                  "rosbag2 folder")
+      ->required();
+}
+
 void AddStreamOptions(CLI::App* cmd, logs::StreamChoice* choice) {
   cmd->add_option("--scan-topic", choice->scan_topic,
                   "LaserScan topic (CARMEN: FLASER, ROBOTLASER1, RAWLASER1, RLASER); needed when "

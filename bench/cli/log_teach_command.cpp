@@ -121,10 +121,7 @@ void PrintTeachSummary(const logs::LogIndex& index, const LogStreams& streams,
 }  // namespace
 
 void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options) {
-  cmd->add_option("log", options->log,
-                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
-                  "rosbag2 folder")
-      ->required();
+  AddLogArgument(cmd, &options->log);
   cmd->add_option("--out,-o", options->out, "Results folder to write")->required();
   cmd->add_option("--from", options->window.from_s,
                   "Start of the part to use: s since the log's first message (default 0)");
