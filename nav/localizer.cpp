@@ -373,6 +373,10 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   // Lost while the short-term average likelihood is far below the long-term one; recovery.
   UpdateAverages(w_avg, !xs.empty(), &out);
   if (config_.augmented.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
+  if (trial_.running() && out.trial_updates == 0) {  // also while no beam is kept to weigh it
+    out.trial_updates = trial_.updates();
+    out.trial_log_bayes_factor = trial_.log_bayes_factor();
+  }
 
   if (!out.reacquired && out.n_eff < config_.resample_ess_ratio * static_cast<double>(n)) {
     particles_ = config_.kld.enabled ? ResampleKld(w) : ResampleFixed(w);

@@ -81,11 +81,14 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
     io::WriteTum(dir / "est.tum", est);
     io::WriteTum(dir / "reference.tum", reference);
   }
-  io::CsvWriter updates(dir / "updates.csv", {"time", "beams_tested", "beams_rejected", "spread_m",
-                                              "rejection_particles", "cpu_ms"});
-  for (const LocalizerSample& u : run.updates)
-    updates.AddRow(
-        {u.time, u.beams_tested, u.beams_rejected, u.spread, u.rejection_particles, u.cpu_s * 1e3});
+  io::CsvWriter updates(dir / "updates.csv",
+                        {"time", "beams_tested", "beams_rejected", "spread_m", "rejection_particles",
+                         "cpu_ms", "lost", "trial_updates", "trial_log_bayes_factor", "reacquired"});
+  for (const LocalizerSample& u : run.updates) {
+    updates.AddRow({u.time, u.beams_tested, u.beams_rejected, u.spread, u.rejection_particles,
+                    u.cpu_s * 1e3, int{u.lost}, u.trial_updates, u.trial_log_bayes_factor,
+                    int{u.reacquired}});
+  }
   updates.Commit();
   io::CsvWriter events(dir / "events.csv", {"time", "event", "detail"});
   for (const SwitchRecord& s : run.switches) {

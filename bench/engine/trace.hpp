@@ -87,6 +87,10 @@ struct LocalizerSample {
   int rejection_particles = 0;  ///< distinct particles in the sums of eq. (9)
   double cpu_s = 0.0;           ///< thread CPU time of the measurement update (s)
   bool reacquired = false;      ///< a recovery trial replaced the belief (LocalizerUpdate)
+  bool lost = false;            ///< the localizer counts itself lost after the update
+  int beams_used = 0;           ///< beams in the weights
+  int trial_updates = 0;        ///< scans the running recovery trial has explained (0: none)
+  double trial_log_bayes_factor = 0.0;  ///< its evidence against the belief's (nats)
 };
 
 /// A map switch done by the map server.

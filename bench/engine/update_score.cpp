@@ -12,6 +12,10 @@ LocalizerSample ScoreUpdate(const nav::LocalizerUpdate& update, double time, dou
   sample.spread = update.spread;
   sample.rejection_particles = update.rejection_particles;
   sample.reacquired = update.reacquired;
+  sample.lost = update.lost;
+  sample.beams_used = update.beams_used;
+  sample.trial_updates = update.trial_updates;
+  sample.trial_log_bayes_factor = update.trial_log_bayes_factor;
   if (truth.empty()) return sample;
   for (std::size_t i = 0; i < update.beams.size(); ++i) {
     if (update.beams[i] == nav::BeamUse::kUnused) continue;
