@@ -2,9 +2,11 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "bench/cli/cli_checks.hpp"
@@ -12,8 +14,10 @@
 #include "bench/cli/report_command.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/scheduler.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "bench/metrics/flat_metrics.hpp"
+#include "bench/metrics/metrics.hpp"
 #include "bench/output/staged_folder.hpp"
 #include "bench/sweep/sweep_folder.hpp"
 #include "bench/sweep/sweep_plan.hpp"
@@ -95,30 +99,18 @@ FolderState InspectFolder(const std::filesystem::path& out, const SweepPlan& pla
   return state;
 }
 
+// The rows of one finished case.
 struct CaseOutput {
   std::vector<io::CsvCell> results;
   std::vector<io::CsvCell> timings;
 };
 
-// One case: the scenario with the case's overrides, one teaching drive and one playback run of
-// its mode, on this thread.
-CaseOutput RunCase(const SweepPlan& plan, std::size_t id) {
+// The rows of case `id` from its metrics; `wall_time_s` from the start of its scenario's loading
+// to the end of its run.
+CaseOutput CaseRows(const SweepPlan& plan, std::size_t id,
+                    const std::map<std::string, double>& metrics, double wall_time_s) {
   const SweepSpec& s = plan.spec;
   const std::size_t c = plan.combination(id);
-  const auto start = Clock::now();
-  std::map<std::string, double> metrics;
-  try {
-    const Scenario scenario = LoadScenario(s.scenario, plan.CaseOverrides(id));
-    ExperimentOptions options;
-    options.repeats = 1;
-    options.jobs = 1;
-    const Experiment experiment = RunExperiment(scenario, {s.CombinationMode(c)}, options);
-    metrics = FlatMetrics(experiment.modes.front().aggregate);
-  } catch (const core::Error& e) {
-    throw core::Error("case " + std::to_string(id) + " (" + s.DescribeCombination(c) + ", repeat " +
-                      std::to_string(plan.repeat(id)) + ", seed " + std::to_string(plan.seed(id)) +
-                      "): " + e.what());
-  }
   auto metric = [&metrics](const std::string& name) {
     const auto it = metrics.find(name);
     return it == metrics.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
@@ -127,9 +119,55 @@ CaseOutput RunCase(const SweepPlan& plan, std::size_t id) {
   out.results = {id, c, plan.repeat(id), plan.seed(id)};
   for (const std::string& value : s.combinations[c]) out.results.emplace_back(value);
   for (const std::string& name : s.metrics) out.results.emplace_back(metric(name));
-  out.timings = {id, SecondsSince(start)};
+  out.timings = {id, wall_time_s};
   for (const std::string& name : s.timing_metrics) out.timings.emplace_back(metric(name));
   return out;
+}
+
+// What a case holds while it runs: its scenario (with the case's overrides), its run and when it
+// started. Freed when the case is done.
+struct CaseSlot {
+  std::optional<Scenario> scenario;
+  RunTrace run;
+  RunMetrics run_metrics;
+  Clock::time_point start;
+};
+
+// Runs the cases `todo` through the one scheduler (bench/engine/scheduler.hpp) on `jobs`
+// threads: each case is a job that loads its scenario, teaches its mode and plays it back once.
+// `done` gets each finished case's rows, from a worker thread.
+void RunCases(const SweepPlan& plan, const std::vector<std::size_t>& todo, int jobs,
+              const std::function<void(std::size_t id, const CaseOutput& output)>& done) {
+  const SweepSpec& s = plan.spec;
+  std::vector<CaseSlot> slots(todo.size());
+  std::vector<EpisodeJob> episodes(todo.size());
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    const std::size_t id = todo[i];
+    const std::size_t c = plan.combination(id);
+    EpisodeJob& job = episodes[i];
+    job.name = "case " + std::to_string(id) + " (" + s.DescribeCombination(c) + ", repeat " +
+               std::to_string(plan.repeat(id)) + ", seed " + std::to_string(plan.seed(id)) + ")";
+    job.load = [&plan, &slot = slots[i], id]() -> const Scenario* {
+      slot.start = Clock::now();
+      return &slot.scenario.emplace(LoadScenario(plan.spec.scenario, plan.CaseOverrides(id)));
+    };
+    job.modes = {s.CombinationMode(c)};
+    job.repeats = 1;
+  }
+  EpisodeCallbacks callbacks;
+  callbacks.run_done = [&](std::size_t i, std::size_t, const ModeTeach& teach, RunTrace&& run) {
+    CaseSlot& slot = slots[i];
+    slot.run_metrics = ComputeRunMetrics(teach.trace, run, slot.scenario->config.metrics);
+    slot.run = std::move(run);
+  };
+  callbacks.mode_done = [&](std::size_t i, std::size_t, ModeTeach&& teach) {
+    CaseSlot& slot = slots[i];
+    const AggregateMetrics aggregate =
+        AggregateMode(*slot.scenario, teach, {slot.run}, {slot.run_metrics});
+    done(todo[i], CaseRows(plan, todo[i], FlatMetrics(aggregate), SecondsSince(slot.start)));
+    slot = CaseSlot{};
+  };
+  RunEpisodes(std::move(episodes), jobs, nullptr, callbacks);
 }
 
 }  // namespace
@@ -202,12 +240,11 @@ int RunSweepCommand(const SweepOptions& options, const std::string& command_line
     progress.CountdownPhase("sweep " + spec.name, static_cast<int>(shard_cases),
                             static_cast<int>(shard_cases - todo.size()));
     try {
-      ParallelFor(jobs, todo.size(), [&](std::size_t i) {
-        const CaseOutput output = RunCase(plan, todo[i]);
+      RunCases(plan, todo, jobs, [&](std::size_t id, const CaseOutput& output) {
         // results.csv first: a case counts as done once its row is there; its timing row is
         // informative only.
         results.Append(output.results);
-        if (!timed.contains(todo[i])) timings.Append(output.timings);
+        if (!timed.contains(id)) timings.Append(output.timings);
         progress.UnitDone();
       });
     } catch (...) {

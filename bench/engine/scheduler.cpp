@@ -1,14 +1,82 @@
 #include "bench/engine/scheduler.hpp"
 
 #include <algorithm>
-#include <atomic>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <numeric>
+#include <set>
+#include <thread>
+#include <tuple>
 
-#include "bench/engine/parallel.hpp"
 #include "bench/engine/playback.hpp"
+#include "core/check.hpp"
+#include "core/errors.hpp"
 
 namespace retrace::bench {
 namespace {
+
+// A playback run ready to start, in the order runs are taken: the longest teaching drive first
+// (its runs take longest), then by job, mode and run.
+struct RunTask {
+  double cost = 0.0;  // s: the job's teaching drive, which bounds its runs
+  std::size_t job = 0;
+  std::size_t mode = 0;
+  int run = 0;
+  bool operator<(const RunTask& o) const {
+    return std::tie(o.cost, job, mode, run) < std::tie(cost, o.job, o.mode, o.run);
+  }
+};
+
+// A task that threw, and where it stands in the queue's order: drives (by their position) before
+// runs.
+struct Failure {
+  bool run = false;
+  std::size_t drive_position = 0;
+  RunTask task;
+  std::exception_ptr error;
+  bool operator<(const Failure& o) const {
+    if (run != o.run) return !run;
+    return run ? task < o.task : drive_position < o.drive_position;
+  }
+};
+
+// The scheduler's state, shared by its worker threads under one mutex.
+class EpisodeQueue {
+ public:
+  EpisodeQueue(std::vector<EpisodeJob>& jobs, ProgressSink* progress,
+               const EpisodeCallbacks& callbacks);
+
+  // A worker thread's loop: takes ready tasks until none is left or one has failed.
+  void Work();
+  // Rethrows the first failure in the queue's order, if any task failed.
+  void RethrowFirstFailure() const;
+  std::vector<TeachTiming> TakeTiming() { return std::move(timing_); }
+
+ private:
+  void Drive(std::size_t position);
+  void Play(const RunTask& task);
+  void HandOverModesWithoutRuns(std::size_t job);
+  void QueueRuns(std::size_t job);  // under mutex_
+  void Fail(Failure failure);
+
+  std::vector<EpisodeJob>& jobs_;
+  ProgressSink* progress_;
+  const EpisodeCallbacks& callbacks_;
+  std::vector<TeachTiming> timing_;
+  std::vector<std::size_t> drives_;  // jobs to teach, longest route first (unknown routes last)
+  std::vector<std::vector<int>> runs_left_;  // per job and mode
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::size_t next_drive_ = 0;
+  std::size_t drives_done_ = 0;
+  std::set<RunTask> ready_;
+  int in_flight_ = 0;
+  int total_runs_ = 0;
+  int runs_done_early_ = 0;  // runs done while drives still went on (before the playback phase)
+  std::vector<Failure> failures_;
+};
 
 // Indices 0..n-1 ordered by decreasing cost (stable), so that the longest jobs start first.
 std::vector<std::size_t> LongestFirst(const std::vector<double>& cost) {
@@ -19,79 +87,192 @@ std::vector<std::size_t> LongestFirst(const std::vector<double>& cost) {
   return order;
 }
 
+// The scenario's route time at the teacher's speed; 0 before a loader ran.
+double TeachCost(const EpisodeJob& job) {
+  if (job.scenario == nullptr) return 0.0;
+  return job.scenario->route_length / job.scenario->config.teach.teacher.speed;
+}
+
+// Runs `work`, prefixing the job's name to a core::Error it throws.
+template <class Work>
+auto Named(const EpisodeJob& job, const Work& work) {
+  try {
+    return work();
+  } catch (const core::Error& e) {
+    if (job.name.empty()) throw;
+    throw core::Error(job.name + ": " + e.what());
+  }
+}
+
+EpisodeQueue::EpisodeQueue(std::vector<EpisodeJob>& jobs, ProgressSink* progress,
+                           const EpisodeCallbacks& callbacks)
+    : jobs_(jobs), progress_(progress), callbacks_(callbacks), timing_(jobs.size()),
+      runs_left_(jobs.size()) {
+  std::vector<std::size_t> teach;
+  std::vector<double> cost;
+  for (std::size_t j = 0; j < jobs_.size(); ++j) {
+    EpisodeJob& job = jobs_[j];
+    RETRACE_CHECK(job.scenario != nullptr || (job.load && job.taught.empty()));
+    timing_[j].duration_s = job.taught_duration_s;
+    if (job.taught.empty() && !job.modes.empty()) {
+      teach.push_back(j);
+      cost.push_back(TeachCost(job));
+      total_runs_ += std::max(job.repeats, 0) * static_cast<int>(job.modes.size());
+    } else {
+      total_runs_ += std::max(job.repeats, 0) * static_cast<int>(job.taught.size());
+    }
+  }
+  for (const std::size_t i : LongestFirst(cost)) drives_.push_back(teach[i]);
+  // Jobs given their teach are taught already (no worker runs yet: no lock needed).
+  for (std::size_t j = 0; j < jobs_.size(); ++j) {
+    if (jobs_[j].taught.empty()) continue;
+    HandOverModesWithoutRuns(j);
+    QueueRuns(j);
+  }
+  if (progress_ && !drives_.empty()) progress_->Phase("teach", static_cast<int>(drives_.size()));
+  if (progress_ && drives_.empty() && total_runs_ > 0) progress_->Phase("playback", total_runs_);
+}
+
+void EpisodeQueue::Work() {
+  for (;;) {
+    RunTask run;
+    std::size_t drive = 0;
+    bool is_run = false;
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [&] {
+        return !failures_.empty() || !ready_.empty() || next_drive_ < drives_.size() ||
+               in_flight_ == 0;
+      });
+      if (!failures_.empty()) return;
+      if (!ready_.empty()) {
+        run = *ready_.begin();
+        ready_.erase(ready_.begin());
+        is_run = true;
+      } else if (next_drive_ < drives_.size()) {
+        drive = next_drive_++;
+      } else {
+        return;  // nothing ready and nothing running that could make work: all done
+      }
+      ++in_flight_;
+    }
+    if (is_run) {
+      Play(run);
+    } else {
+      Drive(drive);
+    }
+    {
+      std::lock_guard lock(mutex_);
+      --in_flight_;
+    }
+    changed_.notify_all();
+  }
+}
+
+void EpisodeQueue::Drive(std::size_t position) {
+  const std::size_t j = drives_[position];
+  EpisodeJob& job = jobs_[j];
+  try {
+    Named(job, [&] {
+      if (job.scenario == nullptr) job.scenario = job.load();
+      std::unique_ptr<SensorTap> tap = callbacks_.tap ? callbacks_.tap(j, nullptr, -1) : nullptr;
+      TeachResult teach =
+          RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress_), tap.get());
+      job.taught = std::move(teach.modes);
+      timing_[j] = {teach.duration_s, teach.cpu_time_s};
+    });
+  } catch (...) {
+    Fail({false, position, {}, std::current_exception()});
+    return;
+  }
+  HandOverModesWithoutRuns(j);
+  std::lock_guard lock(mutex_);
+  QueueRuns(j);
+  changed_.notify_all();
+  if (!progress_) return;
+  progress_->UnitDone();
+  if (++drives_done_ == drives_.size() && total_runs_ > 0) {
+    progress_->Phase("playback", total_runs_);
+    for (int r = 0; r < runs_done_early_; ++r) progress_->UnitDone();
+  }
+}
+
+// A mode without runs is done as soon as it is taught.
+void EpisodeQueue::HandOverModesWithoutRuns(std::size_t j) {
+  EpisodeJob& job = jobs_[j];
+  if (job.repeats > 0 || !callbacks_.mode_done) return;
+  for (std::size_t m = 0; m < job.taught.size(); ++m) callbacks_.mode_done(j, m, std::move(job.taught[m]));
+}
+
+void EpisodeQueue::QueueRuns(std::size_t j) {
+  const EpisodeJob& job = jobs_[j];
+  runs_left_[j].assign(job.taught.size(), std::max(job.repeats, 0));
+  for (std::size_t m = 0; m < job.taught.size(); ++m) {
+    for (int r = 0; r < job.repeats; ++r) ready_.insert({timing_[j].duration_s, j, m, r});
+  }
+}
+
+void EpisodeQueue::Play(const RunTask& task) {
+  EpisodeJob& job = jobs_[task.job];
+  ModeTeach& teach = job.taught[task.mode];
+  try {
+    Named(job, [&] {
+      std::unique_ptr<PlaybackObserver> observer =
+          callbacks_.observe ? callbacks_.observe(teach, task.run) : nullptr;
+      std::unique_ptr<SensorTap> tap =
+          callbacks_.tap ? callbacks_.tap(task.job, &teach, task.run) : nullptr;
+      RunTrace run = RunPlayback(*job.scenario, teach.bundle, teach.trace, task.run,
+                                 PlaybackTimeout(*job.scenario, timing_[task.job].duration_s),
+                                 SimTimeReporter(progress_), observer.get(), tap.get());
+      if (callbacks_.run_done) callbacks_.run_done(task.job, task.mode, teach, std::move(run));
+    });
+  } catch (...) {
+    Fail({true, 0, task, std::current_exception()});
+    return;
+  }
+  bool last = false;
+  {
+    std::lock_guard lock(mutex_);
+    last = --runs_left_[task.job][task.mode] == 0;
+    if (progress_ && drives_done_ < drives_.size()) {
+      ++runs_done_early_;
+    } else if (progress_) {
+      progress_->UnitDone();
+    }
+  }
+  // The last run of a (job, mode) hands its teach over, so that a caller can free it while
+  // others still run.
+  if (last && callbacks_.mode_done) callbacks_.mode_done(task.job, task.mode, std::move(teach));
+}
+
+void EpisodeQueue::Fail(Failure failure) {
+  {
+    std::lock_guard lock(mutex_);
+    failures_.push_back(std::move(failure));
+  }
+  changed_.notify_all();
+}
+
+void EpisodeQueue::RethrowFirstFailure() const {
+  if (failures_.empty()) return;
+  std::rethrow_exception(std::min_element(failures_.begin(), failures_.end())->error);
+}
+
 }  // namespace
 
 std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
                                      ProgressSink* progress, const EpisodeCallbacks& callbacks) {
-  // Teaching drives, the longest route (in time) first.
-  std::vector<std::size_t> to_teach;
-  std::vector<double> teach_cost;
-  for (std::size_t j = 0; j < jobs.size(); ++j) {
-    if (!jobs[j].taught.empty() || jobs[j].modes.empty()) continue;
-    to_teach.push_back(j);
-    const Scenario& s = *jobs[j].scenario;
-    teach_cost.push_back(s.route_length / s.config.teach.teacher.speed);
+  EpisodeQueue queue(jobs, progress, callbacks);
+  const int n = std::max(threads, 1);
+  if (n == 1) {
+    queue.Work();
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < n; ++t) pool.emplace_back([&queue] { queue.Work(); });
+    for (std::thread& t : pool) t.join();
   }
-  std::vector<TeachTiming> timing(jobs.size());
-  for (std::size_t j = 0; j < jobs.size(); ++j) timing[j].duration_s = jobs[j].taught_duration_s;
-  if (!to_teach.empty()) {
-    const std::vector<std::size_t> order = LongestFirst(teach_cost);
-    if (progress) progress->Phase("teach", static_cast<int>(to_teach.size()));
-    ParallelFor(threads, to_teach.size(), [&](std::size_t i) {
-      EpisodeJob& job = jobs[to_teach[order[i]]];
-      const std::size_t j = to_teach[order[i]];
-      std::unique_ptr<SensorTap> tap = callbacks.tap ? callbacks.tap(j, nullptr, -1) : nullptr;
-      TeachResult teach =
-          RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress), tap.get());
-      job.taught = std::move(teach.modes);
-      timing[to_teach[order[i]]] = {teach.duration_s, teach.cpu_time_s};
-      if (progress) progress->UnitDone();
-    });
-  }
-
-  // Playback runs of every job and mode, the longest teaching drive first. The last run of a
-  // (job, mode) hands its teach over, so that a caller can free it while others still run.
-  struct Task {
-    std::size_t job;
-    std::size_t mode;
-    int run;
-  };
-  std::vector<Task> tasks;
-  std::vector<double> run_cost;
-  std::vector<std::vector<std::atomic<int>>> remaining(jobs.size());
-  for (std::size_t j = 0; j < jobs.size(); ++j) {
-    remaining[j] = std::vector<std::atomic<int>>(jobs[j].taught.size());
-    for (std::size_t m = 0; m < jobs[j].taught.size(); ++m) {
-      remaining[j][m].store(jobs[j].repeats);
-      if (jobs[j].repeats <= 0 && callbacks.mode_done)
-        callbacks.mode_done(j, m, std::move(jobs[j].taught[m]));
-      for (int r = 0; r < jobs[j].repeats; ++r) {
-        tasks.push_back({j, m, r});
-        run_cost.push_back(timing[j].duration_s);
-      }
-    }
-  }
-  if (tasks.empty()) return timing;
-
-  const std::vector<std::size_t> order = LongestFirst(run_cost);
-  if (progress) progress->Phase("playback", static_cast<int>(tasks.size()));
-  ParallelFor(threads, tasks.size(), [&](std::size_t i) {
-    const Task& task = tasks[order[i]];
-    EpisodeJob& job = jobs[task.job];
-    ModeTeach& teach = job.taught[task.mode];
-    std::unique_ptr<PlaybackObserver> observer =
-        callbacks.observe ? callbacks.observe(teach, task.run) : nullptr;
-    std::unique_ptr<SensorTap> tap =
-        callbacks.tap ? callbacks.tap(task.job, &teach, task.run) : nullptr;
-    RunTrace run = RunPlayback(*job.scenario, teach.bundle, teach.trace, task.run,
-                               PlaybackTimeout(*job.scenario, timing[task.job].duration_s),
-                               SimTimeReporter(progress), observer.get(), tap.get());
-    if (callbacks.run_done) callbacks.run_done(task.job, task.mode, teach, std::move(run));
-    if (remaining[task.job][task.mode].fetch_sub(1) == 1 && callbacks.mode_done)
-      callbacks.mode_done(task.job, task.mode, std::move(teach));
-    if (progress) progress->UnitDone();
-  });
-  return timing;
+  queue.RethrowFirstFailure();
+  return queue.TakeTiming();
 }
 
 }  // namespace retrace::bench

@@ -1,13 +1,17 @@
 #pragma once
-// The one scheduler of episodes: it runs the teaching drives of several jobs in parallel, then
-// all their playback runs, each phase longest first so that a long route does not leave cores
-// idle at the end. `retrace run`, `playback`, `bench`, `sweep` and `compare` all run through it.
-// Each run is seeded by its own index (PlaybackRng), so the results do not depend on the number
-// of threads or on which thread ran what.
+// The one scheduler of episodes. `retrace run`, `playback`, `bench`, `sweep` and `compare` all
+// run through it. Its work is a queue of tasks: a job's teaching drive (after loading the job's
+// scenario, when the job brings a loader) and each of its playback runs, which become ready when
+// the drive is done. A free thread takes the runs of taught jobs before it starts another
+// teaching drive, so that a job's maps and traces are freed as early as possible and memory holds
+// about one job per thread; within each kind, the longest first, so that a long route does not
+// leave cores idle at the end. Each run is seeded by its own index (PlaybackRng), so the results
+// do not depend on the number of threads or on which thread ran what.
 
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bench/engine/playback_observer.hpp"
@@ -22,6 +26,12 @@ namespace retrace::bench {
 /// One teaching drive (or teach folders read back) and its playback runs in every mode.
 struct EpisodeJob {
   const Scenario* scenario = nullptr;  ///< must outlive the call
+  /// Instead of `scenario`: loads it on a worker thread right before the job's teaching drive
+  /// (only for a job that teaches). The scenario must outlive the job's last callback.
+  std::function<const Scenario*()> load;
+  /// Prefixed to the message of a core::Error that the job's load, teaching drive or runs throw
+  /// (e.g. "case 12 (particles=300, repeat 0, seed 1)"); empty: the message as it is.
+  std::string name;
   std::vector<MapMode> modes;          ///< modes to teach; ignored when `taught` is given
   /// Already taught modes (e.g. teach folders read back): no teaching drive then.
   std::vector<ModeTeach> taught;
@@ -54,10 +64,11 @@ struct TeachTiming {
 };
 
 /// Runs the jobs on `threads` threads (>= 1) and returns each job's teach timing. Progress: a
-/// "teach" phase of the drives (when any job teaches), then a "playback" phase of all runs. Throws
-/// core::WorldError when a teaching drive cannot finish its route or the world refuses a run's
-/// start; the first error in the order the work was started (longest first) wins, whatever the
-/// number of threads.
+/// "teach" phase of the drives (when any job teaches), then a "playback" phase of all runs (runs
+/// done while drives still went on count when it starts). Throws core::WorldError when a
+/// teaching drive cannot finish its route or the world refuses a run's start. After an error no
+/// task starts; of the tasks that failed, the first in the queue's order (drives before runs,
+/// then longest first) is rethrown.
 std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
                                      ProgressSink* progress, const EpisodeCallbacks& callbacks);
 
