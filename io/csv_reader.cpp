@@ -13,23 +13,28 @@ struct CsvProblem {
   std::string what;
 };
 
-// The one parser behind ParseCsv and SplitCsvRecord: fills `records`, or says what is wrong.
-std::optional<CsvProblem> Parse(std::string_view text, std::vector<CsvRecord>* records) {
+// Where Parse stands: the record and the cell being read, the line (1-based) and the quoting.
+struct CsvParseState {
+  explicit CsvParseState(std::vector<CsvRecord>* out) : records(out) { record.line = 1; }
+
+  std::vector<CsvRecord>* records;
   CsvRecord record;
   std::string cell;
   int line = 1;
-  record.line = 1;
   bool quoted = false;      // inside a quoted cell
   bool was_quoted = false;  // the current cell was quoted and has closed
   bool any = false;         // the record has content (a blank line has none)
-  auto end_cell = [&] {
+
+  // Closes the current cell of the record.
+  void EndCell() {
     record.cells.push_back(std::move(cell));
     cell.clear();
     was_quoted = false;
-  };
-  auto end_record = [&] {
+  }
+  // Closes the record (kept only if it has content) and starts the next one on `line`.
+  void EndRecord() {
     if (any) {
-      end_cell();
+      EndCell();
       records->push_back(std::move(record));
     }
     record = CsvRecord{};
@@ -37,46 +42,65 @@ std::optional<CsvProblem> Parse(std::string_view text, std::vector<CsvRecord>* r
     was_quoted = false;
     any = false;
     record.line = line;
-  };
+  }
+};
+
+// One character inside a quoted cell, text[*i]: a doubled quote is a quote (*i moves past the
+// second), a single one closes the cell; anything else, line breaks too, belongs to the cell.
+void ReadQuotedCsvChar(std::string_view text, std::size_t* i, CsvParseState* s) {
+  const char c = text[*i];
+  if (c == '"') {
+    if (*i + 1 < text.size() && text[*i + 1] == '"') {
+      s->cell += '"';
+      ++*i;
+    } else {
+      s->quoted = false;
+      s->was_quoted = true;
+    }
+  } else {
+    if (c == '\n') ++s->line;
+    s->cell += c;
+  }
+}
+
+// One character of a record outside quotes (not a line break): a comma ends the cell, a quote
+// opens a quoted cell; the problem when the character breaks the format.
+std::optional<CsvProblem> ReadPlainCsvChar(char c, CsvParseState* s) {
+  s->any = true;
+  if (c == ',') {
+    s->EndCell();
+  } else if (c == '"') {
+    if (s->was_quoted || !s->cell.empty()) {
+      return CsvProblem{s->line, "a double quote inside a cell that is not quoted"};
+    }
+    s->quoted = true;
+  } else if (s->was_quoted) {
+    return CsvProblem{s->line, "text after the closing quote of a cell"};
+  } else {
+    s->cell += c;
+  }
+  return std::nullopt;
+}
+
+// The one parser behind ParseCsv and SplitCsvRecord: fills `records`, or says what is wrong.
+std::optional<CsvProblem> Parse(std::string_view text, std::vector<CsvRecord>* records) {
+  CsvParseState s(records);
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
-    if (quoted) {
-      if (c == '"') {
-        if (i + 1 < text.size() && text[i + 1] == '"') {
-          cell += '"';
-          ++i;
-        } else {
-          quoted = false;
-          was_quoted = true;
-        }
-      } else {
-        if (c == '\n') ++line;
-        cell += c;
-      }
+    if (s.quoted) {
+      ReadQuotedCsvChar(text, &i, &s);
       continue;
     }
     if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') continue;
     if (c == '\n') {
-      ++line;
-      end_record();
+      ++s.line;
+      s.EndRecord();
       continue;
     }
-    any = true;
-    if (c == ',') {
-      end_cell();
-    } else if (c == '"') {
-      if (was_quoted || !cell.empty()) {
-        return CsvProblem{line, "a double quote inside a cell that is not quoted"};
-      }
-      quoted = true;
-    } else if (was_quoted) {
-      return CsvProblem{line, "text after the closing quote of a cell"};
-    } else {
-      cell += c;
-    }
+    if (std::optional<CsvProblem> problem = ReadPlainCsvChar(c, &s)) return problem;
   }
-  if (quoted) return CsvProblem{record.line, "a quoted cell is not closed before the end"};
-  end_record();
+  if (s.quoted) return CsvProblem{s.record.line, "a quoted cell is not closed before the end"};
+  s.EndRecord();
   return std::nullopt;
 }
 

@@ -328,6 +328,90 @@ RosMapMetadata ParseMetadata(const YAML::Node& root, const std::string& source) 
   return ReadConfig<RosMapMetadata>(root, source);
 }
 
+// Throws core::ConfigError unless the options can be written: trinary or scale, and thresholds
+// in [0, 1] with free_thresh below occupied_thresh.
+void ValidateWriteOptions(const RosMapWriteOptions& options) {
+  if (options.mode == RosMapMode::kRaw) {
+    throw core::ConfigError("mode", "raw maps cannot be written; use trinary or scale");
+  }
+  core::RequireInRange("occupied_thresh", options.occupied_thresh, 0.0, 1.0);
+  core::RequireInRange("free_thresh", options.free_thresh, 0.0, 1.0);
+  if (!(options.free_thresh < options.occupied_thresh)) {
+    throw core::ConfigError("free_thresh", "must be below occupied_thresh");
+  }
+}
+
+// The image's grey values, top row first: 0 occupied, 254 free, 205 unknown (trinary) or the
+// scaled occupancy (scale), by the thresholds of `options`.
+std::vector<std::uint8_t> GridToPixels(const core::OccupancyGrid& grid,
+                                       const RosMapWriteOptions& options) {
+  const int w = grid.width();
+  const int h = grid.height();
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  for (int cy = 0; cy < h; ++cy) {
+    const int row = h - 1 - cy;
+    for (int cx = 0; cx < w; ++cx) {
+      const float l = grid.LogOdds({cx, cy});
+      RETRACE_CHECK(!std::isnan(l));
+      const double q = core::InverseLogit(l);
+      std::uint8_t v = 0;
+      if (q > options.occupied_thresh) {
+        v = 0;
+      } else if (q < options.free_thresh) {
+        v = 254;
+      } else if (options.mode == RosMapMode::kTrinary) {
+        v = 205;
+      } else {
+        v = static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - q)));
+      }
+      pixels[static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
+             static_cast<std::size_t>(cx)] = v;
+    }
+  }
+  return pixels;
+}
+
+// The pixels (w x h) as a PNG file's bytes; throws core::IoError naming `path` if encoding fails.
+// (`pixels` is not changed: cv::Mat only takes a mutable pointer.)
+std::string EncodePng(std::vector<std::uint8_t>& pixels, int w, int h,
+                      const std::filesystem::path& path) {
+  const cv::Mat mat(h, w, CV_8UC1, pixels.data());
+  std::vector<std::uint8_t> encoded;
+  bool ok = false;
+  try {
+    ok = cv::imencode(".png", mat, encoded);
+  } catch (const cv::Exception& e) {
+    throw core::IoError(path.string() + ": cannot encode PNG: " + e.msg);
+  }
+  if (!ok) throw core::IoError(path.string() + ": cannot encode PNG");
+  return std::string(encoded.begin(), encoded.end());
+}
+
+// The pixels of `grid` as a binary PGM file's bytes, the resolution in its comment.
+std::string EncodePgm(const std::vector<std::uint8_t>& pixels, const core::OccupancyGrid& grid) {
+  std::string bytes = "P5\n# CREATOR: retrace " + core::FormatNumber(grid.resolution()) +
+                      " m/pix\n" + std::to_string(grid.width()) + " " +
+                      std::to_string(grid.height()) + "\n255\n";
+  bytes.append(pixels.begin(), pixels.end());
+  return bytes;
+}
+
+// The map's YAML for the image `image_name` of `grid`, written with `options`.
+RosMapMetadata WrittenMetadata(const std::string& image_name, const core::OccupancyGrid& grid,
+                               const RosMapWriteOptions& options) {
+  RosMapMetadata meta;
+  meta.image = image_name;
+  meta.resolution = grid.resolution();
+  meta.origin = {grid.origin().x(), grid.origin().y(), 0.0};
+  meta.negate = 0;
+  meta.mode = options.mode;
+  if (options.mode == RosMapMode::kScale) {
+    meta.occupied_thresh = options.occupied_thresh;
+    meta.free_thresh = options.free_thresh;
+  }  // trinary: map_saver's 0.65 / 0.196 (the defaults) classify 0 / 205 / 254 correctly
+  return meta;
+}
+
 }  // namespace
 
 void RosMapMetadata::Validate() const {
@@ -373,80 +457,22 @@ core::OccupancyGrid ReadRosMap(const std::filesystem::path& yaml) {
 
 void WriteRosMap(const std::filesystem::path& yaml, const core::OccupancyGrid& grid,
                  const RosMapWriteOptions& options) {
-  if (options.mode == RosMapMode::kRaw) {
-    throw core::ConfigError("mode", "raw maps cannot be written; use trinary or scale");
-  }
-  core::RequireInRange("occupied_thresh", options.occupied_thresh, 0.0, 1.0);
-  core::RequireInRange("free_thresh", options.free_thresh, 0.0, 1.0);
-  if (!(options.free_thresh < options.occupied_thresh)) {
-    throw core::ConfigError("free_thresh", "must be below occupied_thresh");
-  }
+  ValidateWriteOptions(options);
   if (grid.empty()) {
     throw core::IoError(yaml.string() + ": cannot write an empty map (" +
                         std::to_string(grid.width()) + " x " + std::to_string(grid.height()) +
                         " cells)");
   }
-
-  const int w = grid.width();
-  const int h = grid.height();
-  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  for (int cy = 0; cy < h; ++cy) {
-    const int row = h - 1 - cy;
-    for (int cx = 0; cx < w; ++cx) {
-      const float l = grid.LogOdds({cx, cy});
-      RETRACE_CHECK(!std::isnan(l));
-      const double q = core::InverseLogit(l);
-      std::uint8_t v = 0;
-      if (q > options.occupied_thresh) {
-        v = 0;
-      } else if (q < options.free_thresh) {
-        v = 254;
-      } else if (options.mode == RosMapMode::kTrinary) {
-        v = 205;
-      } else {
-        v = static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - q)));
-      }
-      pixels[static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
-             static_cast<std::size_t>(cx)] = v;
-    }
-  }
-
+  std::vector<std::uint8_t> pixels = GridToPixels(grid, options);
   const bool png = options.image_format == RosMapImageFormat::kPng;
   std::filesystem::path image_name = yaml.filename();
   image_name.replace_extension(png ? ".png" : ".pgm");
-  std::string image_bytes;
-  if (png) {
-    const cv::Mat mat(h, w, CV_8UC1, pixels.data());
-    std::vector<std::uint8_t> encoded;
-    bool ok = false;
-    try {
-      ok = cv::imencode(".png", mat, encoded);
-    } catch (const cv::Exception& e) {
-      throw core::IoError((yaml.parent_path() / image_name).string() +
-                          ": cannot encode PNG: " + e.msg);
-    }
-    if (!ok)
-      throw core::IoError((yaml.parent_path() / image_name).string() + ": cannot encode PNG");
-    image_bytes.assign(encoded.begin(), encoded.end());
-  } else {
-    image_bytes = "P5\n# CREATOR: retrace " + core::FormatNumber(grid.resolution()) + " m/pix\n" +
-                  std::to_string(w) + " " + std::to_string(h) + "\n255\n";
-    image_bytes.append(pixels.begin(), pixels.end());
-  }
-
-  RosMapMetadata meta;
-  meta.image = image_name.string();
-  meta.resolution = grid.resolution();
-  meta.origin = {grid.origin().x(), grid.origin().y(), 0.0};
-  meta.negate = 0;
-  meta.mode = options.mode;
-  if (options.mode == RosMapMode::kScale) {
-    meta.occupied_thresh = options.occupied_thresh;
-    meta.free_thresh = options.free_thresh;
-  }  // trinary: map_saver's 0.65 / 0.196 (the defaults) classify 0 / 205 / 254 correctly
-
+  const std::filesystem::path image_path = yaml.parent_path() / image_name;
+  const std::string image_bytes =
+      png ? EncodePng(pixels, grid.width(), grid.height(), image_path) : EncodePgm(pixels, grid);
+  const RosMapMetadata meta = WrittenMetadata(image_name.string(), grid, options);
   // Image first: the YAML must never name a missing or partial image.
-  WriteFileAtomic(yaml.parent_path() / image_name, image_bytes);
+  WriteFileAtomic(image_path, image_bytes);
   WriteFileAtomic(yaml, ConfigToYaml(meta));
 }
 
