@@ -122,6 +122,13 @@ Bytes ChannelRecord(const Channel& c) {
   return b;
 }
 
+// One group of the summary section: its opcode, and where it lies in the file (bytes).
+struct SummaryGroup {
+  McapOp op;
+  std::uint64_t start;
+  std::uint64_t length;
+};
+
 std::string_view CompressionName(McapCompression c) {
   switch (c) {
     case McapCompression::kNone:
@@ -132,6 +139,18 @@ std::string_view CompressionName(McapCompression c) {
       return "zstd";
   }
   return "";
+}
+
+// The body of the Chunk Index record of chunk `c`, compressed with `compression`.
+Bytes ChunkIndexRecord(const ChunkIndex& c, McapCompression compression) {
+  Bytes offsets;
+  for (const auto& [channel, offset] : c.message_index_offsets) offsets.U16(channel).U64(offset);
+  Bytes b;
+  b.U64(c.start_time).U64(c.end_time).U64(c.chunk_offset).U64(c.chunk_length);
+  b.U32(static_cast<std::uint32_t>(offsets.size())).Raw(offsets.data());
+  b.U64(c.message_index_length).Str(CompressionName(compression));
+  b.U64(c.compressed_size).U64(c.uncompressed_size);
+  return b;
 }
 
 std::vector<std::uint8_t> CompressZstd(std::span<const std::uint8_t> in) {
@@ -243,6 +262,66 @@ struct McapWriter::State {
     chunk_index.clear();
     chunk_has_messages = false;
   }
+
+  // The body of the Statistics record: the counts of messages, schemas, channels and chunks,
+  // the time span, and the messages per channel.
+  Bytes StatisticsBody() const {
+    Bytes counts;
+    for (const Channel& c : channels) counts.U16(c.id).U64(c.message_count);
+    Bytes stats;
+    stats.U64(message_count)
+        .U16(static_cast<std::uint16_t>(schemas.size()))
+        .U32(static_cast<std::uint32_t>(channels.size()))
+        .U32(0)  // attachments
+        .U32(0)  // metadata
+        .U32(static_cast<std::uint32_t>(chunk_indexes.size()))
+        .U64(message_count > 0 ? start_time : 0)
+        .U64(message_count > 0 ? end_time : 0)
+        .U32(static_cast<std::uint32_t>(counts.size()))
+        .Raw(counts.data());
+    return stats;
+  }
+
+  // The summary section (to be written at pos), grouped by opcode, then the offsets of its
+  // groups, the Footer (its CRC covering everything before it from the summary on) and the
+  // trailing magic.
+  Bytes SummaryAndFooter() const {
+    const std::uint64_t summary_start = pos;
+    Bytes summary;
+    std::vector<SummaryGroup> groups;
+    const auto group = [&](McapOp op, const auto& write_records) {
+      const std::size_t before = summary.size();
+      write_records();
+      if (summary.size() > before)
+        groups.push_back({op, summary_start + before, summary.size() - before});
+    };
+    group(McapOp::kSchema, [&] {
+      for (const Schema& schema : schemas) summary.Record(McapOp::kSchema, SchemaRecord(schema));
+    });
+    group(McapOp::kChannel, [&] {
+      for (const Channel& c : channels) summary.Record(McapOp::kChannel, ChannelRecord(c));
+    });
+    group(McapOp::kStatistics, [&] { summary.Record(McapOp::kStatistics, StatisticsBody()); });
+    group(McapOp::kChunkIndex, [&] {
+      for (const ChunkIndex& c : chunk_indexes) {
+        summary.Record(McapOp::kChunkIndex, ChunkIndexRecord(c, compression));
+      }
+    });
+    const std::uint64_t summary_offset_start = summary_start + summary.size();
+    for (const SummaryGroup& g : groups) {
+      Bytes b;
+      b.U8(static_cast<std::uint8_t>(g.op)).U64(g.start).U64(g.length);
+      summary.Record(McapOp::kSummaryOffset, b);
+    }
+    // The Footer; its CRC covers the summary up to and including summary_offset_start.
+    summary.U8(static_cast<std::uint8_t>(McapOp::kFooter)).U64(internal::kMcapFooterBodyBytes);
+    summary.U64(summary_start).U64(summary_offset_start);
+    const auto crc =
+        static_cast<std::uint32_t>(crc32_z(0, summary.data().data(), summary.data().size()));
+    summary.U32(crc);
+    summary.Raw(kMcapMagic);
+    return summary;
+  }
 };
 
 McapWriter::McapWriter(const std::filesystem::path& file, McapCompression compression,
@@ -335,72 +414,7 @@ void McapWriter::Close() {
   Bytes record;
   record.Record(McapOp::kDataEnd, data_end);
   s.Put(record.data());
-
-  // The summary section, grouped by opcode, and the offsets of its groups.
-  const std::uint64_t summary_start = s.pos;
-  Bytes summary;
-  struct Group {
-    McapOp op;
-    std::uint64_t start;
-    std::uint64_t length;
-  };
-  std::vector<Group> groups;
-  const auto group = [&](McapOp op, const auto& write_records) {
-    const std::size_t before = summary.size();
-    write_records();
-    if (summary.size() > before)
-      groups.push_back({op, summary_start + before, summary.size() - before});
-  };
-  group(McapOp::kSchema, [&] {
-    for (const Schema& schema : s.schemas) summary.Record(McapOp::kSchema, SchemaRecord(schema));
-  });
-  group(McapOp::kChannel, [&] {
-    for (const Channel& c : s.channels) summary.Record(McapOp::kChannel, ChannelRecord(c));
-  });
-  group(McapOp::kStatistics, [&] {
-    Bytes counts;
-    for (const Channel& c : s.channels) counts.U16(c.id).U64(c.message_count);
-    Bytes stats;
-    stats.U64(s.message_count)
-        .U16(static_cast<std::uint16_t>(s.schemas.size()))
-        .U32(static_cast<std::uint32_t>(s.channels.size()))
-        .U32(0)  // attachments
-        .U32(0)  // metadata
-        .U32(static_cast<std::uint32_t>(s.chunk_indexes.size()))
-        .U64(s.message_count > 0 ? s.start_time : 0)
-        .U64(s.message_count > 0 ? s.end_time : 0)
-        .U32(static_cast<std::uint32_t>(counts.size()))
-        .Raw(counts.data());
-    summary.Record(McapOp::kStatistics, stats);
-  });
-  group(McapOp::kChunkIndex, [&] {
-    for (const ChunkIndex& c : s.chunk_indexes) {
-      Bytes offsets;
-      for (const auto& [channel, offset] : c.message_index_offsets)
-        offsets.U16(channel).U64(offset);
-      Bytes b;
-      b.U64(c.start_time).U64(c.end_time).U64(c.chunk_offset).U64(c.chunk_length);
-      b.U32(static_cast<std::uint32_t>(offsets.size())).Raw(offsets.data());
-      b.U64(c.message_index_length).Str(CompressionName(s.compression));
-      b.U64(c.compressed_size).U64(c.uncompressed_size);
-      summary.Record(McapOp::kChunkIndex, b);
-    }
-  });
-  const std::uint64_t summary_offset_start = summary_start + summary.size();
-  for (const Group& g : groups) {
-    Bytes b;
-    b.U8(static_cast<std::uint8_t>(g.op)).U64(g.start).U64(g.length);
-    summary.Record(McapOp::kSummaryOffset, b);
-  }
-  // The Footer; its CRC covers the summary up to and including summary_offset_start.
-  summary.U8(static_cast<std::uint8_t>(McapOp::kFooter)).U64(internal::kMcapFooterBodyBytes);
-  summary.U64(summary_start).U64(summary_offset_start);
-  const auto crc =
-      static_cast<std::uint32_t>(crc32_z(0, summary.data().data(), summary.data().size()));
-  summary.U32(crc);
-  summary.Raw(kMcapMagic);
-  s.Put(summary.data());
-
+  s.Put(s.SummaryAndFooter().data());
   s.out.close();
   if (!s.out) throw core::IoError(s.name + ": cannot finish writing the file");
   s.closed = true;

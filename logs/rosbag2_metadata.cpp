@@ -97,10 +97,8 @@ std::filesystem::path Resolve(const std::filesystem::path& folder, const std::st
   return folder / inside;
 }
 
-}  // namespace
-
-Rosbag2Metadata ReadRosbag2Metadata(const std::filesystem::path& folder) {
-  const std::filesystem::path file = folder / "metadata.yaml";
+// The parsed metadata.yaml of a bag (not empty); throws core::IoError for invalid YAML.
+YAML::Node LoadBagMetadataYaml(const std::filesystem::path& file) {
   const std::string text = io::ReadFileBytes(file);
   YAML::Node root;
   try {
@@ -109,62 +107,105 @@ Rosbag2Metadata ReadRosbag2Metadata(const std::filesystem::path& folder) {
     throw core::IoError(file.string() + ":" + std::to_string(e.mark.line + 1) +
                         ": invalid YAML: " + e.msg);
   }
-  const Where top{file.string(), ""};
   if (!root || root.IsNull()) throw core::IoError(file.string() + ": file is empty");
-  const Where at = top.Child("rosbag2_bagfile_information");
-  const YAML::Node info = Required(root, "rosbag2_bagfile_information", top);
-  if (!info.IsMap()) at.Fail(info, "must be a mapping");
+  return root;
+}
 
-  Rosbag2Metadata meta;
+// The metadata version (1..1000).
+int ReadBagVersion(const YAML::Node& info, const Where& at) {
   const std::int64_t version = ReadInt(Required(info, "version", at), at.Child("version"));
   if (version < 1 || version > 1000) {
     at.Child("version").Fail(info["version"],
                              "unknown metadata version " + std::to_string(version));
   }
-  meta.version = static_cast<int>(version);
+  return static_cast<int>(version);
+}
 
-  meta.storage_identifier =
+// The storage plugin's name, sqlite3 or mcap (the ones retrace reads).
+std::string ReadBagStorage(const YAML::Node& info, const Where& at) {
+  std::string storage =
       ReadString(Required(info, "storage_identifier", at), at.Child("storage_identifier"));
-  if (meta.storage_identifier != "sqlite3" && meta.storage_identifier != "mcap") {
+  if (storage != "sqlite3" && storage != "mcap") {
     at.Child("storage_identifier")
-        .Fail(info["storage_identifier"], "storage '" + meta.storage_identifier +
+        .Fail(info["storage_identifier"], "storage '" + storage +
                                               "' is not supported: retrace reads sqlite3 and "
                                               "mcap bags");
   }
+  return storage;
+}
 
-  // Compression first: a compressed bag's other fields are fine, but it cannot be read.
+// The compression format and mode into *meta (required from version 3 on), refusing a
+// compressed bag with how to make an uncompressed copy of `folder`.
+void ReadBagCompression(const YAML::Node& info, const Where& at,
+                        const std::filesystem::path& folder, Rosbag2Metadata* meta) {
   for (const char* key : {"compression_format", "compression_mode"}) {
     const YAML::Node node = info[key];
     if (!node) {
-      if (meta.version >= 3) Required(info, key, at);
+      if (meta->version >= 3) Required(info, key, at);
       continue;
     }
-    std::string& out = std::string_view(key) == "compression_format" ? meta.compression_format
-                                                                     : meta.compression_mode;
+    std::string& out = std::string_view(key) == "compression_format" ? meta->compression_format
+                                                                     : meta->compression_mode;
     out = node.IsNull() ? "" : ReadString(node, at.Child(key));
   }
-  const std::string mode = Lower(meta.compression_mode);
+  const std::string mode = Lower(meta->compression_mode);
   if (!mode.empty() && mode != "none") {
     at.Child("compression_mode")
         .Fail(info["compression_mode"] ? info["compression_mode"] : info,
-              "the bag is compressed (compression_mode '" + meta.compression_mode +
-                  "', compression_format '" + meta.compression_format +
+              "the bag is compressed (compression_mode '" + meta->compression_mode +
+                  "', compression_format '" + meta->compression_format +
                   "'): retrace reads uncompressed bags only; write an uncompressed copy with "
                   "`ros2 bag convert -i " +
                   folder.string() +
                   " -o out.yaml`, where out.yaml lists one output bag without compression "
                   "(output_bags: [{uri: <new folder>, all_topics: true}])");
   }
+}
 
+// The storage files as listed and resolved inside `folder` into *meta (at least one).
+void ReadBagFiles(const YAML::Node& info, const Where& at, const std::filesystem::path& folder,
+                  Rosbag2Metadata* meta) {
   const YAML::Node files = Required(info, "relative_file_paths", at);
   const Where files_at = at.Child("relative_file_paths");
   if (!files.IsSequence()) files_at.Fail(files, "must be a list");
   if (files.size() == 0) files_at.Fail(files, "the bag lists no storage files");
   for (std::size_t i = 0; i < files.size(); ++i) {
     const std::string relative = ReadString(files[i], files_at.Element(i));
-    meta.relative_file_paths.push_back(relative);
-    meta.files.push_back(Resolve(folder, relative, meta.version, files[i], files_at.Element(i)));
+    meta->relative_file_paths.push_back(relative);
+    meta->files.push_back(Resolve(folder, relative, meta->version, files[i], files_at.Element(i)));
   }
+}
+
+// One entry of topics_with_message_count: the topic's name, type, format and message count.
+Rosbag2TopicInfo ReadBagTopic(const YAML::Node& entry, const Where& t_at) {
+  const YAML::Node tm = Required(entry, "topic_metadata", t_at);
+  const Where tm_at = t_at.Child("topic_metadata");
+  Rosbag2TopicInfo topic;
+  topic.name = ReadString(Required(tm, "name", tm_at), tm_at.Child("name"));
+  topic.type = ReadString(Required(tm, "type", tm_at), tm_at.Child("type"));
+  topic.serialization_format =
+      ReadString(Required(tm, "serialization_format", tm_at), tm_at.Child("serialization_format"));
+  topic.message_count =
+      ReadCount(Required(entry, "message_count", t_at), t_at.Child("message_count"));
+  return topic;
+}
+
+}  // namespace
+
+Rosbag2Metadata ReadRosbag2Metadata(const std::filesystem::path& folder) {
+  const std::filesystem::path file = folder / "metadata.yaml";
+  const YAML::Node root = LoadBagMetadataYaml(file);
+  const Where top{file.string(), ""};
+  const Where at = top.Child("rosbag2_bagfile_information");
+  const YAML::Node info = Required(root, "rosbag2_bagfile_information", top);
+  if (!info.IsMap()) at.Fail(info, "must be a mapping");
+
+  Rosbag2Metadata meta;
+  meta.version = ReadBagVersion(info, at);
+  meta.storage_identifier = ReadBagStorage(info, at);
+  // Compression first: a compressed bag's other fields are fine, but it cannot be read.
+  ReadBagCompression(info, at, folder, &meta);
+  ReadBagFiles(info, at, folder, &meta);
 
   const YAML::Node duration = Required(info, "duration", at);
   meta.duration_ns = ReadInt(Required(duration, "nanoseconds", at.Child("duration")),
@@ -179,18 +220,7 @@ Rosbag2Metadata ReadRosbag2Metadata(const std::filesystem::path& folder) {
   const Where topics_at = at.Child("topics_with_message_count");
   if (!topics.IsSequence()) topics_at.Fail(topics, "must be a list");
   for (std::size_t i = 0; i < topics.size(); ++i) {
-    const Where t_at = topics_at.Element(i);
-    const YAML::Node entry = topics[i];
-    const YAML::Node tm = Required(entry, "topic_metadata", t_at);
-    const Where tm_at = t_at.Child("topic_metadata");
-    Rosbag2TopicInfo topic;
-    topic.name = ReadString(Required(tm, "name", tm_at), tm_at.Child("name"));
-    topic.type = ReadString(Required(tm, "type", tm_at), tm_at.Child("type"));
-    topic.serialization_format = ReadString(Required(tm, "serialization_format", tm_at),
-                                            tm_at.Child("serialization_format"));
-    topic.message_count =
-        ReadCount(Required(entry, "message_count", t_at), t_at.Child("message_count"));
-    meta.topics.push_back(std::move(topic));
+    meta.topics.push_back(ReadBagTopic(topics[i], topics_at.Element(i)));
   }
   return meta;
 }
