@@ -127,6 +127,50 @@ double Teacher::TurnNear(double s) const {
   return sum;
 }
 
+void Teacher::AdvanceProgress(const core::Vec2& p_WR) {
+  progress_.Advance(route_, arc_, p_WR,
+                    std::min(progress_.value() + config_.lookahead, arc_[next_stop_]));
+  if (next_stop_ + 1 < route_.size() &&
+      (p_WR - route_[next_stop_]).norm() <= config_.goal_tolerance) {
+    progress_.MoveTo(arc_[next_stop_]);
+    last_stop_arc_ = progress_.value();
+    next_stop_ = NextStopAfter(next_stop_);
+  }
+}
+
+void Teacher::StepWobble(double dt) {
+  // Ornstein–Uhlenbeck, exact discretisation, bounded.
+  const double decay = std::exp(-dt / config_.wobble_time_constant);
+  const double n = rng_.Normal();
+  wobble_ = decay * wobble_ + config_.wobble_amplitude * std::sqrt(1.0 - decay * decay) * n;
+  wobble_ = std::clamp(wobble_, -kWobbleBound * config_.wobble_amplitude,
+                       kWobbleBound * config_.wobble_amplitude);
+}
+
+core::Vec2 Teacher::PursuitTarget(double s_stop) const {
+  // The look-ahead shrinks with speed (to half at half the cruising speed): slower in a turn
+  // means tighter on the route, as with a human driver.
+  const double L = config_.lookahead;
+  const double L_pursuit = L * std::clamp(v_ / config_.speed, 0.5, 1.0);
+  const double s_target = std::min(progress_.value() + L_pursuit, s_stop);
+  std::size_t target_segment = 0;
+  const core::Vec2 on_route = PointAt(s_target, &target_segment);
+  const core::Vec2 dir = (route_[target_segment + 1] - route_[target_segment]).normalized();
+  const double fade =
+      std::clamp(std::min(s_stop - s_target, progress_.value() - last_stop_arc_) / L, 0.0, 1.0);
+  return on_route + fade * wobble_ * core::Vec2(-dir.y(), dir.x());
+}
+
+double Teacher::SpeedLimit(double d_stop, double s_stop, double dt) const {
+  const double slow = std::clamp(TurnNear(progress_.value()) / kFullSlowTurn, 0.0, 1.0);
+  double v = config_.speed - (config_.speed - config_.min_turn_speed) * slow;
+  const double to_stop =
+      std::max(d_stop, s_stop - progress_.value()) - 0.5 * config_.goal_tolerance;
+  v = std::min(v,
+               std::max(kCreepSpeed, std::sqrt(2.0 * config_.max_accel * std::max(0.0, to_stop))));
+  return std::min(v, v_ + config_.max_accel * dt);
+}
+
 core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
   RETRACE_CHECK(dt > 0.0 && std::isfinite(dt));
   if (done_) return {};
@@ -136,12 +180,7 @@ core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
 
   // Progress, never beyond the next stop point (a sharp vertex or the end): the teacher
   // passes a stop point only by reaching it, then follows the next leg.
-  progress_.Advance(route_, arc_, p_WR, std::min(progress_.value() + L, arc_[next_stop_]));
-  if (next_stop_ + 1 < route_.size() && (p_WR - route_[next_stop_]).norm() <= tol) {
-    progress_.MoveTo(arc_[next_stop_]);
-    last_stop_arc_ = progress_.value();
-    next_stop_ = NextStopAfter(next_stop_);
-  }
+  AdvanceProgress(p_WR);
   const double s_stop = arc_[next_stop_];
   const double d_stop = (p_WR - route_[next_stop_]).norm();
 
@@ -154,25 +193,9 @@ core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
     return {};
   }
 
-  // Wobble: Ornstein–Uhlenbeck, exact discretisation, bounded.
-  const double decay = std::exp(-dt / config_.wobble_time_constant);
-  const double n = rng_.Normal();
-  wobble_ = decay * wobble_ + config_.wobble_amplitude * std::sqrt(1.0 - decay * decay) * n;
-  wobble_ = std::clamp(wobble_, -kWobbleBound * config_.wobble_amplitude,
-                       kWobbleBound * config_.wobble_amplitude);
-
+  StepWobble(dt);
   // Pure-pursuit target, not beyond the next stop point; the wobble fades out near stops.
-  // The look-ahead shrinks with speed (to half at half the cruising speed): slower in a turn
-  // means tighter on the route, as with a human driver.
-  const double L_pursuit = L * std::clamp(v_ / config_.speed, 0.5, 1.0);
-  const double s_target = std::min(progress_.value() + L_pursuit, s_stop);
-  std::size_t target_segment = 0;
-  const core::Vec2 on_route = PointAt(s_target, &target_segment);
-  const core::Vec2 dir = (route_[target_segment + 1] - route_[target_segment]).normalized();
-  const double fade =
-      std::clamp(std::min(s_stop - s_target, progress_.value() - last_stop_arc_) / L, 0.0, 1.0);
-  const core::Vec2 target_W = on_route + fade * wobble_ * core::Vec2(-dir.y(), dir.x());
-  const core::Vec2 q = X_WR.Inverse() * target_W;  // target in R
+  const core::Vec2 q = X_WR.Inverse() * PursuitTarget(s_stop);  // target in R
   const double alpha = std::atan2(q.y(), q.x());
 
   // Target behind (after a stop point, or when pushed off): stop and turn on the spot until
@@ -186,13 +209,7 @@ core::Twist Teacher::Command(const core::Pose2& X_WR, double dt) {
 
   // Speed: cruise, slower for the route's heading changes near the progress point, braking
   // for the next stop point, accelerating at most at max_accel.
-  const double slow = std::clamp(TurnNear(progress_.value()) / kFullSlowTurn, 0.0, 1.0);
-  double v = config_.speed - (config_.speed - config_.min_turn_speed) * slow;
-  const double to_stop = std::max(d_stop, s_stop - progress_.value()) - 0.5 * tol;
-  v = std::min(v,
-               std::max(kCreepSpeed, std::sqrt(2.0 * config_.max_accel * std::max(0.0, to_stop))));
-  v = std::min(v, v_ + config_.max_accel * dt);
-
+  double v = SpeedLimit(d_stop, s_stop, dt);
   const double kappa = q.squaredNorm() > 0.0 ? 2.0 * q.y() / q.squaredNorm() : 0.0;
   double omega = v * kappa;
   if (std::abs(omega) > config_.max_yaw_rate) {

@@ -95,6 +95,17 @@ class Teacher {
   /// lookahead behind to turn_lookahead / 2 ahead count fully, then fade out linearly up to
   /// turn_lookahead ahead.
   double TurnNear(double s) const;
+  /// Advances the progress to the robot at p_WR (W), never beyond the next stop point; passes
+  /// that point (on to the next leg) once the robot is within goal_tolerance of it.
+  void AdvanceProgress(const core::Vec2& p_WR);
+  /// Steps the lateral wobble over dt (s).
+  void StepWobble(double dt);
+  /// The pure-pursuit target (W): the route point a speed-dependent look-ahead past the
+  /// progress, not beyond the stop point at arc length s_stop (m), offset by the wobble.
+  core::Vec2 PursuitTarget(double s_stop) const;
+  /// The speed (m/s) for the next dt (s): cruise, slower near turns, braking for the stop point
+  /// d_stop (m) away at arc length s_stop (m), accelerating at most at max_accel.
+  double SpeedLimit(double d_stop, double s_stop, double dt) const;
 
   std::vector<core::Vec2> route_;
   std::vector<double> arc_;   ///< arc length at each point (m)
