@@ -147,13 +147,8 @@ ObstacleAvoidance::Clearance ObstacleAvoidance::Evaluate(double v, double omega,
   return out;
 }
 
-AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired, const core::LaserScan& scan) {
-  RETRACE_CHECK(std::isfinite(desired.v) && std::isfinite(desired.omega));
-  AvoidanceOutput out;
-  out.command = desired;
-  if (!config_.enabled || !(desired.v > 0.0)) return out;
-
-  // Obstacle points in R. A -inf reading means something closer than range_min.
+void ObstacleAvoidance::CollectPoints(const core::LaserScan& scan) {
+  // A -inf reading means something closer than range_min.
   points_R_.clear();
   points_R_.reserve(scan.size());
   for (std::size_t i = 0; i < scan.size(); ++i) {
@@ -169,6 +164,53 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired, const core
     const double a = scan.Angle(i);
     points_R_.push_back(robot_.X_RL * core::Vec2(range * std::cos(a), range * std::sin(a)));
   }
+}
+
+bool ObstacleAvoidance::InEmergencyZone() const {
+  const double zone_x = robot_.radius + config_.emergency_stop_length;
+  const double zone_y = 0.5 * config_.emergency_stop_width;
+  for (const core::Vec2& p : points_R_) {
+    if (p.x() > 0.0 && p.x() <= zone_x && std::abs(p.y()) <= zone_y) return true;
+  }
+  return false;
+}
+
+ObstacleAvoidance::Candidate ObstacleAvoidance::FirstFreeOnSide(const core::Twist& desired,
+                                                                int side, double reach,
+                                                                bool margin) {
+  const int steps = static_cast<int>(std::floor(config_.omega_window / config_.omega_step + 1e-9));
+  const std::size_t no_factor = config_.speed_factors.size();
+  const int sign = side == 0 ? 1 : -1;
+  for (int k = side == 0 ? 0 : 1; k <= steps; ++k) {
+    const double omega = desired.omega + sign * k * config_.omega_step;
+    if (std::abs(omega) > config_.max_yaw_rate + 1e-12) break;
+    for (std::size_t f = 0; f < no_factor; ++f) {
+      const double v = desired.v * config_.speed_factors[f];
+      if (std::isfinite(Evaluate(v, omega, reach, false, margin).contact)) continue;
+      const bool switches = k > 0 && last_side_ != 0 && last_side_ != sign;
+      return {
+          {v, omega}, f, k * config_.omega_step + (switches ? config_.side_switch_penalty : 0.0)};
+    }
+  }
+  return {};
+}
+
+int ObstacleAvoidance::PickSide(const Candidate (&best)[2], double reach, bool margin) {
+  if (best[0].cost != best[1].cost) return best[1].cost < best[0].cost ? 1 : 0;
+  if (best[0].factor != best[1].factor) return best[1].factor < best[0].factor ? 1 : 0;
+  const double left =
+      Evaluate(best[0].command.v, best[0].command.omega, reach, true, margin).clearance;
+  const double right =
+      Evaluate(best[1].command.v, best[1].command.omega, reach, true, margin).clearance;
+  return right > left ? 1 : 0;
+}
+
+AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired, const core::LaserScan& scan) {
+  RETRACE_CHECK(std::isfinite(desired.v) && std::isfinite(desired.omega));
+  AvoidanceOutput out;
+  out.command = desired;
+  if (!config_.enabled || !(desired.v > 0.0)) return out;
+  CollectPoints(scan);
 
   const double distance = std::max(desired.v * config_.horizon, config_.min_prediction_distance);
   exact_contact_ = true;  // the first contact of the desired command: time_to_collision
@@ -176,18 +218,10 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired, const core
   exact_contact_ = false;
   out.time_to_collision = contact / desired.v;
 
-  // Emergency stop: anything in the rectangle ahead of the robot's centre line.
-  const double zone_x = robot_.radius + config_.emergency_stop_length;
-  const double zone_y = 0.5 * config_.emergency_stop_width;
-  for (const core::Vec2& p : points_R_) {
-    if (p.x() > 0.0 && p.x() <= zone_x && std::abs(p.y()) <= zone_y) {
-      out.emergency_stop = true;
-      break;
-    }
-  }
-  if (out.emergency_stop) {
+  if (InEmergencyZone()) {
     // Turning in place sweeps nothing with a circular footprint: keeping the yaw rate lets the
     // follower turn away instead of deadlocking in front of a static obstacle.
+    out.emergency_stop = true;
     out.command = {0.0, std::clamp(desired.omega, -config_.max_yaw_rate, config_.max_yaw_rate)};
     out.modified = true;
     return out;
@@ -205,58 +239,21 @@ AvoidanceOutput ObstacleAvoidance::Filter(const core::Twist& desired, const core
   // and the robot creeps towards it until no arc is free any more. Where nothing is free that
   // far (tight spaces), the prediction distance itself is the fallback, then the same without
   // the safety margin (only the footprint must stay clear), before giving up.
-  const int steps = static_cast<int>(std::floor(config_.omega_window / config_.omega_step + 1e-9));
-  const std::size_t no_factor = config_.speed_factors.size();
-  struct Candidate {
-    core::Twist command;
-    std::size_t factor = 0;
-    double cost = kInf;
-  };
   struct Tier {
     double reach;
     bool margin;
   };
   for (const Tier tier : {Tier{config_.candidate_reach * distance, true}, Tier{distance, true},
                           Tier{distance, false}}) {
-    const double reach = tier.reach;
-    Candidate best[2];  // [0]: left (omega >= omega_d), [1]: right
-    for (int side = 0; side < 2; ++side) {
-      const int sign = side == 0 ? 1 : -1;
-      for (int k = side == 0 ? 0 : 1; k <= steps && !std::isfinite(best[side].cost); ++k) {
-        const double omega = desired.omega + sign * k * config_.omega_step;
-        if (std::abs(omega) > config_.max_yaw_rate + 1e-12) break;
-        for (std::size_t f = 0; f < no_factor; ++f) {
-          const double v = desired.v * config_.speed_factors[f];
-          if (std::isfinite(Evaluate(v, omega, reach, false, tier.margin).contact)) continue;
-          const bool switches = k > 0 && last_side_ != 0 && last_side_ != sign;
-          best[side] = {{v, omega},
-                        f,
-                        k * config_.omega_step + (switches ? config_.side_switch_penalty : 0.0)};
-          break;
-        }
-      }
-    }
-    if (std::isfinite(best[0].cost) || std::isfinite(best[1].cost)) {
-      int pick = best[1].cost < best[0].cost ? 1 : 0;
-      if (best[0].cost == best[1].cost) {
-        if (best[0].factor != best[1].factor) {
-          pick = best[1].factor < best[0].factor ? 1 : 0;
-        } else {
-          const double left =
-              Evaluate(best[0].command.v, best[0].command.omega, reach, true, tier.margin)
-                  .clearance;
-          const double right =
-              Evaluate(best[1].command.v, best[1].command.omega, reach, true, tier.margin)
-                  .clearance;
-          pick = right > left ? 1 : 0;
-        }
-      }
-      const double turn = best[pick].command.omega - desired.omega;
-      if (turn != 0.0) last_side_ = turn > 0.0 ? 1 : -1;
-      out.command = best[pick].command;
-      out.modified = true;
-      return out;
-    }
+    const Candidate best[2] = {FirstFreeOnSide(desired, 0, tier.reach, tier.margin),
+                               FirstFreeOnSide(desired, 1, tier.reach, tier.margin)};
+    if (!std::isfinite(best[0].cost) && !std::isfinite(best[1].cost)) continue;
+    const int pick = PickSide(best, tier.reach, tier.margin);
+    const double turn = best[pick].command.omega - desired.omega;
+    if (turn != 0.0) last_side_ = turn > 0.0 ? 1 : -1;
+    out.command = best[pick].command;
+    out.modified = true;
+    return out;
   }
   out.command = {};
   out.modified = true;

@@ -133,6 +133,22 @@ class ObstacleAvoidance {
   /// `margin`: keep safety_margin from points farther than it (false: the bare footprint).
   Clearance Evaluate(double v, double omega, double distance, bool want_clearance,
                      bool margin = true);
+  // A free arc: its command, the index of its speed factor and its cost (rad/s, +inf: none).
+  struct Candidate {
+    core::Twist command;
+    std::size_t factor = 0;
+    double cost = std::numeric_limits<double>::infinity();
+  };
+  // Fills points_R_ with the scan's obstacle points in R.
+  void CollectPoints(const core::LaserScan& scan);
+  // Whether a point lies in the emergency-stop rectangle ahead of the robot's centre line.
+  bool InEmergencyZone() const;
+  // On side 0 (left: omega >= omega_d) or 1 (right), the candidate closest to desired.omega
+  // whose arc is free over `reach` (m), at its first free speed factor; cost +inf if none.
+  Candidate FirstFreeOnSide(const core::Twist& desired, int side, double reach, bool margin);
+  // Of two candidates of which at least one is free, the side to take: the lower cost, then
+  // the preferred speed factor, then the larger clearance, then the left (0).
+  int PickSide(const Candidate (&best)[2], double reach, bool margin);
 
   ObstacleAvoidanceConfig config_;
   RobotGeometry robot_;

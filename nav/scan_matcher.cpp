@@ -146,6 +146,64 @@ bool ScanMatcher::Pair(const core::Vec2& p_M, Pairing* pairing) const {
   return true;
 }
 
+bool ScanMatcher::RepairDue(const core::Pose2& X,
+                            const std::optional<core::Pose2>& paired_at) const {
+  return !paired_at ||
+         (core::Vec2(X.x, X.y) - core::Vec2(paired_at->x, paired_at->y)).norm() +
+                 config_.match_range * std::abs(core::AngleDiff(X.theta, paired_at->theta)) >
+             0.1 * config_.voxel_size;
+}
+
+void ScanMatcher::Linearize(const core::Pose2& X, bool repair, NormalEquations* eq) {
+  eq->H.setZero();
+  eq->b.setZero();
+  eq->paired = 0;
+  eq->inliers = 0;
+  const double c = std::cos(X.theta);
+  const double s = std::sin(X.theta);
+  for (std::size_t i = 0; i < points_R_.size(); ++i) {
+    const core::Vec2& p_R = points_R_[i];
+    const core::Vec2 r(c * p_R.x() - s * p_R.y(), s * p_R.x() + c * p_R.y());
+    const core::Vec2 p(X.x + r.x(), X.y + r.y());
+    if (repair) paired_[i] = Pair(p, &pairings_[i]);
+    if (!paired_[i]) continue;
+    const Pairing& pairing = pairings_[i];
+    ++eq->paired;
+    const core::Vec2 e = p - pairing.q;
+    const core::Vec2 dr(-r.y(), r.x());  // d(R p_R)/dθ
+    auto add = [&](const core::Vec2& n, double residual) {
+      const double a = std::abs(residual);
+      const double weight = a <= config_.sigma ? 1.0 : config_.sigma / a;
+      const Eigen::Vector3d J(n.x(), n.y(), n.dot(dr));
+      eq->H.noalias() += weight * J * J.transpose();
+      eq->b += weight * J * residual;
+      return a;
+    };
+    if (pairing.normal.isZero()) {
+      // No line around the partner (a pole, a corner): fit to the point itself.
+      add(core::Vec2(1.0, 0.0), e.x());
+      add(core::Vec2(0.0, 1.0), e.y());
+      if (e.norm() <= 3.0 * config_.sigma) ++eq->inliers;
+    } else if (add(pairing.normal, pairing.normal.dot(e)) <= 3.0 * config_.sigma) {
+      ++eq->inliers;
+    }
+  }
+}
+
+MatchVerdict ScanMatcher::Judge(const ScanMatch& result, const core::Pose2& X,
+                                const core::Pose2& X_MR_predicted) const {
+  if (result.paired < config_.min_points) return MatchVerdict::kFewPoints;
+  if (result.min_constraint < config_.min_constraint) return MatchVerdict::kDegenerate;
+  if (result.inliers < config_.min_inlier_fraction * result.paired ||
+      (core::Vec2(X.x, X.y) - core::Vec2(X_MR_predicted.x, X_MR_predicted.y)).norm() >
+          config_.max_correction ||
+      std::abs(core::AngleDiff(X.theta, X_MR_predicted.theta)) >
+          core::DegToRad(config_.max_correction_deg)) {
+    return MatchVerdict::kPoorFit;
+  }
+  return MatchVerdict::kMatched;
+}
+
 ScanMatch ScanMatcher::Match(const core::LaserScan& scan, const core::Pose2& X_MR_predicted) {
   ScanMatch result;
   result.X_MR = X_MR_predicted;
@@ -158,88 +216,38 @@ ScanMatch ScanMatcher::Match(const core::LaserScan& scan, const core::Pose2& X_M
 
   // Pairs are found again only when an end point may have moved by more than a tenth of a voxel
   // since they were found: the last steps of the fit move by less, and keep their pairs.
-  Eigen::Matrix3d H;
-  Eigen::Vector3d b;
-  int paired = 0;
-  int inliers = 0;
+  NormalEquations eq;
   pairings_.resize(points_R_.size());
   paired_.resize(points_R_.size());
   std::optional<core::Pose2> paired_at;
-  auto linearize = [&](const core::Pose2& X) {
-    const bool repair =
-        !paired_at ||
-        (core::Vec2(X.x, X.y) - core::Vec2(paired_at->x, paired_at->y)).norm() +
-                config_.match_range * std::abs(core::AngleDiff(X.theta, paired_at->theta)) >
-            0.1 * config_.voxel_size;
+  const auto linearize = [&](const core::Pose2& X) {
+    const bool repair = RepairDue(X, paired_at);
     if (repair) paired_at = X;
-    H.setZero();
-    b.setZero();
-    paired = 0;
-    inliers = 0;
-    const double c = std::cos(X.theta);
-    const double s = std::sin(X.theta);
-    for (std::size_t i = 0; i < points_R_.size(); ++i) {
-      const core::Vec2& p_R = points_R_[i];
-      const core::Vec2 r(c * p_R.x() - s * p_R.y(), s * p_R.x() + c * p_R.y());
-      const core::Vec2 p(X.x + r.x(), X.y + r.y());
-      if (repair) paired_[i] = Pair(p, &pairings_[i]);
-      if (!paired_[i]) continue;
-      const Pairing& pairing = pairings_[i];
-      ++paired;
-      const core::Vec2 e = p - pairing.q;
-      const core::Vec2 dr(-r.y(), r.x());  // d(R p_R)/dθ
-      auto add = [&](const core::Vec2& n, double residual) {
-        const double a = std::abs(residual);
-        const double weight = a <= config_.sigma ? 1.0 : config_.sigma / a;
-        const Eigen::Vector3d J(n.x(), n.y(), n.dot(dr));
-        H.noalias() += weight * J * J.transpose();
-        b += weight * J * residual;
-        return a;
-      };
-      if (pairing.normal.isZero()) {
-        // No line around the partner (a pole, a corner): fit to the point itself.
-        add(core::Vec2(1.0, 0.0), e.x());
-        add(core::Vec2(0.0, 1.0), e.y());
-        if (e.norm() <= 3.0 * config_.sigma) ++inliers;
-      } else if (add(pairing.normal, pairing.normal.dot(e)) <= 3.0 * config_.sigma) {
-        ++inliers;
-      }
-    }
+    Linearize(X, repair, &eq);
   };
 
+  // Gauss-Newton.
   core::Pose2 X = X_MR_predicted;
   for (int it = 0; it < config_.max_iterations; ++it) {
     linearize(X);
-    if (paired < config_.min_points) break;
+    if (eq.paired < config_.min_points) break;
     // A little damping keeps the step finite along a direction the scan does not constrain;
     // whether the result is used then is decided below.
-    Eigen::Matrix3d A = H;
-    A.diagonal().array() += 1e-6 * (1.0 + H.trace());
-    const Eigen::Vector3d delta = -A.ldlt().solve(b);
+    Eigen::Matrix3d A = eq.H;
+    A.diagonal().array() += 1e-6 * (1.0 + eq.H.trace());
+    const Eigen::Vector3d delta = -A.ldlt().solve(eq.b);
     if (!delta.allFinite()) break;
     X = core::Pose2(X.x + delta.x(), X.y + delta.y(), X.theta + delta.z());
     if (delta.head<2>().norm() < 1e-4 && std::abs(delta.z()) < 1e-5) break;
   }
   linearize(X);
-  result.paired = paired;
-  result.inliers = inliers;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(H.topLeftCorner<2, 2>());
+  result.paired = eq.paired;
+  result.inliers = eq.inliers;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(eq.H.topLeftCorner<2, 2>());
   result.min_constraint = eig.eigenvalues()(0);
   result.max_constraint = eig.eigenvalues()(1);
-  if (paired < config_.min_points) {
-    result.verdict = MatchVerdict::kFewPoints;
-  } else if (result.min_constraint < config_.min_constraint) {
-    result.verdict = MatchVerdict::kDegenerate;
-  } else if (inliers < config_.min_inlier_fraction * paired ||
-             (core::Vec2(X.x, X.y) - core::Vec2(X_MR_predicted.x, X_MR_predicted.y)).norm() >
-                 config_.max_correction ||
-             std::abs(core::AngleDiff(X.theta, X_MR_predicted.theta)) >
-                 core::DegToRad(config_.max_correction_deg)) {
-    result.verdict = MatchVerdict::kPoorFit;
-  } else {
-    result.verdict = MatchVerdict::kMatched;
-    result.X_MR = X;
-  }
+  result.verdict = Judge(result, X, X_MR_predicted);
+  if (result.verdict == MatchVerdict::kMatched) result.X_MR = X;
   return result;
 }
 

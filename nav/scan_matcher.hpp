@@ -22,8 +22,10 @@
 // axis, an open field), with too few paired end points or too few that fit, the match is
 // refused and the caller keeps the odometry prediction.
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <unordered_map>
 #include <utility>
@@ -128,6 +130,22 @@ class ScanMatcher {
   void KeepPoints(const core::LaserScan& scan, std::vector<core::Vec2>* points_R) const;
   static std::uint64_t Key(int x, int y);
   bool Pair(const core::Vec2& p_M, Pairing* pairing) const;
+  // The Gauss-Newton normal equations H delta = -b of one linearisation (robust weights), with
+  // the number of paired end points and of inliers among them.
+  struct NormalEquations {
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    int paired = 0;
+    int inliers = 0;
+  };
+  // Whether the pairs must be found again at X: none yet, or an end point may have moved by
+  // more than a tenth of a voxel since they were found at *paired_at.
+  bool RepairDue(const core::Pose2& X, const std::optional<core::Pose2>& paired_at) const;
+  // The normal equations of points_R_ at X, pairing them anew first when `repair`.
+  void Linearize(const core::Pose2& X, bool repair, NormalEquations* eq);
+  // The verdict on a fit ending at X (paired, inliers and constraints in `result`).
+  MatchVerdict Judge(const ScanMatch& result, const core::Pose2& X,
+                     const core::Pose2& X_MR_predicted) const;
 
   ScanMatcherConfig config_;
   RobotGeometry robot_;
