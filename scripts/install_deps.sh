@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages retrace needs, only if some are missing.
 # Usage: install_deps.sh [--test]   (--test: also what the tests need beyond the build: Chromium,
-# which the system test tests/cli/report_browser_test.sh loads report.html in)
+# which the system test tests/cli/report_browser_test.sh loads report.html in; junitparser and
+# jsonschema for the system's Python, with which tests/cli/bench_ci_files_test.sh reads
+# `retrace bench`'s JUnit and trend files)
 set -euo pipefail
 
 packages=(
@@ -15,7 +17,7 @@ packages=(
 )
 for arg in "$@"; do
   case "$arg" in
-    --test) packages+=(chromium) ;;
+    --test) packages+=(chromium python3-junitparser python3-jsonschema) ;;
     *) echo "install_deps.sh: unknown argument '$arg' (usage: install_deps.sh [--test])" >&2; exit 2 ;;
   esac
 done

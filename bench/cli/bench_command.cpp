@@ -1,21 +1,27 @@
 #include "bench/cli/bench_command.hpp"
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <optional>
 #include <set>
+#include <system_error>
 
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/cli/report_command.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/suite/baseline.hpp"
+#include "bench/suite/junit_report.hpp"
 #include "bench/suite/suite_report.hpp"
 #include "bench/suite/suite_runner.hpp"
 #include "bench/suite/suite_spec.hpp"
+#include "bench/suite/trend_file.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_override.hpp"
@@ -87,6 +93,47 @@ Baseline Restricted(Baseline baseline, const SuiteSpec& selected) {
   return baseline;
 }
 
+// An output file of the command line (--junit, --trend), checked before anything runs so that
+// a bad path fails now, not after the runs: not a folder, and the nearest folder on its way that
+// exists is one this process may create files in (the missing ones are made when it is written).
+void RequireWritableFile(const std::filesystem::path& file, const std::string& option) {
+  const std::string what = option + " " + file.string();
+  std::error_code ec;
+  const std::string name = file.filename().string();
+  if (name.empty() || name == "." || name == ".." || std::filesystem::is_directory(file, ec))
+    throw core::IoError(what + ": is a folder, not a file");
+  std::filesystem::path folder = std::filesystem::absolute(file, ec).parent_path();
+  while (!std::filesystem::exists(folder, ec) && folder.has_relative_path())
+    folder = folder.parent_path();
+  if (!std::filesystem::is_directory(folder, ec))
+    throw core::IoError(what + ": cannot write there: " + folder.string() + " is not a folder");
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+    throw core::IoError(what + ": cannot write in " + folder.string() + ": " +
+                        std::generic_category().message(errno));
+  }
+}
+
+void RequireOutputFiles(const BenchOptions& options) {
+  if (!options.junit.empty()) RequireWritableFile(options.junit, "--junit");
+  if (!options.trend.empty()) RequireWritableFile(options.trend, "--trend");
+  if (!options.junit.empty() && !options.trend.empty() &&
+      std::filesystem::weakly_canonical(options.junit) ==
+          std::filesystem::weakly_canonical(options.trend)) {
+    throw core::IoError("--junit and --trend name the same file " + options.junit.string());
+  }
+}
+
+// report.json, report.md, the baseline when recording one, and the CI systems' files.
+void WriteResults(const BenchOptions& options, const SuiteSpec& spec, const SuiteResults& results,
+                  const SuiteReport& report, const ReportContext& context,
+                  const std::filesystem::path& out) {
+  io::WriteJsonAtomic(out / "report.json", ReportJson(report, context, spec, results));
+  io::WriteFileAtomic(out / "report.md", ReportMarkdown(report, context));
+  if (options.update_baseline) WriteBaseline(context.baseline_file, MakeBaseline(spec, results));
+  if (!options.junit.empty()) io::WriteFileAtomic(options.junit, JunitXml(report, context));
+  if (!options.trend.empty()) io::WriteJsonAtomic(options.trend, TrendJson(report, results));
+}
+
 std::string VerdictLine(const SuiteSpec& spec, const SuiteReport& report,
                         const SuiteResults& results, const std::filesystem::path& baseline_file,
                         const Baseline* baseline, bool updated, const std::filesystem::path& out,
@@ -145,6 +192,12 @@ void AddBenchOptions(CLI::App* command, BenchOptions* options) {
                       "Override a scenario key in every entry: a.b.c=value (repeatable)");
   command->add_option("--only", options->only,
                       "Run and judge only these entries or modes: <entry>[.<mode>] (repeatable)");
+  command->add_option("--junit", options->junit,
+                      "Write the verdicts as JUnit XML to FILE: a testcase per gated metric, a "
+                      "failure per regression (also written on a regression)");
+  command->add_option("--trend", options->trend,
+                      "Write every metric of the run to FILE as Bencher Metric Format JSON, "
+                      "for trend charts across commits");
   command->add_flag("!--no-report", options->report,
                     "Do not write report.html, the report's page with the regressions in red, "
                     "also written on a regression (retrace report does it later)");
@@ -170,6 +223,7 @@ int RunBenchCommand(const BenchOptions& options) {
   }
 
   // Everything that can be wrong with the input is found here, before anything runs.
+  RequireOutputFiles(options);
   const SuiteSpec whole = LoadSuiteSpec(options.suite);
   const std::filesystem::path baseline_file =
       options.baseline.empty()
@@ -211,9 +265,9 @@ int RunBenchCommand(const BenchOptions& options) {
   context.jobs = jobs;
   context.overrides = options.overrides;
   context.only = options.only;
-  io::WriteJsonAtomic(out / "report.json", ReportJson(report, context, spec, results));
-  io::WriteFileAtomic(out / "report.md", ReportMarkdown(report, context));
-  if (options.update_baseline) WriteBaseline(baseline_file, MakeBaseline(spec, results));
+  context.version = BuildVersion();
+  context.recording = options.update_baseline;
+  WriteResults(options, spec, results, report, context, out);
 
   std::cout << ReportTable(report)
             << VerdictLine(spec, report, results, baseline_file, compared, options.update_baseline,

@@ -68,6 +68,8 @@ std::string UtcNow() {
 
 std::string BuildRevision() { return RETRACE_GIT_REVISION; }
 
+std::string BuildVersion() { return RETRACE_VERSION; }
+
 std::optional<double> Baseline::Find(const std::string& name) const {
   if (const auto it = metrics.find(name); it != metrics.end()) return it->second;
   if (const auto it = timing.find(name); it != timing.end()) return it->second;

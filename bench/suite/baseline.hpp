@@ -66,6 +66,9 @@ std::string UtcNow();
 /// The git revision this program was built from (see cmake/git_revision.cmake).
 std::string BuildRevision();
 
+/// retrace's version, the project's in the top-level CMakeLists.txt ("0.1.0").
+std::string BuildVersion();
+
 /// An entry's definition as the baseline records it.
 nlohmann::json EntryDefinition(const SuiteEntry& entry);
 

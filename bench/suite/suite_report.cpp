@@ -14,27 +14,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string Number(std::optional<double> v) {
-  if (!v) return "-";
-  if (std::isnan(*v)) return "nan";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", *v);
-  return buffer;
-}
-
-std::optional<double> Delta(const ReportRow& row) {
-  if (!row.baseline || !row.now || !std::isfinite(*row.baseline) || !std::isfinite(*row.now))
-    return std::nullopt;
-  return *row.now - *row.baseline;
-}
-
-std::string SignedNumber(std::optional<double> v) {
-  if (!v) return "-";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%+.3g", *v);
-  return buffer;
-}
-
 std::string VerdictText(const SuiteReport& report, const ReportRow& row) {
   return report.compared ? std::string(core::EnumName(row.check.verdict)) : std::string("new");
 }
@@ -51,6 +30,27 @@ nlohmann::json JsonNumber(std::optional<double> v) {
 }
 
 }  // namespace
+
+std::string FormatValue(std::optional<double> v) {
+  if (!v) return "-";
+  if (std::isnan(*v)) return "nan";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", *v);
+  return buffer;
+}
+
+std::optional<double> RowDelta(const ReportRow& row) {
+  if (!row.baseline || !row.now || !std::isfinite(*row.baseline) || !std::isfinite(*row.now))
+    return std::nullopt;
+  return *row.now - *row.baseline;
+}
+
+std::string FormatDelta(std::optional<double> v) {
+  if (!v) return "-";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%+.3g", *v);
+  return buffer;
+}
 
 double SeedStdDev(const std::vector<double>& values) {
   std::vector<double> finite;
@@ -105,7 +105,7 @@ SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& resul
     }
     if (baseline != nullptr) row.baseline = baseline->Find(name);
     // The metric part of the name, after "<entry>.<mode>.", sets the direction and the timing rule.
-    const std::string metric = name.substr(name.find('.', name.find('.') + 1) + 1);
+    const std::string metric = SplitSuiteMetricName(name).metric;
     if (!row.now) {
       row.check = {Verdict::kFail, "no longer computed"};
     } else {
@@ -142,8 +142,8 @@ std::string ReportTable(const SuiteReport& report) {
   text += line;
   for (const ReportRow& row : report.rows) {
     std::snprintf(line, sizeof line, "%-*s %10s %10s %10s  %-8s  %s\n", static_cast<int>(width),
-                  row.name.c_str(), Number(row.baseline).c_str(), Number(row.now).c_str(),
-                  SignedNumber(Delta(row)).c_str(), VerdictText(report, row).c_str(),
+                  row.name.c_str(), FormatValue(row.baseline).c_str(), FormatValue(row.now).c_str(),
+                  FormatDelta(RowDelta(row)).c_str(), VerdictText(report, row).c_str(),
                   Why(report, row).c_str());
     text += line;
   }
@@ -165,7 +165,7 @@ std::string ReportMarkdown(const SuiteReport& report, const ReportContext& conte
           context.baseline->date + "\n";
   }
   md += "- now: git " + context.git_revision + ", " + context.date + ", " +
-        std::to_string(context.jobs) + " jobs, " + Number(context.wall_time_s) + " s\n";
+        std::to_string(context.jobs) + " jobs, " + FormatValue(context.wall_time_s) + " s\n";
   for (const std::string& o : context.overrides) md += "- `--set " + o + "`\n";
   for (const std::string& o : context.only) md += "- `--only " + o + "`\n";
   md +=
@@ -173,9 +173,9 @@ std::string ReportMarkdown(const SuiteReport& report, const ReportContext& conte
       "|\n|---|---:|---:|---:|---:|---|---|\n";
   for (const ReportRow& row : report.rows) {
     const std::string verdict = VerdictText(report, row);
-    md += "| " + row.name + " | " + Number(row.baseline) + " | " + Number(row.now) + " | " +
-          SignedNumber(Delta(row)) + " | " +
-          Number(std::isnan(row.seed_sd) ? std::nullopt : std::optional<double>(row.seed_sd)) +
+    md += "| " + row.name + " | " + FormatValue(row.baseline) + " | " + FormatValue(row.now) +
+          " | " + FormatDelta(RowDelta(row)) + " | " +
+          FormatValue(std::isnan(row.seed_sd) ? std::nullopt : std::optional<double>(row.seed_sd)) +
           " | " +
           (IsFailure(row.check.verdict) && report.compared ? "**" + verdict + "**" : verdict) +
           " | " + Why(report, row) + " |\n";
@@ -191,7 +191,7 @@ nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& contex
         {{"metric", row.name},
          {"baseline", JsonNumber(row.baseline)},
          {"now", JsonNumber(row.now)},
-         {"delta", JsonNumber(Delta(row))},
+         {"delta", JsonNumber(RowDelta(row))},
          {"seed_sd", JsonNumber(row.seed_sd)},
          {"pattern", row.pattern},
          {"tolerance", DescribeTolerance(row.tolerance)},

@@ -40,6 +40,15 @@ struct SuiteReport {
 SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& results,
                                 const Baseline* baseline);
 
+/// now - baseline; nullopt unless both are finite numbers.
+std::optional<double> RowDelta(const ReportRow& row);
+
+/// A value as the table shows it: 4 significant digits, "-" when missing, "nan" when undefined.
+std::string FormatValue(std::optional<double> v);
+
+/// A delta as the table shows it: signed, 3 significant digits, "-" when missing.
+std::string FormatDelta(std::optional<double> v);
+
 /// The table printed on stdout: metric, baseline, now, delta, verdict, tolerance and why.
 std::string ReportTable(const SuiteReport& report);
 
@@ -55,6 +64,8 @@ struct ReportContext {
   int jobs = 0;
   std::vector<std::string> overrides;  ///< --set of the command line
   std::vector<std::string> only;       ///< --only of the command line (empty: the whole suite)
+  std::string version;                 ///< retrace's own version (BuildVersion())
+  bool recording = false;  ///< --update-baseline: the results become the baseline, nothing fails
 };
 
 std::string ReportMarkdown(const SuiteReport& report, const ReportContext& context);

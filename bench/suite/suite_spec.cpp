@@ -249,6 +249,14 @@ std::vector<std::string> SuiteMetricNames(const SuiteSpec& spec) {
   return names;
 }
 
+SuiteMetricName SplitSuiteMetricName(const std::string& name) {
+  const std::size_t first = name.find('.');
+  const std::size_t second = first == std::string::npos ? first : name.find('.', first + 1);
+  if (second == std::string::npos) return {"", "", name};
+  return {name.substr(0, first), name.substr(first + 1, second - first - 1),
+          name.substr(second + 1)};
+}
+
 SuiteSpec SelectRuns(const SuiteSpec& spec, const std::vector<std::string>& selectors) {
   std::vector<std::set<MapMode>> chosen(spec.entries.size());
   for (const std::string& selector : selectors) {

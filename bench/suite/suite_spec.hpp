@@ -74,6 +74,16 @@ SuiteSpec LoadSuiteSpec(const std::filesystem::path& file);
 /// order) and FlatMetrics name.
 std::vector<std::string> SuiteMetricNames(const SuiteSpec& spec);
 
+/// A suite metric name in its parts. Entry and mode names hold no dots, so the first two dots
+/// split it: "office.partial.tracking_error_m.pooled.rms" is office, partial and
+/// tracking_error_m.pooled.rms. A name with fewer than two dots is all metric.
+struct SuiteMetricName {
+  std::string entry;
+  std::string mode;
+  std::string metric;  ///< the FlatMetrics name
+};
+SuiteMetricName SplitSuiteMetricName(const std::string& name);
+
 /// The part of a suite that `retrace bench --only` runs. Each selector is "<entry>" (all its
 /// modes) or "<entry>.<mode>"; the entries and modes keep the suite's order. Throws
 /// core::ConfigError when a selector names no entry of the suite or a mode its entry does not

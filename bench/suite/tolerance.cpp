@@ -47,6 +47,10 @@ Better DefaultBetter(std::string_view metric) {
              : Better::kLower;
 }
 
+Better EffectiveBetter(std::string_view metric, const Tolerance& tolerance) {
+  return tolerance.better.value_or(DefaultBetter(metric));
+}
+
 MetricCheck CheckMetric(std::string_view metric, std::optional<double> baseline, double now,
                         const Tolerance& tolerance) {
   if (tolerance.report) return {Verdict::kReport, ""};
@@ -63,8 +67,8 @@ MetricCheck CheckMetric(std::string_view metric, std::optional<double> baseline,
     return {Verdict::kFail, "above max " + Short(*tolerance.max)};
   if (!tolerance.has_delta()) return {Verdict::kBound, ""};
 
-  const Better better = tolerance.better.value_or(DefaultBetter(metric));
-  const double worse = better == Better::kLower ? now - base : base - now;
+  const double worse =
+      EffectiveBetter(metric, tolerance) == Better::kLower ? now - base : base - now;
   const double allowed =
       std::max(tolerance.abs.value_or(0.0), tolerance.rel.value_or(0.0) * std::abs(base));
   if (worse > allowed) return {Verdict::kFail, "worse by " + Short(worse) + " > " + Short(allowed)};

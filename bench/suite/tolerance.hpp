@@ -62,6 +62,9 @@ struct MetricCheck {
 /// The direction of a FlatMetrics name (without the "<entry>.<mode>." prefix).
 Better DefaultBetter(std::string_view metric);
 
+/// The direction a rule judges `metric` by: the rule's `better`, else DefaultBetter.
+Better EffectiveBetter(std::string_view metric, const Tolerance& tolerance);
+
 /// The verdict for `metric` (a FlatMetrics name, for the direction and the timing rule):
 /// `baseline` is nullopt when the baseline lacks the metric; NaN means undefined.
 MetricCheck CheckMetric(std::string_view metric, std::optional<double> baseline, double now,

@@ -85,5 +85,15 @@ TEST(SuiteShipped, EverySuiteLoadsWithItsScenariosAndMatchesItsBaseline) {
   }
 }
 
+// The tiny suite of tests/cli/bench_ci_files_test.sh, shipped with the tests.
+TEST(SuiteShipped, TheTestsTinySuiteLoadsWithItsScenario) {
+  const SuiteSpec tiny = LoadSuiteSpec(kSource / "tests/data/suite_tiny.yaml");
+  EXPECT_EQ(tiny.name, "suite_tiny");
+  ASSERT_EQ(tiny.entries.size(), 1u);
+  EXPECT_EQ(tiny.entries[0].seeds.size(), 1u);  // one seed, one run: a second
+  EXPECT_EQ(tiny.entries[0].repeats, 1);
+  EXPECT_EQ(LoadSuiteScenarios(tiny, {}, 1).scenarios.at(0).size(), 1u);
+}
+
 }  // namespace
 }  // namespace retrace::bench

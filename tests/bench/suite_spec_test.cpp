@@ -126,6 +126,18 @@ TEST_F(SuiteSpecTest, MetricNamesAreEntryModeAndAggregateMetric) {
   EXPECT_EQ(names.back().rfind("small.single.", 0), 0u);
 }
 
+TEST(SuiteMetricName, SplitsAtTheFirstTwoDots) {
+  const SuiteMetricName name = SplitSuiteMetricName("office.partial.tracking_error_m.pooled.rms");
+  EXPECT_EQ(name.entry, "office");
+  EXPECT_EQ(name.mode, "partial");
+  EXPECT_EQ(name.metric, "tracking_error_m.pooled.rms");
+  EXPECT_EQ(SplitSuiteMetricName("small.single.success_rate").metric, "success_rate");
+  // Fewer than two dots: no entry and mode, all metric.
+  EXPECT_EQ(SplitSuiteMetricName("maps").metric, "maps");
+  EXPECT_EQ(SplitSuiteMetricName("a.b").metric, "a.b");
+  EXPECT_EQ(SplitSuiteMetricName("a.b").entry, "");
+}
+
 TEST_F(SuiteSpecTest, OnlySelectsEntriesAndModesInTheSuitesOrder) {
   const std::string small = SmallFrom(tmp_.path());
   const SuiteSpec spec = LoadSuiteSpec(tmp_.Write(

@@ -116,6 +116,16 @@ TEST(Tolerance, DirectionHigherIsBetterForSuccessProgressPrecisionRecallAndSpeed
   EXPECT_EQ(V("tracking_error_m.pooled.rms", 1.0, 0.8, t), Verdict::kImproved);
 }
 
+TEST(Tolerance, ARulesBetterOverridesTheDefaultDirection) {
+  Tolerance t = Abs(0.1);
+  EXPECT_EQ(EffectiveBetter("tracking_error_m.pooled.rms", t), Better::kLower);
+  EXPECT_EQ(EffectiveBetter("success_rate", t), Better::kHigher);
+  t.better = Better::kHigher;
+  EXPECT_EQ(EffectiveBetter("tracking_error_m.pooled.rms", t), Better::kHigher);
+  t.better = Better::kLower;
+  EXPECT_EQ(EffectiveBetter("success_rate", t), Better::kLower);
+}
+
 TEST(Tolerance, BetterOverridesTheDirection) {
   Tolerance t = Abs(0.1);
   t.better = Better::kHigher;

@@ -12,12 +12,13 @@ cd "$tmp" || exit 1
 pass=0
 fail=0
 
+as_user=()  # a command prefix that runs retrace as another user (see the unwritable folder)
 expect_bad() {  # expect_bad <name> <expected substring> <args...>
   local name="$1" want="$2"
   shift 2
   local before
   before=$(cat "$tmp/t.json")
-  "$retrace" bench "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  "${as_user[@]}" "$retrace" bench "$@" >"$tmp/stdout" 2>"$tmp/stderr"
   local code=$?
   local lines
   lines=$(wc -l <"$tmp/stderr")
@@ -54,6 +55,7 @@ printf '{"format": "retrace-baseline/1", "suite": "t", "suite_file": "t.yaml", "
  "entries": [{"name": "small", "scenario": "%s", "modes": ["partial"], "seeds": [1], "repeats": 1, "set": {}}],
  "metrics": {"small.partial.success_rate": 1}, "timing": {}}\n' "$small" >"$tmp/t.json"
 printf '{"format": "retrace-baseline/1", "suite": "t"' >"$tmp/truncated.json"
+mkdir "$tmp/ro"
 
 base=(--baseline "$tmp/t.json" --out "$tmp/out")
 expect_bad no-baseline "no baseline results/baselines/nobase.json for suite 'nobase'; record one with \`retrace bench nobase.yaml --update-baseline\`" nobase.yaml
@@ -77,6 +79,32 @@ expect_bad pattern-matches-nothing "bad_pattern.yaml:5: metrics.*.*.tracking_rms
 expect_bad bad-tolerance "metrics.*.*.success_rate.abs: must be >= 0, got -0.1" bad_tolerance.yaml "${base[@]}"
 expect_bad unknown-entry-key "entries[0].repeat: unknown key; did you mean 'repeats'?" unknown_entry_key.yaml "${base[@]}"
 expect_bad no-suite-argument "suite is required" --out "$tmp/out"
+
+# The files for CI systems (--junit, --trend): a path that cannot be written fails before
+# anything runs, and leaves no file, partial or temporary, behind.
+expect_bad junit-is-a-folder "--junit $tmp/ro: is a folder, not a file" t.yaml "${base[@]}" --junit "$tmp/ro"
+expect_bad trend-is-a-folder "--trend $tmp/ro/: is a folder, not a file" t.yaml "${base[@]}" --trend "$tmp/ro/"
+expect_bad junit-under-a-file "--junit $tmp/t.json/j.xml: cannot write there: $tmp/t.json is not a folder" \
+  t.yaml "${base[@]}" --junit "$tmp/t.json/j.xml"
+expect_bad trend-under-a-file "--trend $tmp/t.json/a/b.json: cannot write there: $tmp/t.json is not a folder" \
+  t.yaml "${base[@]}" --trend "$tmp/t.json/a/b.json"
+expect_bad junit-and-trend-alike "--junit and --trend name the same file $tmp/same.xml" \
+  t.yaml "${base[@]}" --junit "$tmp/same.xml" --trend "$tmp/./same.xml"
+# An unwritable folder: root writes anywhere, so as root retrace runs as nobody here.
+chmod 555 "$tmp/ro"
+if [ "$(id -u)" -eq 0 ]; then
+  chmod 755 "$tmp"
+  as_user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+fi
+expect_bad junit-unwritable-folder "--junit $tmp/ro/j.xml: cannot write in $tmp/ro: Permission denied" \
+  t.yaml "${base[@]}" --junit "$tmp/ro/j.xml"
+expect_bad trend-unwritable-folder "--trend $tmp/ro/new/t.json: cannot write in $tmp/ro: Permission denied" \
+  t.yaml "${base[@]}" --trend "$tmp/ro/new/t.json"
+as_user=()
+if [ -n "$(ls -A "$tmp/ro")" ] || [ -e "$tmp/same.xml" ]; then
+  fail=$((fail + 1))
+  echo "FAIL: files left behind: $(ls -A "$tmp/ro") $(ls "$tmp"/same.xml 2>/dev/null)"
+fi
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
