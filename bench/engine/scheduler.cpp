@@ -6,9 +6,9 @@
 #include <mutex>
 #include <numeric>
 #include <set>
-#include <thread>
 #include <tuple>
 
+#include "bench/engine/parallel.hpp"
 #include "bench/engine/playback.hpp"
 #include "core/check.hpp"
 #include "core/errors.hpp"
@@ -47,14 +47,15 @@ class EpisodeQueue {
   EpisodeQueue(std::vector<EpisodeJob>& jobs, ProgressSink* progress,
                const EpisodeCallbacks& callbacks);
 
-  // A worker thread's loop: takes ready tasks until none is left or one has failed.
+  // A worker thread's loop: takes ready tasks until none is left or one has failed. Does not
+  // throw: a task's error (its own or its callbacks') is kept for RethrowFirstFailure.
   void Work();
   // Rethrows the first failure in the queue's order, if any task failed.
   void RethrowFirstFailure() const;
   std::vector<TeachTiming> TakeTiming() { return std::move(timing_); }
 
  private:
-  void Drive(std::size_t position);
+  void Drive(std::size_t position);  // the drive at this position of drives_, then its runs queued
   void Play(const RunTask& task);
   void HandOverModesWithoutRuns(std::size_t job);
   void QueueRuns(std::size_t job);  // under mutex_
@@ -156,10 +157,15 @@ void EpisodeQueue::Work() {
       }
       ++in_flight_;
     }
-    if (is_run) {
-      Play(run);
-    } else {
-      Drive(drive);
+    try {
+      if (is_run) {
+        Play(run);
+      } else {
+        Drive(drive);
+      }
+    } catch (...) {
+      Fail(is_run ? Failure{true, 0, run, std::current_exception()}
+                  : Failure{false, drive, {}, std::current_exception()});
     }
     {
       std::lock_guard lock(mutex_);
@@ -172,20 +178,15 @@ void EpisodeQueue::Work() {
 void EpisodeQueue::Drive(std::size_t position) {
   const std::size_t j = drives_[position];
   EpisodeJob& job = jobs_[j];
-  try {
-    Named(job, [&] {
-      if (job.scenario == nullptr) job.scenario = job.load();
-      std::unique_ptr<SensorTap> tap = callbacks_.tap ? callbacks_.tap(j, nullptr, -1) : nullptr;
-      TeachResult teach =
-          RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress_), tap.get());
-      job.taught = std::move(teach.modes);
-      timing_[j] = {teach.duration_s, teach.cpu_time_s};
-    });
-  } catch (...) {
-    Fail({false, position, {}, std::current_exception()});
-    return;
-  }
-  HandOverModesWithoutRuns(j);
+  Named(job, [&] {
+    if (job.scenario == nullptr) job.scenario = job.load();
+    std::unique_ptr<SensorTap> tap = callbacks_.tap ? callbacks_.tap(j, nullptr, -1) : nullptr;
+    TeachResult teach =
+        RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress_), tap.get());
+    job.taught = std::move(teach.modes);
+    timing_[j] = {teach.duration_s, teach.cpu_time_s};
+    HandOverModesWithoutRuns(j);
+  });
   std::lock_guard lock(mutex_);
   QueueRuns(j);
   changed_.notify_all();
@@ -215,21 +216,16 @@ void EpisodeQueue::QueueRuns(std::size_t j) {
 void EpisodeQueue::Play(const RunTask& task) {
   EpisodeJob& job = jobs_[task.job];
   ModeTeach& teach = job.taught[task.mode];
-  try {
-    Named(job, [&] {
-      std::unique_ptr<PlaybackObserver> observer =
-          callbacks_.observe ? callbacks_.observe(teach, task.run) : nullptr;
-      std::unique_ptr<SensorTap> tap =
-          callbacks_.tap ? callbacks_.tap(task.job, &teach, task.run) : nullptr;
-      RunTrace run = RunPlayback(*job.scenario, teach.bundle, teach.trace, task.run,
-                                 PlaybackTimeout(*job.scenario, timing_[task.job].duration_s),
-                                 SimTimeReporter(progress_), observer.get(), tap.get());
-      if (callbacks_.run_done) callbacks_.run_done(task.job, task.mode, teach, std::move(run));
-    });
-  } catch (...) {
-    Fail({true, 0, task, std::current_exception()});
-    return;
-  }
+  Named(job, [&] {
+    std::unique_ptr<PlaybackObserver> observer =
+        callbacks_.observe ? callbacks_.observe(teach, task.run) : nullptr;
+    std::unique_ptr<SensorTap> tap =
+        callbacks_.tap ? callbacks_.tap(task.job, &teach, task.run) : nullptr;
+    RunTrace run = RunPlayback(*job.scenario, teach.bundle, teach.trace, task.run,
+                               PlaybackTimeout(*job.scenario, timing_[task.job].duration_s),
+                               SimTimeReporter(progress_), observer.get(), tap.get());
+    if (callbacks_.run_done) callbacks_.run_done(task.job, task.mode, teach, std::move(run));
+  });
   bool last = false;
   {
     std::lock_guard lock(mutex_);
@@ -242,7 +238,9 @@ void EpisodeQueue::Play(const RunTask& task) {
   }
   // The last run of a (job, mode) hands its teach over, so that a caller can free it while
   // others still run.
-  if (last && callbacks_.mode_done) callbacks_.mode_done(task.job, task.mode, std::move(teach));
+  if (last && callbacks_.mode_done) {
+    Named(job, [&] { callbacks_.mode_done(task.job, task.mode, std::move(teach)); });
+  }
 }
 
 void EpisodeQueue::Fail(Failure failure) {
@@ -263,14 +261,7 @@ void EpisodeQueue::RethrowFirstFailure() const {
 std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
                                      ProgressSink* progress, const EpisodeCallbacks& callbacks) {
   EpisodeQueue queue(jobs, progress, callbacks);
-  const int n = std::max(threads, 1);
-  if (n == 1) {
-    queue.Work();
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < n; ++t) pool.emplace_back([&queue] { queue.Work(); });
-    for (std::thread& t : pool) t.join();
-  }
+  RunOnThreads(static_cast<std::size_t>(std::max(threads, 1)), [&queue] { queue.Work(); });
   queue.RethrowFirstFailure();
   return queue.TakeTiming();
 }
