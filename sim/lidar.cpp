@@ -31,6 +31,48 @@ float ToReading(double r, double range_min, double range_max) {
   return f;
 }
 
+// The reading of one beam whose static geometry lies at `wall` and whose nearest pedestrian (or
+// range_max) at `limit` (m), with the dropouts, spurious returns and range noise of `noise`;
+// sets the beam's truth (its pedestrian_id as the pedestrians left it).
+float ReadLidarBeam(double wall, double limit, const LidarNoiseConfig& noise, double range_min,
+                    double range_max, BeamTruth* truth, core::Rng& rng) {
+  const double p_drop = noise.dropout_probability;
+  const double p_event = noise.dropout_probability + noise.short_probability;
+  const bool noisy = noise.sigma0 > 0.0 || noise.sigma1 > 0.0;
+  double t = kNoReturn;
+  if (wall <= limit) {
+    t = wall;
+    truth->pedestrian_id = -1;
+    truth->source = BeamSource::kStatic;
+  } else if (truth->pedestrian_id >= 0) {
+    t = limit;
+    truth->source = BeamSource::kPedestrian;
+  } else {
+    truth->source = BeamSource::kNothing;
+  }
+  truth->range = t;
+
+  // One uniform draw per beam decides dropout / spurious / regular, whatever the geometry.
+  const double u = p_event > 0.0 ? rng.Uniform() : 1.0;
+  if (u < p_drop) {
+    truth->source = BeamSource::kDropout;
+    return std::numeric_limits<float>::infinity();
+  }
+  if (u < p_event) {
+    const double upper = std::min(t, range_max);
+    if (upper > range_min) {
+      truth->source = BeamSource::kSpurious;
+      return ToReading(rng.Uniform(range_min, upper), range_min, range_max);
+    }
+  }
+  if (t == kNoReturn) return std::numeric_limits<float>::infinity();
+  double r = t;
+  if (noisy) r += (noise.sigma0 + noise.sigma1 * t) * rng.Normal();
+  if (r > range_max) return std::numeric_limits<float>::infinity();
+  if (r < range_min) return -std::numeric_limits<float>::infinity();
+  return ToReading(r, range_min, range_max);
+}
+
 }  // namespace
 
 void LidarNoiseConfig::Validate() const {
@@ -101,6 +143,103 @@ void Lidar::AddObstacles(const StaticGeometry& solids) {
   }
 }
 
+// The beams of one scan in W: the LiDAR's position, its heading (cos, sin) and the beams'
+// unit directions, and which beams can meet a disc.
+struct Lidar::ScanBeams {
+  Vec2 origin;
+  double c, s;
+  std::vector<Vec2> dirs;
+  double range_max, angle_min, angle_increment;
+  int last_beam;
+
+  // Calls test_beams(lo, hi) for beam index intervals that together hold every beam that can
+  // meet a disc (centre and radius in W): the disc's angular interval seen from L, widened by
+  // one beam against rounding, in each 2 pi wrap. The exact hit tests decide.
+  template <class TestBeams>
+  void ForCovered(const Vec2& center, double radius, const TestBeams& test_beams) const {
+    const Vec2 rel = center - origin;
+    const double dist = rel.norm();
+    if (dist - radius > range_max) return;
+    if (dist <= radius) {  // the sensor is inside: every beam may meet the boundary
+      test_beams(0, last_beam);
+      return;
+    }
+    const double half = std::asin(radius / dist);
+    const double bearing = std::atan2(-s * rel.x() + c * rel.y(), c * rel.x() + s * rel.y());
+    for (const double wrap : {-2.0 * core::kPi, 0.0, 2.0 * core::kPi}) {
+      const double lo = (bearing + wrap - half - angle_min) / angle_increment;
+      const double hi = (bearing + wrap + half - angle_min) / angle_increment;
+      if (hi < -1.0 || lo > static_cast<double>(last_beam) + 1.0) continue;
+      // Clamped before the conversion so that huge indices (tiny increments) stay in int.
+      test_beams(
+          std::max(static_cast<int>(std::ceil(std::max(lo, -1.0))) - 1, 0),
+          std::min(static_cast<int>(std::floor(std::min(hi, last_beam + 1.0))) + 1, last_beam));
+    }
+  }
+};
+
+Lidar::ScanBeams Lidar::BeamsFrom(const core::Pose2& X_WL) const {
+  const std::size_t n = beam_dirs_L_.size();
+  ScanBeams beams{X_WL.translation(),   std::cos(X_WL.theta),   std::sin(X_WL.theta),
+                  std::vector<Vec2>(n), config_.range_max,      angle_min_,
+                  angle_increment_,     static_cast<int>(n) - 1};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& d = beam_dirs_L_[i];
+    beams.dirs[i] = Vec2(beams.c * d.x() - beams.s * d.y(), beams.s * d.x() + beams.c * d.y());
+  }
+  return beams;
+}
+
+void Lidar::HitPedestrians(const ScanBeams& beams, std::span<const DynamicCircle> pedestrians,
+                           std::span<double> limit, std::span<BeamTruth> truth) {
+  for (const DynamicCircle& p : pedestrians) {
+    RETRACE_CHECK(p.id >= 0 && p.radius > 0.0 && std::isfinite(p.center.x()) &&
+                  std::isfinite(p.center.y()));
+    const Circle circle{p.center, p.radius};
+    beams.ForCovered(p.center, p.radius, [&](int lo, int hi) {
+      for (int i = lo; i <= hi; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        const double t = RayCircleHit(beams.origin, beams.dirs[k], circle);
+        // Ties keep the earlier pedestrian; the first one exactly at range_max still counts.
+        if (t < limit[k] || (t == limit[k] && truth[k].pedestrian_id < 0)) {
+          limit[k] = t;
+          truth[k].pedestrian_id = p.id;
+        }
+      }
+    });
+  }
+}
+
+void Lidar::CastStatic(const ScanBeams& beams, std::span<const double> limit,
+                       std::span<double> wall) const {
+  const std::size_t n = beams.dirs.size();
+  if (obstacle_parts_.empty()) {
+    caster_.CastFan(beams.origin, beams.dirs, limit, wall);
+    return;
+  }
+  std::vector<double> added(n, kNoReturn);
+  for (const Obstacle& o : obstacle_parts_) {
+    beams.ForCovered(o.bound.center, o.bound.radius, [&](int lo, int hi) {
+      for (int i = lo; i <= hi; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        double t = kNoReturn;
+        if (o.edges.empty()) {
+          t = RayCircleHit(beams.origin, beams.dirs[k], o.circle);
+        } else {
+          for (const Segment& e : o.edges) {
+            t = std::min(t, RaySegmentHit(beams.origin, beams.dirs[k], e));
+          }
+        }
+        if (t <= beams.range_max) added[k] = std::min(added[k], t);
+      }
+    });
+  }
+  std::vector<double> cast_limit(n);
+  for (std::size_t i = 0; i < n; ++i) cast_limit[i] = std::min(limit[i], added[i]);
+  caster_.CastFan(beams.origin, beams.dirs, cast_limit, wall);
+  for (std::size_t i = 0; i < n; ++i) wall[i] = std::min(wall[i], added[i]);
+}
+
 LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle> pedestrians,
                          double stamp, core::Rng& rng) const {
   const std::size_t n = beam_dirs_L_.size();
@@ -115,138 +254,20 @@ LidarReading Lidar::Scan(const core::Pose2& X_WR, std::span<const DynamicCircle>
   out.scan.range_max = range_max;
   out.scan.ranges.resize(n);
   out.truth.resize(n);
-
-  const core::Pose2 X_WL = X_WR * config_.mount;
-  const Vec2 origin = X_WL.translation();
-  const double c = std::cos(X_WL.theta);
-  const double s = std::sin(X_WL.theta);
-  std::vector<Vec2> dirs(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& d = beam_dirs_L_[i];
-    dirs[i] = Vec2(c * d.x() - s * d.y(), s * d.x() + c * d.y());
-  }
-
-  // Calls test_beams(lo, hi) for beam index intervals that together hold every beam that can
-  // meet a disc (centre and radius in W): the disc's angular interval seen from L, widened by
-  // one beam against rounding, in each 2 pi wrap. The exact hit tests decide.
-  const int last_beam = static_cast<int>(n) - 1;
-  auto for_covered_beams = [&](const Vec2& center, double radius, const auto& test_beams) {
-    const Vec2 rel = center - origin;
-    const double dist = rel.norm();
-    if (dist - radius > range_max) return;
-    if (dist <= radius) {  // the sensor is inside: every beam may meet the boundary
-      test_beams(0, last_beam);
-      return;
-    }
-    const double half = std::asin(radius / dist);
-    const double bearing = std::atan2(-s * rel.x() + c * rel.y(), c * rel.x() + s * rel.y());
-    for (const double wrap : {-2.0 * core::kPi, 0.0, 2.0 * core::kPi}) {
-      const double lo = (bearing + wrap - half - angle_min_) / angle_increment_;
-      const double hi = (bearing + wrap + half - angle_min_) / angle_increment_;
-      if (hi < -1.0 || lo > static_cast<double>(last_beam) + 1.0) continue;
-      // Clamped before the conversion so that huge indices (tiny increments) stay in int.
-      test_beams(
-          std::max(static_cast<int>(std::ceil(std::max(lo, -1.0))) - 1, 0),
-          std::min(static_cast<int>(std::floor(std::min(hi, last_beam + 1.0))) + 1, last_beam));
-    }
-  };
+  const ScanBeams beams = BeamsFrom(X_WR * config_.mount);
 
   // Pedestrians first, each on the beams it can cover.
   std::vector<double> limit(n, range_max);
   for (auto& t : out.truth) t.pedestrian_id = -1;
-  for (const DynamicCircle& p : pedestrians) {
-    RETRACE_CHECK(p.id >= 0 && p.radius > 0.0 && std::isfinite(p.center.x()) &&
-                  std::isfinite(p.center.y()));
-    const Circle circle{p.center, p.radius};
-    for_covered_beams(p.center, p.radius, [&](int lo, int hi) {
-      for (int i = lo; i <= hi; ++i) {
-        const auto k = static_cast<std::size_t>(i);
-        const double t = RayCircleHit(origin, dirs[k], circle);
-        // Ties keep the earlier pedestrian; the first one exactly at range_max still counts.
-        if (t < limit[k] || (t == limit[k] && out.truth[k].pedestrian_id < 0)) {
-          limit[k] = t;
-          out.truth[k].pedestrian_id = p.id;
-        }
-      }
-    });
-  }
-
+  HitPedestrians(beams, pedestrians, limit, out.truth);
   // Static geometry up to the nearest pedestrian (or range_max): a wall at the same distance
   // as a pedestrian wins the tie. Added obstacles are static too: their closest hit within
   // range_max also bounds the ray caster's search.
   std::vector<double> wall(n);
-  if (obstacle_parts_.empty()) {
-    caster_.CastFan(origin, dirs, limit, wall);
-  } else {
-    std::vector<double> added(n, kNoReturn);
-    for (const Obstacle& o : obstacle_parts_) {
-      for_covered_beams(o.bound.center, o.bound.radius, [&](int lo, int hi) {
-        for (int i = lo; i <= hi; ++i) {
-          const auto k = static_cast<std::size_t>(i);
-          double t = kNoReturn;
-          if (o.edges.empty()) {
-            t = RayCircleHit(origin, dirs[k], o.circle);
-          } else {
-            for (const Segment& e : o.edges) t = std::min(t, RaySegmentHit(origin, dirs[k], e));
-          }
-          if (t <= range_max) added[k] = std::min(added[k], t);
-        }
-      });
-    }
-    std::vector<double> cast_limit(n);
-    for (std::size_t i = 0; i < n; ++i) cast_limit[i] = std::min(limit[i], added[i]);
-    caster_.CastFan(origin, dirs, cast_limit, wall);
-    for (std::size_t i = 0; i < n; ++i) wall[i] = std::min(wall[i], added[i]);
-  }
-
-  const LidarNoiseConfig& noise = config_.noise;
-  const double p_drop = noise.dropout_probability;
-  const double p_event = noise.dropout_probability + noise.short_probability;
-  const bool noisy = noise.sigma0 > 0.0 || noise.sigma1 > 0.0;
+  CastStatic(beams, limit, wall);
   for (std::size_t i = 0; i < n; ++i) {
-    BeamTruth& truth = out.truth[i];
-    double t = kNoReturn;
-    if (wall[i] <= limit[i]) {
-      t = wall[i];
-      truth.pedestrian_id = -1;
-      truth.source = BeamSource::kStatic;
-    } else if (truth.pedestrian_id >= 0) {
-      t = limit[i];
-      truth.source = BeamSource::kPedestrian;
-    } else {
-      truth.source = BeamSource::kNothing;
-    }
-    truth.range = t;
-
-    float& reading = out.scan.ranges[i];
-    // One uniform draw per beam decides dropout / spurious / regular, whatever the geometry.
-    const double u = p_event > 0.0 ? rng.Uniform() : 1.0;
-    if (u < p_drop) {
-      truth.source = BeamSource::kDropout;
-      reading = std::numeric_limits<float>::infinity();
-      continue;
-    }
-    if (u < p_event) {
-      const double upper = std::min(t, range_max);
-      if (upper > range_min) {
-        truth.source = BeamSource::kSpurious;
-        reading = ToReading(rng.Uniform(range_min, upper), range_min, range_max);
-        continue;
-      }
-    }
-    if (t == kNoReturn) {
-      reading = std::numeric_limits<float>::infinity();
-      continue;
-    }
-    double r = t;
-    if (noisy) r += (noise.sigma0 + noise.sigma1 * t) * rng.Normal();
-    if (r > range_max) {
-      reading = std::numeric_limits<float>::infinity();
-    } else if (r < range_min) {
-      reading = -std::numeric_limits<float>::infinity();
-    } else {
-      reading = ToReading(r, range_min, range_max);
-    }
+    out.scan.ranges[i] =
+        ReadLidarBeam(wall[i], limit[i], config_.noise, range_min, range_max, &out.truth[i], rng);
   }
   return out;
 }

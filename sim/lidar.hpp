@@ -136,6 +136,18 @@ class Lidar {
   };
   StaticGeometry obstacles_;
   std::vector<Obstacle> obstacle_parts_;
+
+  struct ScanBeams;
+  // The beams of a scan taken from X_WL (W).
+  ScanBeams BeamsFrom(const core::Pose2& X_WL) const;
+  // Per beam, the range of the nearest pedestrian that it meets within limit[k] (m, range_max
+  // on entry) into limit[k], and that pedestrian's id into truth[k].pedestrian_id (-1 on entry).
+  static void HitPedestrians(const ScanBeams& beams, std::span<const DynamicCircle> pedestrians,
+                             std::span<double> limit, std::span<BeamTruth> truth);
+  // Per beam, the range (m) of the nearest static geometry (added obstacles included) within
+  // limit[k], or +inf.
+  void CastStatic(const ScanBeams& beams, std::span<const double> limit,
+                  std::span<double> wall) const;
 };
 
 }  // namespace retrace::sim

@@ -57,6 +57,75 @@ struct CellSpan {
   int hi;
 };
 
+// The margin (m) within which a primitive goes into a cell of size h (m) of a grid over `box`.
+// It dwarfs the rounding of the walk's cell boundaries (relative 1e-16 per step), so the walk
+// never misses a primitive the exact ray meets; it only costs a rare extra test.
+double RayCasterCellMargin(const Aabb& box, double h) {
+  double magnitude = 0.0;
+  for (const Vec2& p : {box.min, box.max}) {
+    magnitude = std::max({magnitude, std::abs(p.x()), std::abs(p.y())});
+  }
+  return 1e-6 * h + 1e-9 * magnitude;
+}
+
+// The cells of the grid (nx x ny cells of size h from grid_min) that a primitive goes into:
+// every cell its geometry comes within `margin` (m) of, row by row.
+struct RayCasterCover {
+  Vec2 grid_min;
+  double h, inv_cell_size, margin;
+  int nx, ny;
+
+  int Col(double x) const {
+    return std::clamp(static_cast<int>(std::floor((x - grid_min.x()) * inv_cell_size)), 0, nx - 1);
+  }
+  int Row(double y) const {
+    return std::clamp(static_cast<int>(std::floor((y - grid_min.y()) * inv_cell_size)), 0, ny - 1);
+  }
+  // The extent [*lo, *hi] (m) of row iy, widened by the margin.
+  void RowBand(int iy, double* lo, double* hi) const {
+    *lo = grid_min.y() + iy * h - margin;
+    *hi = grid_min.y() + (iy + 1) * h + margin;
+  }
+  // Calls fn(iy, CellSpan) for each row the segment crosses, with the columns it touches.
+  template <class Fn>
+  void ForSegment(const Segment& s, Fn&& fn) const {
+    const double ylo_all = std::min(s.a.y(), s.b.y()) - margin;
+    const double yhi_all = std::max(s.a.y(), s.b.y()) + margin;
+    const double dy = s.b.y() - s.a.y();
+    for (int iy = Row(ylo_all); iy <= Row(yhi_all); ++iy) {
+      double lo = 0.0, hi = 0.0;
+      RowBand(iy, &lo, &hi);
+      double s0 = 0.0, s1 = 1.0;
+      if (dy != 0.0) {
+        const double sa = (lo - s.a.y()) / dy;
+        const double sb = (hi - s.a.y()) / dy;
+        s0 = std::max(0.0, std::min(sa, sb));
+        s1 = std::min(1.0, std::max(sa, sb));
+        if (s0 > s1) continue;
+      }
+      const double xa = s.a.x() + s0 * (s.b.x() - s.a.x());
+      const double xb = s.a.x() + s1 * (s.b.x() - s.a.x());
+      fn(iy, CellSpan{Col(std::min(xa, xb) - margin), Col(std::max(xa, xb) + margin)});
+    }
+  }
+  // Calls fn(iy, CellSpan) for each row the circle (widened by the margin) meets, with the
+  // columns it touches.
+  template <class Fn>
+  void ForCircle(const Circle& c, Fn&& fn) const {
+    const double r = c.radius + margin;
+    for (int iy = Row(c.center.y() - r); iy <= Row(c.center.y() + r); ++iy) {
+      double lo = 0.0, hi = 0.0;
+      RowBand(iy, &lo, &hi);
+      const double gap = c.center.y() < lo   ? lo - c.center.y()
+                         : c.center.y() > hi ? c.center.y() - hi
+                                             : 0.0;
+      if (gap > r) continue;
+      const double half = std::sqrt(r * r - gap * gap);
+      fn(iy, CellSpan{Col(c.center.x() - half), Col(c.center.x() + half)});
+    }
+  }
+};
+
 }  // namespace
 
 double RaySegmentHit(const Vec2& origin, const Vec2& dir, const Segment& s) {
@@ -80,8 +149,43 @@ RayCaster::RayCaster(const StaticGeometry& geometry, double cell_size) {
     return;
   }
   RETRACE_CHECK(n < std::numeric_limits<std::uint32_t>::max() / 64);
-
   const Aabb box = geometry.Bounds();
+  FitGrid(box, cell_size, n);
+  // Primitives go into every cell their geometry comes within the margin of.
+  const RayCasterCover cover{
+      grid_min_, cell_size_, inv_cell_size_, RayCasterCellMargin(box, cell_size_), nx_, ny_};
+
+  // Two passes: count entries per cell, then fill (CSR layout, segments before circles).
+  const std::size_t cell_count = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  std::vector<std::uint32_t> seg_count(cell_count, 0), circle_count(cell_count, 0);
+  auto counter = [&](std::vector<std::uint32_t>& count) {
+    return [&](int iy, CellSpan span) {
+      for (int ix = span.lo; ix <= span.hi; ++ix) ++count[static_cast<std::size_t>(iy) * nx_ + ix];
+    };
+  };
+  for (const Segment& s : segments) cover.ForSegment(s, counter(seg_count));
+  for (const Circle& c : circles) cover.ForCircle(c, counter(circle_count));
+  std::vector<std::uint32_t> seg_fill(cell_count), circle_fill(cell_count);
+  LayOutCells(seg_count, circle_count, &seg_fill, &circle_fill);
+  for (const Segment& s : segments) {
+    const Item item{s.a.x(), s.a.y(), s.b.x() - s.a.x(), s.b.y() - s.a.y()};
+    cover.ForSegment(s, [&](int iy, CellSpan span) {
+      for (int ix = span.lo; ix <= span.hi; ++ix) {
+        items_[seg_fill[static_cast<std::size_t>(iy) * nx_ + ix]++] = item;
+      }
+    });
+  }
+  for (const Circle& c : circles) {
+    const Item item{c.center.x(), c.center.y(), c.radius, c.radius * c.radius};
+    cover.ForCircle(c, [&](int iy, CellSpan span) {
+      for (int ix = span.lo; ix <= span.hi; ++ix) {
+        items_[circle_fill[static_cast<std::size_t>(iy) * nx_ + ix]++] = item;
+      }
+    });
+  }
+}
+
+void RayCaster::FitGrid(const Aabb& box, double cell_size, std::size_t primitives) {
   const double width = box.max.x() - box.min.x();
   const double height = box.max.y() - box.min.y();
   const double extent = std::max({width, height, 1e-3});
@@ -90,7 +194,7 @@ RayCaster::RayCaster(const StaticGeometry& geometry, double cell_size) {
     // About one primitive per cell: walls in rooms then share cells with their few
     // neighbours, and open space costs one cheap step per cell.
     const double area = std::max(width, extent * 1e-3) * std::max(height, extent * 1e-3);
-    h = std::sqrt(area / static_cast<double>(n));
+    h = std::sqrt(area / static_cast<double>(primitives));
   }
   // At most ~16M cells whatever the request.
   h = std::max(h, extent / 4096.0);
@@ -101,104 +205,26 @@ RayCaster::RayCaster(const StaticGeometry& geometry, double cell_size) {
   nx_ = std::max(1, static_cast<int>(std::ceil((width + 2.0 * pad) * inv_cell_size_)));
   ny_ = std::max(1, static_cast<int>(std::ceil((height + 2.0 * pad) * inv_cell_size_)));
   grid_max_ = grid_min_ + Vec2(nx_ * h, ny_ * h);
+}
 
-  // Primitives go into every cell their geometry comes within `margin` of. The margin dwarfs
-  // the rounding of the walk's cell boundaries (relative 1e-16 per step), so the walk never
-  // misses a primitive the exact ray meets; it only costs a rare extra test.
-  double magnitude = 0.0;
-  for (const Vec2& p : {box.min, box.max}) {
-    magnitude = std::max({magnitude, std::abs(p.x()), std::abs(p.y())});
-  }
-  const double margin = 1e-6 * h + 1e-9 * magnitude;
-
-  auto col = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor((x - grid_min_.x()) * inv_cell_size_)), 0,
-                      nx_ - 1);
-  };
-  auto row = [&](double y) {
-    return std::clamp(static_cast<int>(std::floor((y - grid_min_.y()) * inv_cell_size_)), 0,
-                      ny_ - 1);
-  };
-  auto row_band = [&](int iy, double* lo, double* hi) {
-    *lo = grid_min_.y() + iy * h - margin;
-    *hi = grid_min_.y() + (iy + 1) * h + margin;
-  };
-  // Calls fn(iy, CellSpan) for each row the segment crosses, with the columns it touches.
-  auto for_segment_cells = [&](const Segment& s, auto&& fn) {
-    const double ylo_all = std::min(s.a.y(), s.b.y()) - margin;
-    const double yhi_all = std::max(s.a.y(), s.b.y()) + margin;
-    const double dy = s.b.y() - s.a.y();
-    for (int iy = row(ylo_all); iy <= row(yhi_all); ++iy) {
-      double lo = 0.0, hi = 0.0;
-      row_band(iy, &lo, &hi);
-      double s0 = 0.0, s1 = 1.0;
-      if (dy != 0.0) {
-        const double sa = (lo - s.a.y()) / dy;
-        const double sb = (hi - s.a.y()) / dy;
-        s0 = std::max(0.0, std::min(sa, sb));
-        s1 = std::min(1.0, std::max(sa, sb));
-        if (s0 > s1) continue;
-      }
-      const double xa = s.a.x() + s0 * (s.b.x() - s.a.x());
-      const double xb = s.a.x() + s1 * (s.b.x() - s.a.x());
-      fn(iy, CellSpan{col(std::min(xa, xb) - margin), col(std::max(xa, xb) + margin)});
-    }
-  };
-  auto for_circle_cells = [&](const Circle& c, auto&& fn) {
-    const double r = c.radius + margin;
-    for (int iy = row(c.center.y() - r); iy <= row(c.center.y() + r); ++iy) {
-      double lo = 0.0, hi = 0.0;
-      row_band(iy, &lo, &hi);
-      const double gap = c.center.y() < lo   ? lo - c.center.y()
-                         : c.center.y() > hi ? c.center.y() - hi
-                                             : 0.0;
-      if (gap > r) continue;
-      const double half = std::sqrt(r * r - gap * gap);
-      fn(iy, CellSpan{col(c.center.x() - half), col(c.center.x() + half)});
-    }
-  };
-
-  // Two passes: count entries per cell, then fill (CSR layout, segments before circles).
-  const std::size_t cell_count = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
-  std::vector<std::uint32_t> seg_count(cell_count, 0), circle_count(cell_count, 0);
-  auto counter = [&](std::vector<std::uint32_t>& count) {
-    return [&](int iy, CellSpan span) {
-      for (int ix = span.lo; ix <= span.hi; ++ix) ++count[static_cast<std::size_t>(iy) * nx_ + ix];
-    };
-  };
-  for (const Segment& s : segments) for_segment_cells(s, counter(seg_count));
-  for (const Circle& c : circles) for_circle_cells(c, counter(circle_count));
-
+void RayCaster::LayOutCells(const std::vector<std::uint32_t>& seg_count,
+                            const std::vector<std::uint32_t>& circle_count,
+                            std::vector<std::uint32_t>* seg_fill,
+                            std::vector<std::uint32_t>* circle_fill) {
+  const std::size_t cell_count = seg_count.size();
   cells_.resize(cell_count + 1);
-  std::vector<std::uint32_t> seg_fill(cell_count), circle_fill(cell_count);
   std::uint64_t total = 0;
   for (std::size_t c = 0; c < cell_count; ++c) {
     cells_[c].begin = static_cast<std::uint32_t>(total);
     cells_[c].mid = static_cast<std::uint32_t>(total + seg_count[c]);
-    seg_fill[c] = cells_[c].begin;
-    circle_fill[c] = cells_[c].mid;
+    (*seg_fill)[c] = cells_[c].begin;
+    (*circle_fill)[c] = cells_[c].mid;
     total += seg_count[c] + circle_count[c];
     RETRACE_CHECK(total < std::numeric_limits<std::uint32_t>::max());
   }
   cells_[cell_count] =
       CellRange{static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(total)};
   items_.resize(total);
-  for (const Segment& s : segments) {
-    const Item item{s.a.x(), s.a.y(), s.b.x() - s.a.x(), s.b.y() - s.a.y()};
-    for_segment_cells(s, [&](int iy, CellSpan span) {
-      for (int ix = span.lo; ix <= span.hi; ++ix) {
-        items_[seg_fill[static_cast<std::size_t>(iy) * nx_ + ix]++] = item;
-      }
-    });
-  }
-  for (const Circle& c : circles) {
-    const Item item{c.center.x(), c.center.y(), c.radius, c.radius * c.radius};
-    for_circle_cells(c, [&](int iy, CellSpan span) {
-      for (int ix = span.lo; ix <= span.hi; ++ix) {
-        items_[circle_fill[static_cast<std::size_t>(iy) * nx_ + ix]++] = item;
-      }
-    });
-  }
 }
 
 double RayCaster::Cast(const Vec2& origin, const Vec2& dir, double max_t) const {
@@ -220,92 +246,115 @@ void RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
   }
 }
 
+// The walk of one ray through the grid: its cell, its step per axis (-1, 0, 1), the ray
+// parameter of its next crossing per axis and the parameter between crossings (+inf for an axis
+// it never crosses).
+struct RayCaster::Walk {
+  int ix, iy;
+  int step_x = 0, step_y = 0;
+  double tx = kInf, ty = kInf, dtx = kInf, dty = kInf;
+};
+
+inline bool RayCaster::ClipToGrid(double ox, double oy, double ux, double uy, double* t0,
+                                  double* t1, double* inv_ux, double* inv_uy) const {
+  if (ux != 0.0) {
+    *inv_ux = 1.0 / ux;
+    const double ta = (grid_min_.x() - ox) * *inv_ux;
+    const double tb = (grid_max_.x() - ox) * *inv_ux;
+    *t0 = std::max(*t0, std::min(ta, tb));
+    *t1 = std::min(*t1, std::max(ta, tb));
+  } else if (ox < grid_min_.x() || ox > grid_max_.x()) {
+    return false;
+  }
+  if (uy != 0.0) {
+    *inv_uy = 1.0 / uy;
+    const double ta = (grid_min_.y() - oy) * *inv_uy;
+    const double tb = (grid_max_.y() - oy) * *inv_uy;
+    *t0 = std::max(*t0, std::min(ta, tb));
+    *t1 = std::min(*t1, std::max(ta, tb));
+  } else if (oy < grid_min_.y() || oy > grid_max_.y()) {
+    return false;
+  }
+  return *t0 <= *t1;
+}
+
+inline RayCaster::Walk RayCaster::StartWalk(double ox, double oy, double ux, double uy, double t0,
+                                            double inv_ux, double inv_uy) const {
+  const double h = cell_size_;
+  const double ex = ox + t0 * ux, ey = oy + t0 * uy;
+  Walk w;
+  w.ix =
+      std::clamp(static_cast<int>(std::floor((ex - grid_min_.x()) * inv_cell_size_)), 0, nx_ - 1);
+  w.iy =
+      std::clamp(static_cast<int>(std::floor((ey - grid_min_.y()) * inv_cell_size_)), 0, ny_ - 1);
+  if (ux > 0.0) {
+    w.step_x = 1;
+    w.tx = (grid_min_.x() + (w.ix + 1) * h - ox) * inv_ux;
+    w.dtx = h * inv_ux;
+  } else if (ux < 0.0) {
+    w.step_x = -1;
+    w.tx = (grid_min_.x() + w.ix * h - ox) * inv_ux;
+    w.dtx = -h * inv_ux;
+  }
+  if (uy > 0.0) {
+    w.step_y = 1;
+    w.ty = (grid_min_.y() + (w.iy + 1) * h - oy) * inv_uy;
+    w.dty = h * inv_uy;
+  } else if (uy < 0.0) {
+    w.step_y = -1;
+    w.ty = (grid_min_.y() + w.iy * h - oy) * inv_uy;
+    w.dty = -h * inv_uy;
+  }
+  return w;
+}
+
+inline double RayCaster::NearestHitInCell(std::size_t c, double ox, double oy, double ux, double uy,
+                                          double uu, double best) const {
+  const CellRange* cells = cells_.data();
+  const Item* items = items_.data();
+  const std::uint32_t mid = cells[c].mid;
+  const std::uint32_t end = cells[c + 1].begin;
+  for (std::uint32_t k = cells[c].begin; k < mid; ++k) {
+    const Item& s = items[k];
+    const double t = SegmentHit(ox, oy, ux, uy, s.p, s.q, s.u, s.v);
+    if (t < best) best = t;
+  }
+  for (std::uint32_t k = mid; k < end; ++k) {
+    const Item& s = items[k];
+    const double t = CircleHit(ox, oy, ux, uy, uu, s.p, s.q, s.v);
+    if (t < best) best = t;
+  }
+  return best;
+}
+
 double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) const {
   if (!(max_t >= 0.0) || nx_ == 0) return kInf;
   const double ox = origin.x(), oy = origin.y();
   const double ux = dir.x(), uy = dir.y();
-
   // Clip [0, max_t] to the grid's box (slab test).
   double t0 = 0.0, t1 = max_t;
   double inv_ux = 0.0, inv_uy = 0.0;
-  if (ux != 0.0) {
-    inv_ux = 1.0 / ux;
-    const double ta = (grid_min_.x() - ox) * inv_ux;
-    const double tb = (grid_max_.x() - ox) * inv_ux;
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-  } else if (ox < grid_min_.x() || ox > grid_max_.x()) {
-    return kInf;
-  }
-  if (uy != 0.0) {
-    inv_uy = 1.0 / uy;
-    const double ta = (grid_min_.y() - oy) * inv_uy;
-    const double tb = (grid_max_.y() - oy) * inv_uy;
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-  } else if (oy < grid_min_.y() || oy > grid_max_.y()) {
-    return kInf;
-  }
-  if (t0 > t1) return kInf;
+  if (!ClipToGrid(ox, oy, ux, uy, &t0, &t1, &inv_ux, &inv_uy)) return kInf;
 
   // Amanatides-Woo walk from the entry cell.
-  const double h = cell_size_;
-  const double ex = ox + t0 * ux, ey = oy + t0 * uy;
-  int ix =
-      std::clamp(static_cast<int>(std::floor((ex - grid_min_.x()) * inv_cell_size_)), 0, nx_ - 1);
-  int iy =
-      std::clamp(static_cast<int>(std::floor((ey - grid_min_.y()) * inv_cell_size_)), 0, ny_ - 1);
-  int step_x = 0, step_y = 0;
-  double tx = kInf, ty = kInf, dtx = kInf, dty = kInf;
-  if (ux > 0.0) {
-    step_x = 1;
-    tx = (grid_min_.x() + (ix + 1) * h - ox) * inv_ux;
-    dtx = h * inv_ux;
-  } else if (ux < 0.0) {
-    step_x = -1;
-    tx = (grid_min_.x() + ix * h - ox) * inv_ux;
-    dtx = -h * inv_ux;
-  }
-  if (uy > 0.0) {
-    step_y = 1;
-    ty = (grid_min_.y() + (iy + 1) * h - oy) * inv_uy;
-    dty = h * inv_uy;
-  } else if (uy < 0.0) {
-    step_y = -1;
-    ty = (grid_min_.y() + iy * h - oy) * inv_uy;
-    dty = -h * inv_uy;
-  }
-
+  Walk w = StartWalk(ox, oy, ux, uy, t0, inv_ux, inv_uy);
   const double uu = ux * ux + uy * uy;
-  const CellRange* cells = cells_.data();
-  const Item* items = items_.data();
   double best = kInf;
   for (;;) {
-    const std::size_t c =
-        static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix);
-    const std::uint32_t mid = cells[c].mid;
-    const std::uint32_t end = cells[c + 1].begin;
-    for (std::uint32_t k = cells[c].begin; k < mid; ++k) {
-      const Item& s = items[k];
-      const double t = SegmentHit(ox, oy, ux, uy, s.p, s.q, s.u, s.v);
-      if (t < best) best = t;
-    }
-    for (std::uint32_t k = mid; k < end; ++k) {
-      const Item& s = items[k];
-      const double t = CircleHit(ox, oy, ux, uy, uu, s.p, s.q, s.v);
-      if (t < best) best = t;
-    }
+    const std::size_t c = static_cast<std::size_t>(w.iy) * static_cast<std::size_t>(nx_) +
+                          static_cast<std::size_t>(w.ix);
+    best = NearestHitInCell(c, ox, oy, ux, uy, uu, best);
     // Every primitive the ray meets before leaving this cell is in this cell or an earlier one.
-    const double t_exit = std::min(tx, ty);
+    const double t_exit = std::min(w.tx, w.ty);
     if (best <= t_exit || t_exit >= t1) break;
-    if (tx < ty) {
-      ix += step_x;
-      if (ix < 0 || ix >= nx_) break;
-      tx += dtx;
+    if (w.tx < w.ty) {
+      w.ix += w.step_x;
+      if (w.ix < 0 || w.ix >= nx_) break;
+      w.tx += w.dtx;
     } else {
-      iy += step_y;
-      if (iy < 0 || iy >= ny_) break;
-      ty += dty;
+      w.iy += w.step_y;
+      if (w.iy < 0 || w.iy >= ny_) break;
+      w.ty += w.dty;
     }
   }
   return best <= max_t ? best : kInf;

@@ -60,7 +60,27 @@ class RayCaster {
     std::uint32_t mid;
   };
 
+  // Sizes the grid over `box` (m): cell_size_ (the request, or about one primitive per cell),
+  // its origin, cell counts and far corner.
+  void FitGrid(const Aabb& box, double cell_size, std::size_t primitives);
+  // Sets cells_ from the entries per cell (segments, circles), sizes items_ for them all, and
+  // sets each cell's next free slot for segments and for circles.
+  void LayOutCells(const std::vector<std::uint32_t>& seg_count,
+                   const std::vector<std::uint32_t>& circle_count,
+                   std::vector<std::uint32_t>* seg_fill, std::vector<std::uint32_t>* circle_fill);
+
   double CastFrom(const Vec2& origin, const Vec2& dir, double max_t) const;
+  struct Walk;
+  // Clips [*t0, *t1] to the grid's box (slab test), setting the inverse direction components
+  // of the axes the ray moves along; false when the ray misses the box.
+  bool ClipToGrid(double ox, double oy, double ux, double uy, double* t0, double* t1,
+                  double* inv_ux, double* inv_uy) const;
+  // The walk's state in the cell where the ray enters the grid, at ray parameter t0.
+  Walk StartWalk(double ox, double oy, double ux, double uy, double t0, double inv_ux,
+                 double inv_uy) const;
+  // The smaller of `best` and the nearest hit of the ray with the primitives of cell c.
+  double NearestHitInCell(std::size_t c, double ox, double oy, double ux, double uy, double uu,
+                          double best) const;
 
   double cell_size_ = 1.0;
   double inv_cell_size_ = 1.0;
