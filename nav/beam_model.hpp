@@ -104,6 +104,19 @@ class BeamModel {
  private:
   double HitNormaliser(double z_star) const;  // Φ((range_max - z*)/σ) - Φ(-z*/σ)
   double ShortScale(double z_star) const;     // η λ = λ / (1 - exp(-λ z*)); 0 at z* = 0
+  // SumTerms' passes. The first: per expected range, z* clamped to [0, range_max] and the
+  // Gaussian's exponent, p_hit and p_short zeroed, and the lists of those on the hit side (an
+  // exponential that does not underflow) and on the short side (z <= z*, z* > 0).
+  void ListSides(double z, std::span<const double> z_star, Scratch* scratch, std::size_t* num_hit,
+                 std::size_t* num_short) const;
+  // p_hit (eq. 7) of the first num_hit ranges on the hit side list.
+  void HitTerms(std::size_t num_hit, Scratch* scratch) const;
+  // p_short (eq. 8) of the first num_short ranges on the short side list, and the weighted sum
+  // of their short parts.
+  double ShortTermsSum(std::size_t num_short, double short_decay, std::span<const double> weights,
+                       Scratch* scratch) const;
+  // The weighted sum of every range's p_beam.
+  double TotalsSum(double z, std::span<const double> weights, const Scratch& s) const;
   BeamModelConfig config_;
   double range_max_;
   double w_hit_, w_short_, w_max_, w_rand_;  // mixture weights divided by their sum

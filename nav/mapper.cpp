@@ -56,6 +56,25 @@ BeamPlan PlanBeam(const MapperConfig& config, double hit_range_max, const core::
   return plan;
 }
 
+// The plans of all beams of `scan`, taken from X_ML, with their directions in M; widens
+// [*lo, *hi] (M) to every planned beam's far end.
+std::vector<BeamPlan> PlanBeams(const MapperConfig& config, double hit_range_max,
+                                const core::LaserScan& scan, const core::Pose2& X_ML,
+                                core::Vec2* lo, core::Vec2* hi) {
+  const core::Vec2 p_ML = X_ML.translation();
+  std::vector<BeamPlan> plans(scan.size());
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    plans[i] = PlanBeam(config, hit_range_max, scan, i);
+    if (plans[i].kind == BeamKind::kSkip) continue;
+    const double a = X_ML.theta + scan.Angle(i);
+    plans[i].dir = core::Vec2(std::cos(a), std::sin(a));
+    const core::Vec2 end = p_ML + plans[i].length * plans[i].dir;
+    *lo = lo->cwiseMin(end);
+    *hi = hi->cwiseMax(end);
+  }
+  return plans;
+}
+
 // Exact cell traversal (Amanatides & Woo 1987) of the ray from `start` along the unit vector
 // `dir` from t0 to `length` metres: calls visit(cell, t_in, t_out) for every cell whose
 // interior the ray crosses beyond t0, in order, with the ray's stretch [t_in, t_out] (m from
@@ -192,24 +211,7 @@ inline void Mapper::ProposeNearEnd(std::size_t i, float delta, bool end_cell) {
   p.end_cell |= end_cell ? 1 : 0;
 }
 
-void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
-  RETRACE_CHECK(std::isfinite(X_MR.x) && std::isfinite(X_MR.y) && std::isfinite(X_MR.theta));
-  const core::Pose2 X_ML = X_MR * robot_.X_RL;
-  const core::Vec2 p_ML = X_ML.translation();
-
-  std::vector<BeamPlan> plans(scan.size());
-  core::Vec2 lo = p_ML;
-  core::Vec2 hi = p_ML;
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    plans[i] = PlanBeam(config_, robot_.range_max, scan, i);
-    if (plans[i].kind == BeamKind::kSkip) continue;
-    const double a = X_ML.theta + scan.Angle(i);
-    plans[i].dir = core::Vec2(std::cos(a), std::sin(a));
-    const core::Vec2 end = p_ML + plans[i].length * plans[i].dir;
-    lo = lo.cwiseMin(end);
-    hi = hi.cwiseMax(end);
-  }
-  // Grow before any index is taken: growing shifts the indices of existing cells.
+void Mapper::GrowFor(const core::Vec2& lo, const core::Vec2& hi) {
   grid_.GrowToInclude(lo, kGrowMargin);
   grid_.GrowToInclude(hi, kGrowMargin);
   // The scratch: every bit is clear between scans (each scan clears the bits it set), a grown
@@ -221,70 +223,45 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
     near_bits_.resize((cells + 63) / 64);
   }
   touched_.clear();
+}
 
-  const auto hit = static_cast<float>(HitLogOdds(config_.inverse_model));
-  const auto miss = static_cast<float>(MissLogOdds(config_.inverse_model));
-  const double reach = config_.inverse_model.ReachBehind();
-  const double spacing = 0.5 * config_.resolution;
-  MapperStats stats;
-  stats.keyframes = stats_.keyframes + 1;
-  // Hits first, then the clearing beams, so that these stop at this scan's end points too.
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    const BeamPlan& plan = plans[i];
-    if (plan.kind == BeamKind::kSkip) ++stats.beams_skipped;
-    if (plan.kind != BeamKind::kHit) continue;
-    ++stats.beams_hit;
-    // The free stretch, well before the end point, from where this beam is needed; then the
-    // end point's neighbourhood, every cell of it.
-    const double near_end = plan.z - reach;
-    const double free_from =
-        std::min(FreeStretchStart(i, scan.angle_increment, spacing), std::max(near_end, 0.0));
-    TraverseCells(grid_, p_ML, plan.dir, free_from, plan.length,
-                  [&](core::CellIndex c, double t_in, double t_out) {
-                    if (t_out < near_end) {
-                      ProposeFree(grid_.Index(c));
-                      return true;
-                    }
-                    const double d = SignedDistanceToEndPoint(t_in, t_out, plan.z);
-                    if (d > reach) return false;
-                    const float delta =
-                        d == 0.0 ? hit
-                                 : static_cast<float>(LogOddsUpdate(config_.inverse_model, d));
-                    if (delta != 0.0f) ProposeNearEnd(grid_.Index(c), delta, d == 0.0);
+inline void Mapper::ProposeHitBeam(const core::Vec2& p_ML, const core::Vec2& dir, double z,
+                                   double free_from, double length, double reach, float hit) {
+  const double near_end = z - reach;
+  TraverseCells(grid_, p_ML, dir, free_from, length,
+                [&](core::CellIndex c, double t_in, double t_out) {
+                  if (t_out < near_end) {
+                    ProposeFree(grid_.Index(c));
                     return true;
-                  });
-  }
-  // A beam without a usable return cannot tell open space from a dropout on a wall: it clears
-  // only up to the first cell that the map already holds as occupied or that this scan's hits
-  // mark, so that dropouts neither wear walls away nor paint free space behind them (a wall
-  // first seen in this scan included).
+                  }
+                  const double d = SignedDistanceToEndPoint(t_in, t_out, z);
+                  if (d > reach) return false;
+                  const float delta =
+                      d == 0.0 ? hit : static_cast<float>(LogOddsUpdate(config_.inverse_model, d));
+                  if (delta != 0.0f) ProposeNearEnd(grid_.Index(c), delta, d == 0.0);
+                  return true;
+                });
+}
+
+inline void Mapper::ProposeClearBeam(const core::Vec2& p_ML, const core::Vec2& dir, double length,
+                                     double clear_to) {
+  // It clears only up to the first cell that the map already holds as occupied or that this
+  // scan's hits mark, so that dropouts neither wear walls away nor paint free space behind them
+  // (a wall first seen in this scan included).
   const std::vector<float>& before = grid_.log_odds();
-  // Within no_return_range the beams lie at most a cell apart (0.25 deg at 10 m: 4.4 cm), so of
-  // a run of clearing beams every other one is enough; each traced one stops at its own
-  // blocking cell.
   const auto blocks = [&](std::size_t cell) {
     return before[cell] > 0.0f || (Marked(near_bits_, cell) && proposals_[cell].end_cell != 0);
   };
-  const auto clearing = [&](std::size_t j) {
-    return j < plans.size() && plans[j].kind == BeamKind::kClear;
-  };
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    const BeamPlan& plan = plans[i];
-    if (plan.kind != BeamKind::kClear) continue;
-    ++stats.beams_cleared;
-    if ((i & 1U) != 0 && i > 0 && clearing(i - 1) && clearing(i + 1) &&
-        plan.clear_to * scan.angle_increment <= spacing * 2.0) {
-      continue;
-    }
-    TraverseCells(grid_, p_ML, plan.dir, 0.0, plan.length,
-                  [&](core::CellIndex c, double /*t_in*/, double t_out) {
-                    const std::size_t cell = grid_.Index(c);
-                    if (t_out > plan.clear_to || blocks(cell)) return false;
-                    ProposeFree(cell);
-                    return true;
-                  });
-  }
+  TraverseCells(grid_, p_ML, dir, 0.0, length,
+                [&](core::CellIndex c, double /*t_in*/, double t_out) {
+                  const std::size_t cell = grid_.Index(c);
+                  if (t_out > clear_to || blocks(cell)) return false;
+                  ProposeFree(cell);
+                  return true;
+                });
+}
 
+void Mapper::ApplyProposals(float hit, float miss) {
   std::vector<float>& log_odds = grid_.log_odds();
   const auto l_min = static_cast<float>(config_.log_odds_min);
   const auto l_max = static_cast<float>(config_.log_odds_max);
@@ -303,6 +280,53 @@ void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
     touched_bits_[i >> 6] &= ~bit;
     log_odds[i] = std::clamp(log_odds[i] + delta, l_min, l_max);  // eq. (4)
   }
+}
+
+void Mapper::Integrate(const core::LaserScan& scan, const core::Pose2& X_MR) {
+  RETRACE_CHECK(std::isfinite(X_MR.x) && std::isfinite(X_MR.y) && std::isfinite(X_MR.theta));
+  const core::Pose2 X_ML = X_MR * robot_.X_RL;
+  const core::Vec2 p_ML = X_ML.translation();
+  core::Vec2 lo = p_ML;
+  core::Vec2 hi = p_ML;
+  const std::vector<BeamPlan> plans = PlanBeams(config_, robot_.range_max, scan, X_ML, &lo, &hi);
+  // Grow before any index is taken: growing shifts the indices of existing cells.
+  GrowFor(lo, hi);
+
+  const auto hit = static_cast<float>(HitLogOdds(config_.inverse_model));
+  const auto miss = static_cast<float>(MissLogOdds(config_.inverse_model));
+  const double reach = config_.inverse_model.ReachBehind();
+  const double spacing = 0.5 * config_.resolution;
+  MapperStats stats;
+  stats.keyframes = stats_.keyframes + 1;
+  // Hits first, then the clearing beams, so that these stop at this scan's end points too.
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const BeamPlan& plan = plans[i];
+    if (plan.kind == BeamKind::kSkip) ++stats.beams_skipped;
+    if (plan.kind != BeamKind::kHit) continue;
+    ++stats.beams_hit;
+    // The free stretch, well before the end point, from where this beam is needed; then the
+    // end point's neighbourhood, every cell of it.
+    const double free_from =
+        std::min(FreeStretchStart(i, scan.angle_increment, spacing), std::max(plan.z - reach, 0.0));
+    ProposeHitBeam(p_ML, plan.dir, plan.z, free_from, plan.length, reach, hit);
+  }
+  // A beam without a usable return cannot tell open space from a dropout on a wall. Within
+  // no_return_range the beams lie at most a cell apart (0.25 deg at 10 m: 4.4 cm), so of a run
+  // of clearing beams every other one is enough; each traced one stops at its own blocking cell.
+  const auto clearing = [&](std::size_t j) {
+    return j < plans.size() && plans[j].kind == BeamKind::kClear;
+  };
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const BeamPlan& plan = plans[i];
+    if (plan.kind != BeamKind::kClear) continue;
+    ++stats.beams_cleared;
+    if ((i & 1U) != 0 && i > 0 && clearing(i - 1) && clearing(i + 1) &&
+        plan.clear_to * scan.angle_increment <= spacing * 2.0) {
+      continue;
+    }
+    ProposeClearBeam(p_ML, plan.dir, plan.length, plan.clear_to);
+  }
+  ApplyProposals(hit, miss);
   stats.cells_updated = touched_.size();
   stats_ = stats;
 }

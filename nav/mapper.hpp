@@ -99,6 +99,20 @@ class Mapper {
   static bool Marked(const std::vector<std::uint64_t>& bits, std::size_t cell);
   void ProposeNearEnd(std::size_t cell, float delta, bool end_cell);
   void ProposeFree(std::size_t cell);
+  // Grows the grid to hold lo and hi (M) with a margin, and the scratch with it.
+  void GrowFor(const core::Vec2& lo, const core::Vec2& hi);
+  // Proposes the cells of a beam with a return at z (m) from p_ML along dir (M): free from
+  // free_from up to `reach` (m) before the end point, then the inverse model's value (`hit` in
+  // the end point's cell) up to `length` (m).
+  void ProposeHitBeam(const core::Vec2& p_ML, const core::Vec2& dir, double z, double free_from,
+                      double length, double reach, float hit);
+  // Proposes as free the cells of a beam without a usable return from p_ML along dir (M), up to
+  // clear_to (m) or the first blocking cell.
+  void ProposeClearBeam(const core::Vec2& p_ML, const core::Vec2& dir, double length,
+                        double clear_to);
+  // Applies one update per touched cell (the hit, the mean near an end point, or the miss) and
+  // clears the scratch bits.
+  void ApplyProposals(float hit, float miss);
 
   MapperConfig config_;
   RobotGeometry robot_;
