@@ -1,137 +1,103 @@
 #pragma once
 // The one structure for exact nearest-item queries in the plane: a uniform grid over items that
 // are segments (a polyline's, or points as zero-length segments), searched ring by ring outwards
-// until no unvisited cell can hold a nearer item. The metrics' taught path and a log's distance
-// to the taught trajectory use it; core::PathIndex is the windowed projection along a path.
+// until no unvisited cell can hold a nearer item, optionally within a distance and a range of
+// items. The metrics' taught path, a log's distance to the taught trajectory (PolylineDistance)
+// and the revisit search along a route (core::PathIndex) use it.
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
 
-#include "core/check.hpp"
 #include "core/pose2.hpp"
 #include "core/segment.hpp"
 
 namespace retrace::core {
 
-// A uniform grid over items (segments, or points as zero-length segments) for exact nearest
-// queries: rings of cells around the query are searched until no unvisited cell can hold a
-// nearer item.
+/// A uniform grid over items (segments, or points as zero-length segments) for exact nearest
+/// queries: rings of cells around the query are searched until no unvisited cell can hold a
+/// nearer item. The cells are stored sparsely (sorted (cell, item) pairs), so a grid of fine
+/// cells over a long route costs memory in proportion to the route, not to its bounding box.
 class NearestGrid {
  public:
-  NearestGrid() = default;
-  NearestGrid(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-    RETRACE_CHECK(a.size() == b.size());
-    if (a.empty()) return;
-    Vec2 lo = a[0], hi = a[0];
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      lo = lo.cwiseMin(a[i]).cwiseMin(b[i]);
-      hi = hi.cwiseMax(a[i]).cwiseMax(b[i]);
-    }
-    const Vec2 extent = hi - lo;
-    // At most 1024 cells a side; 1 m cells hold a few dozen samples of a taught path.
-    cell_ = std::max(1.0, std::max(extent.x(), extent.y()) / 1024.0);
-    origin_ = lo;
-    nx_ = static_cast<long long>(extent.x() / cell_) + 1;
-    ny_ = static_cast<long long>(extent.y() / cell_) + 1;
-    // Each item goes into every cell of its bounding box that it passes through.
-    std::vector<std::pair<std::size_t, std::size_t>> entries;  // (cell, item)
-    entries.reserve(a.size() * 2);
-    const double half_diagonal = 0.5 * std::sqrt(2.0) * cell_ * (1.0 + 1e-9);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const long long x0 = CellX(std::min(a[i].x(), b[i].x()));
-      const long long x1 = CellX(std::max(a[i].x(), b[i].x()));
-      const long long y0 = CellY(std::min(a[i].y(), b[i].y()));
-      const long long y1 = CellY(std::max(a[i].y(), b[i].y()));
-      const bool single = x0 == x1 && y0 == y1;
-      for (long long y = y0; y <= y1; ++y) {
-        for (long long x = x0; x <= x1; ++x) {
-          const Vec2 centre = origin_ + Vec2((static_cast<double>(x) + 0.5) * cell_,
-                                             (static_cast<double>(y) + 0.5) * cell_);
-          if (single ||
-              SegmentDistanceSquared(centre, a[i], b[i]) <= half_diagonal * half_diagonal) {
-            entries.emplace_back(static_cast<std::size_t>(y * nx_ + x), i);
-          }
-        }
-      }
-    }
-    std::stable_sort(entries.begin(), entries.end(),
-                     [](const auto& l, const auto& r) { return l.first < r.first; });
-    start_.assign(static_cast<std::size_t>(nx_ * ny_) + 1, 0);
-    for (const auto& [c, i] : entries) ++start_[c + 1];
-    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    items_.reserve(entries.size());
-    for (const auto& [c, i] : entries) items_.push_back(i);
-  }
-
   static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   static constexpr double kInf = std::numeric_limits<double>::infinity();
 
-  bool empty() const { return items_.empty(); }
+  NearestGrid() = default;
+  /// Item i is the segment a[i] b[i]; `cell` (m, > 0) is the cells' width.
+  NearestGrid(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double cell);
 
-  // The item with the smallest dist2(item) (lowest index on ties), kNone when empty.
+  /// Cells for unbounded queries over these items: 1 m, or wider so that the items' bounding
+  /// box is at most 1024 cells a side (a query far from everything visits few rings).
+  static double CellForExtent(const std::vector<Vec2>& a, const std::vector<Vec2>& b);
+
+  bool empty() const { return entries_.empty(); }
+
+  /// The item i in [first, last) with the smallest dist2(i) (lowest index on ties) among those
+  /// nearer than max_distance; kNone when there is none. dist2(i) is the squared distance (m²)
+  /// from p to item i, +inf for an item to leave out.
   template <class Dist2>
-  std::size_t Nearest(const Vec2& p, Dist2 dist2) const {
-    if (items_.empty() || !p.allFinite()) return kNone;
-    const long long cx = CellX(p.x());
-    const long long cy = CellY(p.y());
+  std::size_t Nearest(const Vec2& p, Dist2 dist2, double max_distance = kInf, std::size_t first = 0,
+                      std::size_t last = kNone) const {
+    if (entries_.empty() || !p.allFinite() || first >= last) return kNone;
+    const std::int64_t cx = Cell(p.x());
+    const std::int64_t cy = Cell(p.y());
     // Rings closer than the grid's edge hold nothing: start at the first one that touches it.
-    const long long out_x = cx < 0 ? -cx : (cx >= nx_ ? cx - nx_ + 1 : 0);
-    const long long out_y = cy < 0 ? -cy : (cy >= ny_ ? cy - ny_ + 1 : 0);
-    const long long r_first = std::max(out_x, out_y);
-    const long long r_last = std::max({cx, nx_ - 1 - cx, cy, ny_ - 1 - cy});
-    double best_d2 = kInf;
+    const std::int64_t out_x = std::max({lo_x_ - cx, cx - hi_x_, std::int64_t{0}});
+    const std::int64_t out_y = std::max({lo_y_ - cy, cy - hi_y_, std::int64_t{0}});
+    const std::int64_t r_last = std::max({cx - lo_x_, hi_x_ - cx, cy - lo_y_, hi_y_ - cy});
+    double best_d2 = max_distance * max_distance;
     std::size_t best = kNone;
-    auto visit = [&](long long x, long long y) {
-      if (x < 0 || x >= nx_ || y < 0 || y >= ny_) return;
-      const std::size_t c = static_cast<std::size_t>(y * nx_ + x);
-      for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
-        const std::size_t i = items_[k];
-        const double d2 = dist2(i);
-        if (d2 < best_d2 || (d2 == best_d2 && i < best)) {
+    const auto visit = [&](std::int64_t x, std::int64_t y) {
+      if (x < lo_x_ || x > hi_x_ || y < lo_y_ || y > hi_y_) return;
+      const std::int64_t key = Key(x, y);
+      for (auto e = std::lower_bound(entries_.begin(), entries_.end(), Entry{key, first});
+           e != entries_.end() && e->cell == key && e->item < last; ++e) {
+        const double d2 = dist2(e->item);
+        if (d2 < best_d2 || (d2 == best_d2 && best != kNone && e->item < best)) {
           best_d2 = d2;
-          best = i;
+          best = e->item;
         }
       }
     };
-    for (long long r = r_first; r <= r_last; ++r) {
+    for (std::int64_t r = std::max(out_x, out_y); r <= r_last; ++r) {
       if (r == 0) {
         visit(cx, cy);
       } else {
-        for (long long x = std::max(cx - r, 0LL); x <= std::min(cx + r, nx_ - 1); ++x) {
+        for (std::int64_t x = std::max(cx - r, lo_x_); x <= std::min(cx + r, hi_x_); ++x) {
           visit(x, cy - r);
           visit(x, cy + r);
         }
-        for (long long y = std::max(cy - r + 1, 0LL); y <= std::min(cy + r - 1, ny_ - 1); ++y) {
+        for (std::int64_t y = std::max(cy - r + 1, lo_y_); y <= std::min(cy + r - 1, hi_y_); ++y) {
           visit(cx - r, y);
           visit(cx + r, y);
         }
       }
-      // Every cell of ring r + 1 is at least r cells away from p.
+      // Every cell of ring r + 1 is at least r cells away from p (strictly: a tie there could
+      // have a lower index).
       const double reach = static_cast<double>(r) * cell_;
-      if (best != kNone && best_d2 <= reach * reach) break;
+      if (reach * reach > best_d2) break;
     }
     return best;
   }
 
  private:
-  long long CellX(double x) const { return ToCell((x - origin_.x()) / cell_); }
-  long long CellY(double y) const { return ToCell((y - origin_.y()) / cell_); }
-  static long long ToCell(double v) {
-    return static_cast<long long>(std::floor(std::clamp(v, -1e12, 1e12)));
-  }
+  struct Entry {
+    std::int64_t cell;
+    std::size_t item;
+    auto operator<=>(const Entry&) const = default;
+  };
+  std::int64_t Cell(double v) const;
+  static std::int64_t Key(std::int64_t x, std::int64_t y) { return (x << 32) ^ (y & 0xffffffff); }
 
-  Vec2 origin_{0.0, 0.0};
   double cell_ = 1.0;
-  long long nx_ = 0;
-  long long ny_ = 0;
-  std::vector<std::size_t> start_;  // items of cell c: items_[start_[c], start_[c + 1])
-  std::vector<std::size_t> items_;
+  std::int64_t lo_x_ = 0, hi_x_ = -1, lo_y_ = 0, hi_y_ = -1;  // the cells in use, inclusive
+  std::vector<Entry> entries_;  // sorted: a cell's items are a contiguous, ascending run
 };
-
 
 /// Distance (m) from p to the polyline through `points` with a NearestGrid over its segments
 /// (consecutive duplicates give zero-length segments, which are points).
@@ -142,7 +108,7 @@ class PolylineDistance {
     if (points_.size() < 2) return;
     a_.assign(points_.begin(), points_.end() - 1);
     b_.assign(points_.begin() + 1, points_.end());
-    grid_ = NearestGrid(a_, b_);
+    grid_ = NearestGrid(a_, b_, NearestGrid::CellForExtent(a_, b_));
   }
   /// +inf without points.
   double operator()(const Vec2& p) const {

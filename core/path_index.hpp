@@ -1,12 +1,13 @@
 #pragma once
-// A uniform grid over a polyline's segments, for ProjectOntoPath queries that only care about
-// points within a radius: each query then costs the segments near the point instead of the whole
-// path (checking the switch points of a 100 km route is linear in its length, not quadratic).
+// Windowed projection onto a long path within a radius, answered from a core::NearestGrid over
+// the path's segments, so that a query looks at the few segments near the point instead of the
+// whole path (checking the switch points of a 100 km route is linear in its length, not
+// quadratic).
 
-#include <cstdint>
 #include <span>
 #include <vector>
 
+#include "core/nearest_grid.hpp"
 #include "core/path_projection.hpp"
 
 namespace retrace::core {
@@ -25,21 +26,11 @@ class PathIndex {
   double cell_size() const { return cell_; }
 
  private:
-  std::int64_t Key(std::int64_t ix, std::int64_t iy) const;
-  std::int64_t Cell(double v) const;
-
   std::span<const Vec2> points_;
   std::span<const double> arc_;
   double radius_ = 0.0;
   double cell_ = 0.0;
-  /// (cell, segment) for every segment (index of its first point) reaching into a cell, sorted:
-  /// a cell's segments are a contiguous, ascending run.
-  struct Entry {
-    std::int64_t cell;
-    std::uint32_t segment;
-    auto operator<=>(const Entry&) const = default;
-  };
-  std::vector<Entry> entries_;
+  NearestGrid grid_;  // item i: the segment from point i to point i + 1
 };
 
 }  // namespace retrace::core

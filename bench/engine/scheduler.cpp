@@ -107,7 +107,10 @@ auto Named(const EpisodeJob& job, const Work& work) {
 
 EpisodeQueue::EpisodeQueue(std::vector<EpisodeJob>& jobs, ProgressSink* progress,
                            const EpisodeCallbacks& callbacks)
-    : jobs_(jobs), progress_(progress), callbacks_(callbacks), timing_(jobs.size()),
+    : jobs_(jobs),
+      progress_(progress),
+      callbacks_(callbacks),
+      timing_(jobs.size()),
       runs_left_(jobs.size()) {
   std::vector<std::size_t> teach;
   std::vector<double> cost;
@@ -202,7 +205,8 @@ void EpisodeQueue::Drive(std::size_t position) {
 void EpisodeQueue::HandOverModesWithoutRuns(std::size_t j) {
   EpisodeJob& job = jobs_[j];
   if (job.repeats > 0 || !callbacks_.mode_done) return;
-  for (std::size_t m = 0; m < job.taught.size(); ++m) callbacks_.mode_done(j, m, std::move(job.taught[m]));
+  for (std::size_t m = 0; m < job.taught.size(); ++m)
+    callbacks_.mode_done(j, m, std::move(job.taught[m]));
 }
 
 void EpisodeQueue::QueueRuns(std::size_t j) {

@@ -32,7 +32,7 @@ struct EpisodeJob {
   /// Prefixed to the message of a core::Error that the job's load, teaching drive or runs throw
   /// (e.g. "case 12 (particles=300, repeat 0, seed 1)"); empty: the message as it is.
   std::string name;
-  std::vector<MapMode> modes;          ///< modes to teach; ignored when `taught` is given
+  std::vector<MapMode> modes;  ///< modes to teach; ignored when `taught` is given
   /// Already taught modes (e.g. teach folders read back): no teaching drive then.
   std::vector<ModeTeach> taught;
   double taught_duration_s = 0.0;  ///< with `taught`: the teaching drive's duration (s)

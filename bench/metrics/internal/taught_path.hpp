@@ -53,7 +53,7 @@ class TaughtPath {
       a.push_back(points_[i]);
       b.push_back(points_[End(i)]);
     }
-    grid_ = core::NearestGrid(a, b);
+    grid_ = core::NearestGrid(a, b, core::NearestGrid::CellForExtent(a, b));
   }
 
   bool empty() const { return points_.empty(); }
