@@ -7,9 +7,8 @@
 #   bench/sweep, bench/compare, bench/replay → bench/cli   (bench/worldgen and bench/crowd: on
 #   core, io and sim only; logs: only bench/replay and bench/cli read logs)
 #
-# The same table checks the harness's CMake links: each bench/<lib>/CMakeLists.txt may link
-# only the retrace:: libraries its row allows, so that a link cannot quietly allow what the
-# includes may not do.
+# The table of docs/DESIGN.md §1 checks every library's CMake links (parsed from the document
+# itself, below), so that a link cannot quietly allow what the includes may not do.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 fail=0
@@ -52,25 +51,67 @@ check bench/crowd '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|c
 check bench/replay '*' 'bench/(output|suite|sweep|compare|cli|worldgen|crowd)/|CLI/' \
   "replay depends on the engine, metrics, logs and viz only"
 check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim, nav and logs kernels only"
-# links <lib> <allowed retrace:: libraries, space separated>
-links() {
-  local file="bench/$1/CMakeLists.txt" dep
+# The CMake links against the table of docs/DESIGN.md §1 ("The dependency picture"): each
+# row's target may link the targets its row lists, what those may use in turn, and core and io.
+# The table is parsed here, so the check and the design cannot disagree.
+design_rows=$(awk '
+  /^ row  target/ { on = 1; next }
+  on && /^ *-+ / { next }
+  on && /^$/ { exit }
+  on && /^ +[0-9] / {
+    if ($2 == "retrace") next                      # the program: bench/cli, checked as cli
+    line = $0; sub(/^ +[0-9] +[a-z_]+ +/, "", line)  # may use ... folder
+    folder = $NF; sub(/ +[^ ]+$/, "", line)
+    name = $2; uses[name] = line; dir[name] = folder; order[++n] = name; last = name; next
+  }
+  on && /^ +[a-z]/ { line = $0; sub(/^ +/, "", line); uses[last] = uses[last] ", " line; next }
+  END {
+    for (i = 1; i <= n; ++i) {
+      u = uses[order[i]]; sub(/;.*/, "", u); gsub(/[ ,]+/, " ", u)
+      print order[i], dir[order[i]], u
+    }
+  }' docs/DESIGN.md)
+if [ -z "$design_rows" ]; then
+  echo "link rule check: no dependency table found in docs/DESIGN.md §1"; fail=1
+fi
+declare -A row_uses row_dir
+while read -r name folder uses; do
+  row_dir[$name]=$folder
+  row_uses[$name]=$uses
+done <<<"$design_rows"
+allowed_for() {  # the transitive closure of a row's targets, plus core and io
+  local todo="$1" seen=" core io " t u
+  while [ -n "$todo" ]; do
+    t=${todo%% *}; todo=${todo#"$t"}; todo=${todo# }
+    for u in ${row_uses[$t]:-}; do
+      [ -n "${row_dir[$u]:-}" ] || continue  # a third-party library (Box2D, CLI11, ...)
+      case "$seen" in *" $u "*) ;; *) seen="$seen$u "; todo="$todo $u"; todo=${todo# } ;; esac
+    done
+  done
+  echo "$seen"
+}
+for name in "${!row_dir[@]}"; do
+  file="${row_dir[$name]%/}/CMakeLists.txt"
+  if [ ! -f "$file" ]; then
+    echo "link rule check: docs/DESIGN.md §1 names $name in ${row_dir[$name]}, which has no CMakeLists.txt"
+    fail=1; continue
+  fi
+  allowed="$(allowed_for "$name")$name "
   for dep in $(grep -oE 'retrace::[a-z_]+' "$file" | sed 's/retrace:://' | sort -u); do
-    case " $2 " in
+    case "$allowed" in
       *" $dep "*) ;;
-      *) echo "link rule broken: $file links retrace::$dep (allowed: $2)"; fail=1 ;;
+      *) echo "link rule broken: $file links retrace::$dep; docs/DESIGN.md §1 allows$allowed"; fail=1 ;;
     esac
   done
-}
-links engine "core io sim nav"
-links metrics "core io sim nav engine"
-links output "core io sim nav viz engine metrics"
-links suite "core io sim nav engine metrics"
-links sweep "core io sim nav viz engine metrics"
-links compare "core io sim nav viz engine metrics"
-links replay "core io sim nav viz logs engine metrics"
-links worldgen "core io sim"
-links crowd "core io sim"
-links cli "core io sim nav viz logs engine metrics output suite sweep compare replay worldgen crowd cli"
+done
+# Every library folder has its row.
+for file in */CMakeLists.txt bench/*/CMakeLists.txt; do
+  dir=${file%/CMakeLists.txt}
+  # A library of sources (not bench/'s interface target of build facts).
+  grep -qE '^add_library\(retrace_[a-z_]+ *$|^retrace_harness_library\(' "$file" || continue
+  found=0
+  for name in "${!row_dir[@]}"; do [ "${row_dir[$name]%/}" = "$dir" ] && found=1; done
+  [ $found -eq 1 ] || { echo "link rule check: $dir builds a library but has no row in docs/DESIGN.md §1"; fail=1; }
+done
 [ $fail -eq 0 ] && echo "include rules: ok"
 exit $fail
