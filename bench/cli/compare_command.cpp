@@ -4,13 +4,14 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <optional>
 
 #include "bench/cli/cli_checks.hpp"
+#include "bench/cli/experiment_setup.hpp"
 #include "bench/cli/mode_list.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/cli/report_command.hpp"
 #include "bench/compare/comparison_report.hpp"
-#include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
@@ -20,7 +21,6 @@
 #include "core/errors.hpp"
 #include "git_revision.hpp"
 #include "io/atomic_file.hpp"
-#include "io/config_override.hpp"
 #include "io/json_writer.hpp"
 #include "viz/figures.hpp"
 
@@ -44,6 +44,65 @@ MapMode ParseReference(const std::string& name, const std::vector<MapMode>& mode
                             "mode '" + name + "' is not among the compared modes (--modes)");
   }
   return *mode;
+}
+
+// A confidence interval needs two seeds at least.
+void RequireSeedsForInterval(int seeds) {
+  if (seeds < 2) {
+    throw core::ConfigError(
+        "--seeds",
+        "at least 2 seeds are needed for a confidence interval, got " + std::to_string(seeds));
+  }
+}
+
+// The study before its runs: what it compares, over which seeds, and room for each mode's and
+// seed's metrics.
+ComparisonInput StudyInput(const Scenario& scenario, const CompareOptions& options,
+                           const std::vector<MapMode>& modes, MapMode reference,
+                           const std::string& command_line) {
+  ComparisonInput input;
+  input.scenario_name = scenario.config.name;
+  input.scenario_file = options.scenario.string();
+  input.command_line = command_line;
+  input.git_revision = RETRACE_GIT_REVISION;
+  input.repeats = scenario.config.playback.repeats;
+  input.modes = modes;
+  input.reference = reference;
+  const std::size_t n_seeds = static_cast<std::size_t>(options.seeds);
+  for (std::size_t i = 0; i < n_seeds; ++i) input.seeds.push_back(scenario.config.seed + i);
+  input.flat.assign(modes.size(), std::vector<std::map<std::string, double>>(n_seeds));
+  return input;
+}
+
+// Every seed's teaching drive, then every playback run, through the one scheduler (the numbers
+// do not depend on --jobs); each mode's and seed's metrics into `input`.
+void RunSeedExperiments(const Scenario& scenario, const ExperimentOptions& run_options,
+                        ComparisonInput* input) {
+  const std::size_t n_seeds = input->seeds.size();
+  const std::vector<MapMode>& modes = input->modes;
+  std::vector<Scenario> seeded(n_seeds, scenario);
+  std::vector<const Scenario*> studies;
+  for (std::size_t s = 0; s < n_seeds; ++s) {
+    seeded[s].config.seed = input->seeds[s];
+    studies.push_back(&seeded[s]);
+  }
+  const std::vector<Experiment> experiments = RunExperiments(studies, modes, run_options);
+  for (std::size_t s = 0; s < n_seeds; ++s) {
+    for (std::size_t m = 0; m < modes.size(); ++m) {
+      RETRACE_CHECK(experiments[s].modes[m].teach.mode == modes[m]);
+      input->flat[m][s] = FlatMetrics(experiments[s].modes[m].aggregate);
+    }
+  }
+}
+
+// comparison.json, comparison.md and comparison.png into `folder`; the markdown.
+std::string WriteComparisonFiles(const Comparison& comparison,
+                                 const std::filesystem::path& folder) {
+  const std::string markdown = ComparisonMarkdown(comparison);
+  io::WriteJsonAtomic(folder / "comparison.json", ComparisonJson(comparison));
+  io::WriteFileAtomic(folder / "comparison.md", markdown);
+  viz::RenderComparisonFigure(ComparisonFigure(comparison), folder / "comparison.png");
+  return markdown;
 }
 
 }  // namespace
@@ -77,69 +136,27 @@ int RunCompareCommand(const CompareOptions& options, const std::string& command_
   // Every check before any work: nothing is run or written for bad input.
   const std::vector<MapMode> modes = ParseModes(options.modes);
   const MapMode reference = ParseReference(options.reference, modes);
-  if (options.seeds < 2) {
-    throw core::ConfigError("--seeds",
-                            "at least 2 seeds are needed for a confidence interval, got " +
-                                std::to_string(options.seeds));
-  }
-  std::vector<io::ConfigOverride> overrides;
-  for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
-  if (options.repeats)
-    overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*options.repeats)));
-  const Scenario scenario = LoadScenario(options.scenario, overrides);
+  RequireSeedsForInterval(options.seeds);
+  const Scenario scenario = LoadScenario(
+      options.scenario, CommandLineOverrides(options.overrides, std::nullopt, options.repeats));
   RequireSwitchingModeIfOnline(scenario, modes);
-  for (const std::string& warning : scenario.warnings)
-    std::cerr << "retrace: warning: " << warning << "\n";
+  PrintScenarioWarnings(scenario);
   const std::filesystem::path out =
       options.out.empty() ? std::filesystem::path("results") / "compare" / scenario.config.name
                           : options.out;
-
-  ComparisonInput input;
-  input.scenario_name = scenario.config.name;
-  input.scenario_file = options.scenario.string();
-  input.command_line = command_line;
-  input.git_revision = RETRACE_GIT_REVISION;
-  input.repeats = scenario.config.playback.repeats;
-  input.modes = modes;
-  input.reference = reference;
-  const std::size_t n_seeds = static_cast<std::size_t>(options.seeds);
-  for (std::size_t i = 0; i < n_seeds; ++i) input.seeds.push_back(scenario.config.seed + i);
-  input.flat.assign(modes.size(), std::vector<std::map<std::string, double>>(n_seeds));
+  ComparisonInput input = StudyInput(scenario, options, modes, reference, command_line);
 
   // Staged before the runs so that an unwritable --out fails now, not after them.
   StagedFolder folder(out);
-
-  // Every seed's teaching drive, then every playback run, through the one scheduler: the
-  // numbers do not depend on --jobs.
-  std::vector<Scenario> seeded(n_seeds, scenario);
-  std::vector<const Scenario*> studies;
-  for (std::size_t s = 0; s < n_seeds; ++s) {
-    seeded[s].config.seed = input.seeds[s];
-    studies.push_back(&seeded[s]);
-  }
   ProgressLine progress;
-  ExperimentOptions run_options;
-  run_options.repeats = input.repeats;
-  run_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
-  run_options.progress = &progress;
-  const std::vector<Experiment> experiments = RunExperiments(studies, modes, run_options);
-  for (std::size_t s = 0; s < n_seeds; ++s) {
-    for (std::size_t m = 0; m < modes.size(); ++m) {
-      RETRACE_CHECK(experiments[s].modes[m].teach.mode == modes[m]);
-      input.flat[m][s] = FlatMetrics(experiments[s].modes[m].aggregate);
-    }
-  }
+  RunSeedExperiments(scenario, CommandExperimentOptions(input.repeats, options.jobs, &progress),
+                     &input);
   progress.Clear();
   input.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
-  const Comparison comparison = Compare(std::move(input));
-  const std::string markdown = ComparisonMarkdown(comparison);
-  io::WriteJsonAtomic(folder.path() / "comparison.json", ComparisonJson(comparison));
-  io::WriteFileAtomic(folder.path() / "comparison.md", markdown);
-  viz::RenderComparisonFigure(ComparisonFigure(comparison), folder.path() / "comparison.png");
+  const std::string markdown = WriteComparisonFiles(Compare(std::move(input)), folder.path());
   folder.Commit();
-
   std::cout << markdown << "\nWritten: " << (out / "comparison.json").string()
             << ", comparison.md, comparison.png\n";
   if (options.report) WriteReportAtEnd(out);

@@ -23,20 +23,27 @@ int RunReportCommand(const ReportOptions& options) {
   return 0;
 }
 
-void WriteReportAtEnd(const std::filesystem::path& dir) {
-  const auto warn = [&](const char* what) {
-    std::cerr << "retrace: warning: no report.html: " << what
-              << " (the results are complete; retry with `retrace report " << dir.string()
-              << "`)\n";
+void FinishOrWarn(const char* what, const char* retry_command, const std::filesystem::path& dir,
+                  const std::function<void()>& step) {
+  const auto warn = [&](const char* why) {
+    std::cerr << "retrace: warning: no " << what << ": " << why
+              << " (the results are complete; retry with `retrace " << retry_command << " "
+              << dir.string() << "`)\n";
   };
   try {
-    WriteHtmlReport(dir);
-    std::cout << "report: " << (dir / "report.html").string() << "\n";
+    step();
   } catch (const core::Error& e) {
     warn(e.what());
-  } catch (const std::filesystem::filesystem_error& e) {
+  } catch (const std::filesystem::filesystem_error& e) {  // e.g. a figures/ that is a file
     warn(e.what());
   }
+}
+
+void WriteReportAtEnd(const std::filesystem::path& dir) {
+  FinishOrWarn("report.html", "report", dir, [&] {
+    WriteHtmlReport(dir);
+    std::cout << "report: " << (dir / "report.html").string() << "\n";
+  });
 }
 
 }  // namespace retrace::bench
