@@ -20,23 +20,10 @@ namespace {
 
 std::string Name(const std::filesystem::path& folder) { return folder.string(); }
 
-}  // namespace
+using Folders = std::vector<std::filesystem::path>;
 
-void AddMergeOptions(CLI::App* command, MergeOptions* options) {
-  command
-      ->add_option("shards", options->inputs,
-                   "The results folders of the shards (retrace sweep --shard i/N)")
-      ->required();
-  command->add_option("--out", options->out, "Folder for the joined results")->required();
-  command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
-}
-
-int RunMergeCommand(const MergeOptions& options, const std::string& command_line) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  const std::vector<std::filesystem::path>& inputs = options.inputs;
-  if (inputs.empty()) Fail("merge: name the results folders of the shards");
-
-  // Which sweep and shard each folder holds: one sweep, every shard exactly once.
+// The sweep.json of every shard folder.
+std::vector<SweepRecord> ReadShardRecords(const Folders& inputs) {
   std::vector<SweepRecord> records;
   for (const std::filesystem::path& folder : inputs) {
     if (!std::filesystem::is_directory(folder))
@@ -46,6 +33,11 @@ int RunMergeCommand(const MergeOptions& options, const std::string& command_line
     }
     records.push_back(ReadSweepRecord(folder / "sweep.json"));
   }
+  return records;
+}
+
+// Which sweep and shard each folder holds: one sweep, every shard exactly once.
+void RequireEveryShardOnce(const Folders& inputs, const std::vector<SweepRecord>& records) {
   const SweepRecord& first = records.front();
   const int count = first.shard.count;
   std::vector<int> owner(static_cast<std::size_t>(count) + 1, -1);
@@ -77,39 +69,62 @@ int RunMergeCommand(const MergeOptions& options, const std::string& command_line
   if (!missing.empty())
     Fail("missing shard " + missing + " of sweep '" + first.name +
          "': give the folder of every shard");
+}
 
-  // The output must not be a shard (merging would overwrite it) nor another sweep's folder.
+// The output must not be a shard (merging would overwrite it) nor another sweep's folder.
+void RequireMergeOutputFree(const Folders& inputs, const std::filesystem::path& out,
+                            const SweepRecord& first) {
   for (const std::filesystem::path& folder : inputs) {
     std::error_code ec;
-    if (std::filesystem::equivalent(folder, options.out, ec)) {
-      Fail("--out " + Name(options.out) + " is one of the shard folders; choose another");
+    if (std::filesystem::equivalent(folder, out, ec)) {
+      Fail("--out " + Name(out) + " is one of the shard folders; choose another");
     }
   }
-  if (std::filesystem::exists(options.out / "sweep.json")) {
-    const SweepRecord existing = ReadSweepRecord(options.out / "sweep.json");
+  if (std::filesystem::exists(out / "sweep.json")) {
+    const SweepRecord existing = ReadSweepRecord(out / "sweep.json");
     if (existing.identity != first.identity || existing.shard.count != 1) {
-      Fail(Name(options.out) + " holds results of another sweep ('" + existing.name + "' " +
+      Fail(Name(out) + " holds results of another sweep ('" + existing.name + "' " +
            existing.identity + ", shard " + existing.shard.ToString() +
            "); use another --out or remove it");
     }
   }
+}
 
-  // Every shard complete, every case exactly once.
-  const SweepTableSchema schema = ResultsSchema(first.parameters, first.metrics);
-  const SweepTableSchema timings_schema = TimingsSchema(first.timing_metrics);
-  std::vector<SweepRow> rows, timings;
+// A shard's results.csv, which must hold every case of the shard.
+SweepTable ReadCompleteShardResults(const std::filesystem::path& folder, const SweepRecord& record,
+                                    std::size_t sweep_cases, const SweepTableSchema& schema) {
+  const SweepShard& shard = record.shard;
+  const SweepTable table = ReadSweepTable(folder / "results.csv", schema, PartialRow::kReject);
+  const std::size_t expected = shard.CaseCount(sweep_cases);
+  if (!record.complete || table.rows.size() != expected) {
+    Fail(Name(folder) + ": shard " + shard.ToString() +
+         " is incomplete: " + std::to_string(table.rows.size()) + " of " +
+         std::to_string(expected) + " cases done; run its `retrace sweep ... --shard " +
+         shard.ToString() + "` again to finish it");
+  }
+  return table;
+}
+
+// The shards' tables joined, in the order read (written sorted by case).
+struct MergedTables {
+  SweepTableSchema schema;
+  SweepTableSchema timings_schema;
+  std::vector<SweepRow> rows;
+  std::vector<SweepRow> timings;
+};
+
+// Every shard's rows: every shard complete, every case exactly once; the timings of each shard's
+// own cases.
+MergedTables JoinShardTables(const Folders& inputs, const std::vector<SweepRecord>& records) {
+  const SweepRecord& first = records.front();
+  MergedTables joined{
+      ResultsSchema(first.parameters, first.metrics), TimingsSchema(first.timing_metrics), {}, {}};
   std::map<std::size_t, std::size_t> case_owner;
   for (std::size_t i = 0; i < records.size(); ++i) {
     const SweepShard& shard = records[i].shard;
     const std::filesystem::path file = inputs[i] / "results.csv";
-    const SweepTable table = ReadSweepTable(file, schema, PartialRow::kReject);
-    const std::size_t expected = shard.CaseCount(first.cases);
-    if (!records[i].complete || table.rows.size() != expected) {
-      Fail(Name(inputs[i]) + ": shard " + shard.ToString() +
-           " is incomplete: " + std::to_string(table.rows.size()) + " of " +
-           std::to_string(expected) + " cases done; run its `retrace sweep ... --shard " +
-           shard.ToString() + "` again to finish it");
-    }
+    const SweepTable table =
+        ReadCompleteShardResults(inputs[i], records[i], first.cases, joined.schema);
     for (const SweepRow& row : table.rows) {
       const std::string where = file.string() + ":" + std::to_string(row.line_number) + ": case " +
                                 std::to_string(row.case_id);
@@ -120,24 +135,25 @@ int RunMergeCommand(const MergeOptions& options, const std::string& command_line
       if (!inserted)
         Fail("case " + std::to_string(row.case_id) + " is in both " + Name(inputs[it->second]) +
              " and " + Name(inputs[i]));
-      rows.push_back(row);
+      joined.rows.push_back(row);
     }
     for (SweepRow& row :
-         ReadSweepTable(inputs[i] / "timings.csv", timings_schema, PartialRow::kDrop).rows) {
+         ReadSweepTable(inputs[i] / "timings.csv", joined.timings_schema, PartialRow::kDrop).rows) {
       if (shard.Contains(row.case_id) && row.case_id < first.cases)
-        timings.push_back(std::move(row));
+        joined.timings.push_back(std::move(row));
     }
   }
   for (std::size_t id = 0; id < first.cases; ++id) {
     if (!case_owner.contains(id))
       Fail("case " + std::to_string(id) + " is missing from every shard");
   }
+  return joined;
+}
 
-  RequireFolderOrNothing(options.out);
-  std::filesystem::create_directories(options.out);
-  const SweepFolderLock lock(options.out);
-  WriteSortedSweepTable(options.out / "results.csv", schema, rows);
-  WriteSortedSweepTable(options.out / "timings.csv", timings_schema, timings);
+// sweep.json of the joined folder: the first shard's, now for the whole sweep, complete, with the
+// shards it was merged from.
+nlohmann::json MergedSweepJson(const SweepRecord& first, const Folders& inputs,
+                               const std::string& command_line) {
   nlohmann::json record = first.json;
   record["shard"] = SweepShard{}.ToString();
   record["shard_cases"] = first.cases;
@@ -148,21 +164,54 @@ int RunMergeCommand(const MergeOptions& options, const std::string& command_line
   record["merged_from"] = nlohmann::json::array();
   for (const std::filesystem::path& folder : inputs)
     record["merged_from"].push_back(folder.string());
+  return record;
+}
+
+// sweep.png of the joined folder; a failure is a warning (the tables are complete).
+void PlotMergedSweep(const std::filesystem::path& out, const SweepRecord& first) {
+  const std::string problem =
+      PlotSweepFolder(out, first.name, first.plot_parameters, first.metrics);
+  if (!problem.empty())
+    std::cerr << "retrace: warning: no sweep.png: " << problem << " (results.csv is complete)\n";
+}
+
+}  // namespace
+
+void AddMergeOptions(CLI::App* command, MergeOptions* options) {
+  command
+      ->add_option("shards", options->inputs,
+                   "The results folders of the shards (retrace sweep --shard i/N)")
+      ->required();
+  command->add_option("--out", options->out, "Folder for the joined results")->required();
+  command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
+}
+
+int RunMergeCommand(const MergeOptions& options, const std::string& command_line) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const Folders& inputs = options.inputs;
+  if (inputs.empty()) Fail("merge: name the results folders of the shards");
+  const std::vector<SweepRecord> records = ReadShardRecords(inputs);
+  const SweepRecord& first = records.front();
+  RequireEveryShardOnce(inputs, records);
+  RequireMergeOutputFree(inputs, options.out, first);
+  const MergedTables joined = JoinShardTables(inputs, records);
+
+  RequireFolderOrNothing(options.out);
+  std::filesystem::create_directories(options.out);
+  const SweepFolderLock lock(options.out);
+  WriteSortedSweepTable(options.out / "results.csv", joined.schema, joined.rows);
+  WriteSortedSweepTable(options.out / "timings.csv", joined.timings_schema, joined.timings);
+  nlohmann::json record = MergedSweepJson(first, inputs, command_line);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   record["wall_time_s"] = wall_time;
   io::WriteJsonAtomic(options.out / "sweep.json", record);
 
-  if (options.plot) {
-    const std::string problem =
-        PlotSweepFolder(options.out, first.name, first.plot_parameters, first.metrics);
-    if (!problem.empty())
-      std::cerr << "retrace: warning: no sweep.png: " << problem << " (results.csv is complete)\n";
-  }
-  std::cout << "merged " << count << " shards of sweep " << first.name << ": " << first.cases
-            << " cases in " << FormatDuration(wall_time) << "; results in "
+  if (options.plot) PlotMergedSweep(options.out, first);
+  std::cout << "merged " << first.shard.count << " shards of sweep " << first.name << ": "
+            << first.cases << " cases in " << FormatDuration(wall_time) << "; results in "
             << (options.out / "results.csv").string() << "\n";
-  std::cout << SweepSummaryTable(schema, first.parameters.size(), rows);
+  std::cout << SweepSummaryTable(joined.schema, first.parameters.size(), joined.rows);
   return 0;
 }
 
