@@ -86,6 +86,96 @@ std::array<double, 2> Inverses(double a, double b) {
 // The sign of a direction component, 0 for a negligible one.
 int StepOf(double d) { return d > kTinyComponent ? 1 : (d < -kTinyComponent ? -1 : 0); }
 
+// The clearance byte of a free cell encodes a lower bound of L (see the constructor): 1/16-cell
+// steps up to 8 cells, where the sphere steps decide how close to an obstacle the exact
+// traversal takes over, then 2-cell steps up to 262 cells. Codes v = 1..kClearanceFineCodes
+// stand for L >= (v - 1) / 16.
+constexpr int kClearanceFineCodes = 128;
+constexpr double kClearanceFinePerCell = 16.0;
+constexpr double kClearanceCoarseStart = kClearanceFineCodes / kClearanceFinePerCell;
+constexpr double kClearanceCoarseCells = 2.0;
+
+// The lower bound of L (cells) that clearance code v >= 1 stands for.
+double ClearanceLowerBoundCells(int v) {
+  return v <= kClearanceFineCodes
+             ? (v - 1) / kClearanceFinePerCell
+             : kClearanceCoarseStart + (v - kClearanceFineCodes - 1) * kClearanceCoarseCells;
+}
+
+// The clearance code of a free cell whose distance transform value is `clearance_cells`.
+std::uint8_t ClearanceCode(float clearance_cells) {
+  // The float distance carries a relative error of about 6e-8, so 1e-4 cells below it is a
+  // lower bound of L wherever the code resolves it (below 262 cells).
+  const double cells = std::max(0.0, static_cast<double>(clearance_cells) - 1e-4);
+  const double v = cells < kClearanceCoarseStart
+                       ? 1.0 + std::floor(cells * kClearanceFinePerCell)
+                       : kClearanceFineCodes + 1.0 +
+                             std::floor((cells - kClearanceCoarseStart) / kClearanceCoarseCells);
+  return static_cast<std::uint8_t>(std::clamp(v, 1.0, 255.0));
+}
+
+// The occupied cells of a width x height mask, dilated by their 3 x 3 neighbourhood.
+std::vector<std::uint8_t> DilatedOccupancy(const std::vector<std::uint8_t>& occupied, int width,
+                                           int height) {
+  std::vector<std::uint8_t> dilated(occupied.size(), 0);
+  for (int iy = 0; iy < height; ++iy) {
+    for (int ix = 0; ix < width; ++ix) {
+      if (occupied[static_cast<std::size_t>(iy) * static_cast<std::size_t>(width) +
+                   static_cast<std::size_t>(ix)] == 0) {
+        continue;
+      }
+      for (int y = std::max(iy - 1, 0); y <= std::min(iy + 1, height - 1); ++y) {
+        for (int x = std::max(ix - 1, 0); x <= std::min(ix + 1, width - 1); ++x) {
+          dilated[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(x)] = 1;
+        }
+      }
+    }
+  }
+  return dilated;
+}
+
+// The cone of a bundle of rays: its axis c + t u, with c (m) and u the centres of the bounding
+// boxes of the origins and of the directions, and rho (m) and alpha those boxes' half
+// diagonals, so that |o_j - c| <= rho and |d_j - u| <= alpha for every ray j; t (m) is how far
+// it has marched.
+struct BundleCone {
+  double cx, cy, ux, uy, rho, alpha, scale;  // scale = 1 / (alpha + |u|)
+  double t = 0.0;
+  bool marching = false;
+};
+
+// The cone of the rays first..last - 1 (origins x, y, directions dx, dy); marching when the
+// directions are close enough for it to help.
+BundleCone ConeOfBundle(std::span<const double> x, std::span<const double> y,
+                        std::span<const double> dx, std::span<const double> dy, std::size_t first,
+                        std::size_t last) {
+  double x_lo = x[first], x_hi = x[first], y_lo = y[first], y_hi = y[first];
+  double dx_lo = dx[first], dx_hi = dx[first], dy_lo = dy[first], dy_hi = dy[first];
+  for (std::size_t r = first + 1; r < last; ++r) {
+    x_lo = std::min(x_lo, x[r]);
+    x_hi = std::max(x_hi, x[r]);
+    y_lo = std::min(y_lo, y[r]);
+    y_hi = std::max(y_hi, y[r]);
+    dx_lo = std::min(dx_lo, dx[r]);
+    dx_hi = std::max(dx_hi, dx[r]);
+    dy_lo = std::min(dy_lo, dy[r]);
+    dy_hi = std::max(dy_hi, dy[r]);
+  }
+  BundleCone cone;
+  cone.cx = 0.5 * (x_lo + x_hi);
+  cone.cy = 0.5 * (y_lo + y_hi);
+  cone.ux = 0.5 * (dx_lo + dx_hi);
+  cone.uy = 0.5 * (dy_lo + dy_hi);
+  const auto norm = [](double a, double b) { return std::sqrt(a * a + b * b); };
+  cone.rho = 0.5 * norm(x_hi - x_lo, y_hi - y_lo);
+  cone.alpha = 0.5 * norm(dx_hi - dx_lo, dy_hi - dy_lo);
+  cone.scale = 1.0 / (cone.alpha + norm(cone.ux, cone.uy));
+  // Directions too spread for a cone to help (or not finite): no common start.
+  cone.marching = cone.alpha < 0.5;
+  return cone;
+}
+
 }  // namespace
 
 // One ray, with the closed-form boundary crossings of both axes and its clipped extent.
@@ -111,6 +201,22 @@ struct GridRayCaster::Ray {
 // mispredicted branch in the middle of the other rays' work.
 struct GridRayCaster::Batch {
   static constexpr std::size_t kCapacity = 256;
+  // What the exact traversal of a batch reads of the caster, in one local copy, so that it stays
+  // in registers through the rounds: the map's origin (m) and size (cells) per axis, the grid
+  // lines, the clearance codes (ClearanceRow(0), rows of w bytes), min_resume_clearance_, the
+  // resolution and range_max (m).
+  struct Grid {
+    std::array<double, 2> origin;
+    std::array<int, 2> cells;
+    std::array<const double*, 2> lines;
+    const std::uint8_t* clearance;
+    std::ptrdiff_t w;
+    int min_open;
+    double res, range_max;
+  };
+  // How a ray's exact traversal starts: done (no hit, or a hit where it starts), or in its
+  // first cell after one crossing, where it stops or from where it goes on.
+  enum class WalkStart { kDone, kStops, kGoesOn };
   // One ray's numbers side by side, so that a round addresses them from one base.
   struct RayState {
     // Sphere tracing: the position at ray parameter t is (gx0 + t ux, gy0 + t uy) in cell
@@ -123,13 +229,124 @@ struct GridRayCaster::Batch {
     double t_stop;
     std::array<double, 2> p, inv, next;
     std::array<int, 2> step, cell;
+
+    // Sets step and inv for the direction (dx, dy).
+    void SetDirection(double dx, double dy);
+    // The cell and the next crossing (m) of axis a at t, from `position` (cells), a guess.
+    void StartAxis(const Grid& g, std::size_t a, double position, int* cell_a,
+                   double* next_a) const;
+    // Starts the exact traversal at t (*hit = t for a ray that starts in an occupied cell).
+    WalkStart StartWalk(const Grid& g, double* hit);
+    // One step of the traversal; whether the ray goes on.
+    bool StepCell(const Grid& g);
   };
   std::array<RayState, kCapacity> rays;
   // The rays to sphere-trace, the rays to traverse cell by cell, and the rays going on to the
   // next round. A round reads one list and writes the next into another, so that its loads
   // never wait for its stores.
   std::array<std::uint16_t, kCapacity> sphere, walk, round;
+
+  // Sorts out the first num_stopped rays of `sphere`, whose traversal stopped, by the code of
+  // their cell: an occupied cell is a hit at its t_enter (into out); an open cell resumes
+  // sphere tracing from there (listed again in `sphere`, their number returned); the padding
+  // or range_max is no hit.
+  std::size_t SortOutStopped(const Grid& g, std::size_t num_stopped, std::span<double> out);
 };
+
+inline void GridRayCaster::Batch::RayState::SetDirection(double dx, double dy) {
+  step = {StepOf(dx), StepOf(dy)};
+  // As in Setup, a negligible component's inverse is 0 (the division by 1 is discarded).
+  const std::array<double, 2> q = Inverses(step[0] != 0 ? dx : 1.0, step[1] != 0 ? dy : 1.0);
+  inv = {step[0] != 0 ? q[0] : 0.0, step[1] != 0 ? q[1] : 0.0};
+}
+
+inline void GridRayCaster::Batch::RayState::StartAxis(const Grid& g, std::size_t a, double position,
+                                                      int* cell_a, double* next_a) const {
+  // Cell i spans the crossings [lo, hi) of lines i and i + 1 going up, i + 1 and i going
+  // down; the crossing that leaves it is hi.
+  const int i = static_cast<int>(position), s = step[a];
+  const double lo = (g.lines[a][s > 0 ? i : i + 1] - p[a]) * inv[a];
+  *next_a = (g.lines[a][s > 0 ? i + 1 : i] - p[a]) * inv[a];
+  *cell_a = i;
+  if (s == 0 || lo > t || *next_a <= t) {
+    *cell_a = AxisCellAt(t, position, p[a], inv[a], g.origin[a], g.res, s, g.cells[a]);
+    *next_a = NextCrossing(*cell_a, g.origin[a], g.res, p[a], inv[a], s);
+  }
+}
+
+inline GridRayCaster::Batch::WalkStart GridRayCaster::Batch::RayState::StartWalk(const Grid& g,
+                                                                                 double* hit) {
+  // The cell and the next crossing of each axis at t, in scalars: in an array indexed by the
+  // axis they would go through memory, and reading them back stalls.
+  int cell_x, cell_y;
+  double next_x, next_y;
+  StartAxis(g, 0, gx0 + t * ux, &cell_x, &next_x);
+  StartAxis(g, 1, gy0 + t * uy, &cell_y, &next_y);
+  if (static_cast<unsigned>(cell_x) >= static_cast<unsigned>(g.cells[0]) ||
+      static_cast<unsigned>(cell_y) >= static_cast<unsigned>(g.cells[1])) {
+    return WalkStart::kDone;  // left the map: no hit
+  }
+  if (g.clearance[cell_y * g.w + cell_x] == 0) {
+    *hit = t;  // starts in an occupied cell
+    return WalkStart::kDone;
+  }
+  // The first crossing, as in StepCell, without a branch on which axis it crosses: the
+  // crossing is the smaller one (y on a tie), the cells move by products, and the axis not
+  // crossed gets its next crossing computed again, to the same number.
+  const int along_x = next_x < next_y ? 1 : 0;
+  const double t_next = std::min(next_y, next_x);
+  if (t_next > g.range_max) return WalkStart::kDone;  // no hit
+  cell_x += step[0] * along_x;
+  cell_y += step[1] * (1 - along_x);
+  if (step[0] != 0) next_x = (g.lines[0][cell_x + (step[0] > 0 ? 1 : 0)] - p[0]) * inv[0];
+  if (step[1] != 0) next_y = (g.lines[1][cell_y + (step[1] > 0 ? 1 : 0)] - p[1]) * inv[1];
+  cell = {cell_x, cell_y};
+  next = {next_x, next_y};
+  t = t_next;
+  t_stop = t_next;
+  return g.clearance[cell_y * g.w + cell_x] == 0 ? WalkStart::kStops : WalkStart::kGoesOn;
+}
+
+inline bool GridRayCaster::Batch::RayState::StepCell(const Grid& g) {
+  // A traversal in a cell it entered by a crossing, with that crossing in t: the ray stops in
+  // the cell, with the cell's t_enter in t_stop, when its code is 0 (occupied, or the padding
+  // just outside the map), when it is open (sphere tracing resumes there), or when the next
+  // cell lies beyond range_max; else it crosses to the next cell. No branch on the ray's data:
+  // which boundary comes next, and whether the ray stops, are coin tosses for the branch
+  // predictor.
+  const int c = g.clearance[cell[1] * g.w + cell[0]];
+  // The textbook step, across the nearer boundary (y on a tie, as in CastDda): the same
+  // crossings as CastDda's. The axis is an index, and only the crossed axis gets a new
+  // crossing; a zero step never crosses (its next stays +inf).
+  const std::size_t a = next[0] < next[1] ? 0 : 1;
+  const double t_next = next[a];
+  const int s = step[a];
+  // (Bitwise operators on the flags: && would be a branch.)
+  const bool going_on = (c != 0) & (c < g.min_open) & !(t_next > g.range_max);
+  t_stop = t;  // two stores rather than a select, which GCC would make a branch
+  t = t_next;
+  // The cell stays as it is for a ray that stops (a product: a ?: would be a branch).
+  cell[a] += s * static_cast<int>(going_on);
+  next[a] = (g.lines[a][cell[a] + (s > 0 ? 1 : 0)] - p[a]) * inv[a];
+  return going_on;
+}
+
+inline std::size_t GridRayCaster::Batch::SortOutStopped(const Grid& g, std::size_t num_stopped,
+                                                        std::span<double> out) {
+  std::size_t num_sphere = 0;
+  for (std::size_t k = 0; k < num_stopped; ++k) {
+    const std::uint16_t r = sphere[k];
+    RayState& ray = rays[r];
+    const int c = g.clearance[ray.cell[1] * g.w + ray.cell[0]];
+    const bool inside = static_cast<unsigned>(ray.cell[0]) < static_cast<unsigned>(g.cells[0]) &&
+                        static_cast<unsigned>(ray.cell[1]) < static_cast<unsigned>(g.cells[1]);
+    if (c == 0 && inside) out[r] = ray.t_stop;
+    ray.t = ray.t_stop;
+    sphere[num_sphere] = r;
+    num_sphere += c >= g.min_open ? 1 : 0;
+  }
+  return num_sphere;
+}
 
 GridRayCaster::GridRayCaster(const LikelihoodField& field)
     : field_(&field),
@@ -149,53 +366,36 @@ GridRayCaster::GridRayCaster(const LikelihoodField& field)
   // distance field of the likelihood field, centre to centre, would need a margin of a cell
   // diagonal on every step.) L is 0 next to an obstacle.
   const std::vector<std::uint8_t>& occupied = field.occupied();
-  std::vector<std::uint8_t> dilated(occupied.size(), 0);
-  for (int iy = 0; iy < height_; ++iy) {
-    for (int ix = 0; ix < width_; ++ix) {
-      if (occupied[static_cast<std::size_t>(iy) * static_cast<std::size_t>(width_) +
-                   static_cast<std::size_t>(ix)] == 0) {
-        continue;
-      }
-      for (int y = std::max(iy - 1, 0); y <= std::min(iy + 1, height_ - 1); ++y) {
-        for (int x = std::max(ix - 1, 0); x <= std::min(ix + 1, width_ - 1); ++x) {
-          dilated[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                  static_cast<std::size_t>(x)] = 1;
-        }
-      }
-    }
+  FillClearance(occupied, DistanceTransformCells(DilatedOccupancy(occupied, width_, height_),
+                                                 width_, height_));
+  FillStepTables();
+  // The grid lines of each axis, by the same expression as Crossing's.
+  for (std::size_t a = 0; a < 2; ++a) {
+    const int n = a == 0 ? width_ : height_;
+    const double o = a == 0 ? ox_ : oy_;
+    for (int i = -1; i <= n + 1; ++i) grid_lines_[a].push_back(o + static_cast<double>(i) * res_);
   }
-  const std::vector<float> clearance_cells = DistanceTransformCells(dilated, width_, height_);
-  // The clearance byte of a free cell encodes a lower bound of L: 1/16-cell steps up to 8
-  // cells, where the sphere steps decide how close to an obstacle the exact traversal takes
-  // over, then 2-cell steps up to 262 cells. Codes v = 1..kFineCodes stand for
-  // L >= (v - 1) / 16.
-  constexpr int kFineCodes = 128;
-  constexpr double kFinePerCell = 16.0;
-  constexpr double kCoarseStart = kFineCodes / kFinePerCell;
-  constexpr double kCoarseCells = 2.0;
-  const auto lower_bound_cells = [&](int v) {
-    return v <= kFineCodes ? (v - 1) / kFinePerCell
-                           : kCoarseStart + (v - kFineCodes - 1) * kCoarseCells;
-  };
+}
+
+void GridRayCaster::FillClearance(const std::vector<std::uint8_t>& occupied,
+                                  const std::vector<float>& clearance_cells) {
   // The padding ring lets sphere tracing index the cell of a position up to one cell past the
   // far edges, and the exact traversal step one cell out of the map, without a bounds check.
   stride_ = static_cast<std::ptrdiff_t>(width_) + 2;
   clearance_.assign(static_cast<std::size_t>(stride_ * (height_ + 2)), 0);
   for (std::size_t i = 0; i < occupied.size(); ++i) {
     if (occupied[i] != 0) continue;
-    // The float distance carries a relative error of about 6e-8, so 1e-4 cells below it is a
-    // lower bound of L wherever the code resolves it (below 262 cells).
-    const double cells = std::max(0.0, static_cast<double>(clearance_cells[i]) - 1e-4);
-    const double v = cells < kCoarseStart
-                         ? 1.0 + std::floor(cells * kFinePerCell)
-                         : kFineCodes + 1.0 + std::floor((cells - kCoarseStart) / kCoarseCells);
     const std::size_t w = static_cast<std::size_t>(width_);
     const int ix = static_cast<int>(i % w), iy = static_cast<int>(i / w);
     clearance_[static_cast<std::size_t>(ClearanceRow(iy) + ix - clearance_.data())] =
-        static_cast<std::uint8_t>(std::clamp(v, 1.0, 255.0));
+        ClearanceCode(clearance_cells[i]);
   }
+}
+
+void GridRayCaster::FillStepTables() {
   for (int v = 255; v >= 1; --v) {
-    step_[static_cast<std::size_t>(v)] = res_ * lower_bound_cells(v) * (1.0 - 1e-6) - margin_;
+    step_[static_cast<std::size_t>(v)] =
+        res_ * ClearanceLowerBoundCells(v) * (1.0 - 1e-6) - margin_;
     if (step_[static_cast<std::size_t>(v)] >= kMinStepCells * res_) min_step_clearance_ = v;
   }
   // Codes too small for a step get NaN, so that one comparison (t + step < t_end) tells a ray
@@ -203,17 +403,27 @@ GridRayCaster::GridRayCaster(const LikelihoodField& field)
   for (int v = 0; v < min_step_clearance_ && v < 256; ++v) {
     step_[static_cast<std::size_t>(v)] = std::numeric_limits<double>::quiet_NaN();
   }
-  // The grid lines of each axis, by the same expression as Crossing's.
-  for (std::size_t a = 0; a < 2; ++a) {
-    const int n = a == 0 ? width_ : height_;
-    const double o = a == 0 ? ox_ : oy_;
-    for (int i = -1; i <= n + 1; ++i) grid_lines_[a].push_back(o + static_cast<double>(i) * res_);
-  }
   // Resume sphere tracing from a traversed cell only when it gains at least two cells.
   const double resume_distance = margin_ + 2.0 * res_;
   for (int v = 255; v >= 1; --v) {
-    if (res_ * lower_bound_cells(v) >= resume_distance) min_resume_clearance_ = v;
+    if (res_ * ClearanceLowerBoundCells(v) >= resume_distance) min_resume_clearance_ = v;
   }
+}
+
+inline bool GridRayCaster::ClipToMap(double x, double y, double inv_dx, double inv_dy, int step_x,
+                                     int step_y, double range_max, double* t_lo,
+                                     double* t_end) const {
+  // The ray is inside for t in [lo, t_exit).
+  double lo = 0.0;
+  double t_exit = std::numeric_limits<double>::infinity();
+  if (!ClipAxis(x, inv_dx, step_x, ox_, res_, width_, &lo, &t_exit) ||
+      !ClipAxis(y, inv_dy, step_y, oy_, res_, height_, &lo, &t_exit)) {
+    return false;
+  }
+  if (lo > range_max || lo >= t_exit) return false;
+  *t_lo = lo;
+  *t_end = std::min(range_max, t_exit);
+  return true;
 }
 
 inline bool GridRayCaster::Setup(double x, double y, double dx, double dy, double range_max,
@@ -233,22 +443,83 @@ inline bool GridRayCaster::Setup(double x, double y, double dx, double dy, doubl
   RETRACE_CHECK(ray->step_x != 0 || ray->step_y != 0);
   ray->inv_dx = ray->step_x != 0 ? 1.0 / dx : 0.0;
   ray->inv_dy = ray->step_y != 0 ? 1.0 / dy : 0.0;
-  // Clip to the map: the ray is inside for t in [t_lo, t_exit).
-  double t_lo = 0.0;
-  double t_exit = std::numeric_limits<double>::infinity();
-  if (!ClipAxis(x, ray->inv_dx, ray->step_x, ox_, res_, width_, &t_lo, &t_exit) ||
-      !ClipAxis(y, ray->inv_dy, ray->step_y, oy_, res_, height_, &t_lo, &t_exit)) {
+  return ClipToMap(x, y, ray->inv_dx, ray->inv_dy, ray->step_x, ray->step_y, range_max, &ray->t_lo,
+                   &ray->t_end);
+}
+
+// Where an exact traversal stands: in cell (ix, iy), entered at ray parameter t_enter (m), with
+// the next crossing (m) of each axis.
+struct GridRayCaster::Cell {
+  int ix, iy;
+  double next_x, next_y;
+  double t_enter;
+};
+
+inline bool GridRayCaster::SphereSteps(const Ray& ray, double inv_res, double* t) const {
+  const std::uint8_t* clearance = ClearanceRow(0);
+  double s = *t;
+  while (true) {
+    const double gx = (ray.px + s * ray.dx - ox_) * inv_res;
+    const double gy = (ray.py + s * ray.dy - oy_) * inv_res;
+    const int cx = gx < 0.0 ? 0 : (gx >= width_ ? width_ - 1 : static_cast<int>(gx));
+    const int cy = gy < 0.0 ? 0 : (gy >= height_ ? height_ - 1 : static_cast<int>(gy));
+    const int c = clearance[cy * stride_ + cx];
+    if (c < min_step_clearance_) break;
+    s += step_[static_cast<std::size_t>(c)];
+    if (s >= ray.t_end) return false;
+  }
+  *t = s;
+  return true;
+}
+
+inline bool GridRayCaster::EnterCell(const Ray& ray, double t, double inv_res, Cell* cell) const {
+  const double x = ray.px, y = ray.py;
+  cell->ix =
+      AxisCellAt(t, (x + t * ray.dx - ox_) * inv_res, x, ray.inv_dx, ox_, res_, ray.step_x, width_);
+  cell->iy = AxisCellAt(t, (y + t * ray.dy - oy_) * inv_res, y, ray.inv_dy, oy_, res_, ray.step_y,
+                        height_);
+  if (cell->ix < 0 || cell->iy < 0 || cell->ix >= width_ || cell->iy >= height_) return false;
+  cell->next_x = NextCrossing(cell->ix, ox_, res_, x, ray.inv_dx, ray.step_x);
+  cell->next_y = NextCrossing(cell->iy, oy_, res_, y, ray.inv_dy, ray.step_y);
+  cell->t_enter = t;
+  return true;
+}
+
+inline bool GridRayCaster::DdaStep(const Ray& ray, Cell* cell) const {
+  if (cell->next_x < cell->next_y) {
+    cell->t_enter = cell->next_x;
+    cell->ix += ray.step_x;
+    if (cell->ix < 0 || cell->ix >= width_) return false;
+    cell->next_x = ray.step_x > 0 ? ray.TX(cell->ix + 1) : ray.TX(cell->ix);
+  } else {
+    cell->t_enter = cell->next_y;
+    cell->iy += ray.step_y;
+    if (cell->iy < 0 || cell->iy >= height_) return false;
+    cell->next_y = ray.step_y > 0 ? ray.TY(cell->iy + 1) : ray.TY(cell->iy);
+  }
+  return !(cell->t_enter > ray.range_max);
+}
+
+inline bool GridRayCaster::SelectStep(const Ray& ray, int x_ahead, int y_ahead, Cell* cell) const {
+  // Select rather than branch: which boundary comes next is a coin toss for the branch
+  // predictor over the few cells left after sphere tracing. The same crossings as the
+  // reference's; a zero step never crosses (its next crossing stays +inf).
+  const bool cross_x = cell->next_x < cell->next_y;
+  cell->t_enter = cross_x ? cell->next_x : cell->next_y;
+  cell->ix += cross_x ? ray.step_x : 0;
+  cell->iy += cross_x ? 0 : ray.step_y;
+  if (static_cast<unsigned>(cell->ix) >= static_cast<unsigned>(width_) ||
+      static_cast<unsigned>(cell->iy) >= static_cast<unsigned>(height_)) {
     return false;
   }
-  if (t_lo > range_max || t_lo >= t_exit) return false;
-  ray->t_lo = t_lo;
-  ray->t_end = std::min(range_max, t_exit);
-  return true;
+  const double new_x = ray.TX(cell->ix + x_ahead), new_y = ray.TY(cell->iy + y_ahead);
+  cell->next_x = cross_x ? new_x : cell->next_x;
+  cell->next_y = cross_x ? cell->next_y : new_y;
+  return !(cell->t_enter > ray.range_max);
 }
 
 template <bool kSphere>
 double GridRayCaster::Trace(const Ray& ray, double t, bool sphere_now) const {
-  const double x = ray.px, y = ray.py, dx = ray.dx, dy = ray.dy;
   // The reference tests the field's occupancy mask; sphere tracing the clearance bytes
   // (clearance 0 exactly on the occupied cells, so both see the same obstacles).
   const std::uint8_t* occupied = kSphere ? ClearanceRow(0) : field_->occupied().data();
@@ -258,70 +529,27 @@ double GridRayCaster::Trace(const Ray& ray, double t, bool sphere_now) const {
   const auto is_occupied = [occupied](std::ptrdiff_t idx) {
     return kSphere ? occupied[idx] == 0 : occupied[idx] != 0;
   };
-
+  // The crossing that leaves cell i is grid line i + 1 going up, i going down.
+  const int x_ahead = ray.step_x > 0 ? 1 : 0, y_ahead = ray.step_y > 0 ? 1 : 0;
   while (true) {
     if constexpr (kSphere) {
       // Sphere tracing: every segment [t, t + step] is clear of occupied cells.
-      while (sphere_now) {
-        const double gx = (x + t * dx - ox_) * inv_res;
-        const double gy = (y + t * dy - oy_) * inv_res;
-        const int cx = gx < 0.0 ? 0 : (gx >= width_ ? width_ - 1 : static_cast<int>(gx));
-        const int cy = gy < 0.0 ? 0 : (gy >= height_ ? height_ - 1 : static_cast<int>(gy));
-        const int c = clearance[cy * w + cx];
-        if (c < min_step_clearance_) break;
-        t += step_[static_cast<std::size_t>(c)];
-        if (t >= ray.t_end) return kNoHit;
-      }
+      if (sphere_now && !SphereSteps(ray, inv_res, &t)) return kNoHit;
     }
     // Exact traversal from t: the state after every crossing up to t has been made.
-    int ix =
-        AxisCellAt(t, (x + t * dx - ox_) * inv_res, x, ray.inv_dx, ox_, res_, ray.step_x, width_);
-    int iy =
-        AxisCellAt(t, (y + t * dy - oy_) * inv_res, y, ray.inv_dy, oy_, res_, ray.step_y, height_);
-    if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return kNoHit;
-    double next_x = NextCrossing(ix, ox_, res_, x, ray.inv_dx, ray.step_x);
-    double next_y = NextCrossing(iy, oy_, res_, y, ray.inv_dy, ray.step_y);
-    double t_enter = t;
-    // The crossing that leaves cell i is grid line i + 1 going up, i going down.
-    const int x_ahead = ray.step_x > 0 ? 1 : 0, y_ahead = ray.step_y > 0 ? 1 : 0;
+    Cell cell;
+    if (!EnterCell(ray, t, inv_res, &cell)) return kNoHit;
     while (true) {
-      const std::ptrdiff_t idx = iy * w + ix;
-      if (is_occupied(idx)) return t_enter;
+      const std::ptrdiff_t idx = cell.iy * w + cell.ix;
+      if (is_occupied(idx)) return cell.t_enter;
       if constexpr (kSphere) {
-        if (clearance[idx] >= min_resume_clearance_ && t_enter > t) break;
+        if (clearance[idx] >= min_resume_clearance_ && cell.t_enter > t) break;
+        if (!SelectStep(ray, x_ahead, y_ahead, &cell)) return kNoHit;
+      } else {  // the reference: the textbook loop
+        if (!DdaStep(ray, &cell)) return kNoHit;
       }
-      if constexpr (!kSphere) {  // the reference: the textbook loop
-        if (next_x < next_y) {
-          t_enter = next_x;
-          ix += ray.step_x;
-          if (ix < 0 || ix >= width_) return kNoHit;
-          next_x = ray.step_x > 0 ? ray.TX(ix + 1) : ray.TX(ix);
-        } else {
-          t_enter = next_y;
-          iy += ray.step_y;
-          if (iy < 0 || iy >= height_) return kNoHit;
-          next_y = ray.step_y > 0 ? ray.TY(iy + 1) : ray.TY(iy);
-        }
-        if (t_enter > ray.range_max) return kNoHit;
-        continue;
-      }
-      // Select rather than branch: which boundary comes next is a coin toss for the branch
-      // predictor over the few cells left after sphere tracing. The same crossings as the
-      // reference's; a zero step never crosses (its next crossing stays +inf).
-      const bool cross_x = next_x < next_y;
-      t_enter = cross_x ? next_x : next_y;
-      ix += cross_x ? ray.step_x : 0;
-      iy += cross_x ? 0 : ray.step_y;
-      if (static_cast<unsigned>(ix) >= static_cast<unsigned>(width_) ||
-          static_cast<unsigned>(iy) >= static_cast<unsigned>(height_)) {
-        return kNoHit;
-      }
-      const double new_x = ray.TX(ix + x_ahead), new_y = ray.TY(iy + y_ahead);
-      next_x = cross_x ? new_x : next_x;
-      next_y = cross_x ? next_y : new_y;
-      if (t_enter > ray.range_max) return kNoHit;
     }
-    t = t_enter;  // only reached by sphere tracing resuming in open space
+    t = cell.t_enter;  // only reached by sphere tracing resuming in open space
     sphere_now = true;
   }
 }
@@ -386,13 +614,9 @@ std::size_t GridRayCaster::SetupBatch(std::span<const double> x, std::span<const
   std::size_t num_listed = 0;
   for (std::size_t r = 0; r < n; ++r) {
     Batch::RayState& ray = batch->rays[r];
-    ray.step = {StepOf(dx[r]), StepOf(dy[r])};
+    ray.SetDirection(dx[r], dy[r]);
     finite = finite && std::isfinite(x[r]) && std::isfinite(y[r]);
     has_direction = has_direction && (ray.step[0] != 0 || ray.step[1] != 0);
-    // As in Setup, a negligible component's inverse is 0 (the division by 1 is discarded).
-    const std::array<double, 2> q =
-        Inverses(ray.step[0] != 0 ? dx[r] : 1.0, ray.step[1] != 0 ? dy[r] : 1.0);
-    ray.inv = {ray.step[0] != 0 ? q[0] : 0.0, ray.step[1] != 0 ? q[1] : 0.0};
     ray.gx0 = (x[r] - ox_) * inv_res;
     ray.gy0 = (y[r] - oy_) * inv_res;
     ray.t = 0.0;
@@ -403,15 +627,9 @@ std::size_t GridRayCaster::SetupBatch(std::span<const double> x, std::span<const
     const bool deep_inside = ray.gx0 >= deep_lo && ray.gx0 <= deep_hi[0] && ray.gy0 >= deep_lo &&
                              ray.gy0 <= deep_hi[1] && std::abs(dx[r]) <= 1.0 &&
                              std::abs(dy[r]) <= 1.0;
-    if (!deep_inside) {
-      double t_lo = 0.0;
-      double t_exit = std::numeric_limits<double>::infinity();
-      const bool inside =
-          ClipAxis(x[r], ray.inv[0], ray.step[0], ox_, res_, width_, &t_lo, &t_exit) &&
-          ClipAxis(y[r], ray.inv[1], ray.step[1], oy_, res_, height_, &t_lo, &t_exit);
-      if (!inside || t_lo > range_max || t_lo >= t_exit) continue;  // misses the map
-      ray.t = t_lo;
-      ray.t_end = std::min(range_max, t_exit);
+    if (!deep_inside && !ClipToMap(x[r], y[r], ray.inv[0], ray.inv[1], ray.step[0], ray.step[1],
+                                   range_max, &ray.t, &ray.t_end)) {
+      continue;  // misses the map
     }
     if (!(std::abs(ray.gx0) < kFarCells && std::abs(ray.gy0) < kFarCells)) {
       out[r] = Cast(x[r], y[r], dx[r], dy[r], range_max);
@@ -424,6 +642,13 @@ std::size_t GridRayCaster::SetupBatch(std::span<const double> x, std::span<const
   }
   RETRACE_CHECK(finite);
   RETRACE_CHECK(has_direction);
+  return StartAtClearLengths(num_listed, x, y, dx, dy, batch);
+}
+
+std::size_t GridRayCaster::StartAtClearLengths(std::size_t num_listed, std::span<const double> x,
+                                               std::span<const double> y,
+                                               std::span<const double> dx,
+                                               std::span<const double> dy, Batch* batch) const {
   // Every ray of a bundle is clear up to the bundle's clear length: sphere tracing starts there,
   // and a ray clear beyond its end has no hit.
   std::array<double, Batch::kCapacity / kBundle> t_clear;
@@ -443,48 +668,17 @@ std::size_t GridRayCaster::SetupBatch(std::span<const double> x, std::span<const
 void GridRayCaster::BundleClearLengths(std::span<const double> x, std::span<const double> y,
                                        std::span<const double> dx, std::span<const double> dy,
                                        std::span<double> t_clear) const {
-  // The cone of a bundle: its axis c + t u, with c (m) and u the centres of the bounding boxes
-  // of the origins and of the directions, and rho (m) and alpha those boxes' half diagonals, so
-  // that |o_j - c| <= rho and |d_j - u| <= alpha for every ray j. From the axis point
-  // a = c + t u, a step s keeps every ray of the bundle clear for t' in [t, t + s], since
+  // From the axis point a = c + t u of a bundle's cone (BundleCone), a step s keeps every ray of
+  // the bundle clear for t' in [t, t + s], since
   // |o_j + t' d_j - a| <= |o_j - c| + t' |d_j - u| + (t' - t) |u| <= rho + (t + s) alpha + s |u|,
   // which is at most the safe radius R of a's cell (step_) when
   // s = (R - rho - t alpha) / (alpha + |u|). Rounding (1e-14 m here, 1e-7 m for origins 10^6 km
   // away) stays far inside the 1e-3 cell margin of R.
-  struct Cone {
-    double cx, cy, ux, uy, rho, alpha, scale;  // scale = 1 / (alpha + |u|)
-    double t = 0.0;
-    bool marching = false;
-  };
   const std::size_t n = x.size();
   const std::size_t num_cones = (n + kBundle - 1) / kBundle;
-  std::array<Cone, Batch::kCapacity / kBundle> cones;
+  std::array<BundleCone, Batch::kCapacity / kBundle> cones;
   for (std::size_t g = 0; g < num_cones; ++g) {
-    const std::size_t first = g * kBundle, last = std::min(n, first + kBundle);
-    double x_lo = x[first], x_hi = x[first], y_lo = y[first], y_hi = y[first];
-    double dx_lo = dx[first], dx_hi = dx[first], dy_lo = dy[first], dy_hi = dy[first];
-    for (std::size_t r = first + 1; r < last; ++r) {
-      x_lo = std::min(x_lo, x[r]);
-      x_hi = std::max(x_hi, x[r]);
-      y_lo = std::min(y_lo, y[r]);
-      y_hi = std::max(y_hi, y[r]);
-      dx_lo = std::min(dx_lo, dx[r]);
-      dx_hi = std::max(dx_hi, dx[r]);
-      dy_lo = std::min(dy_lo, dy[r]);
-      dy_hi = std::max(dy_hi, dy[r]);
-    }
-    Cone& cone = cones[g];
-    cone = Cone{};
-    cone.cx = 0.5 * (x_lo + x_hi);
-    cone.cy = 0.5 * (y_lo + y_hi);
-    cone.ux = 0.5 * (dx_lo + dx_hi);
-    cone.uy = 0.5 * (dy_lo + dy_hi);
-    const auto norm = [](double a, double b) { return std::sqrt(a * a + b * b); };
-    cone.rho = 0.5 * norm(x_hi - x_lo, y_hi - y_lo);
-    cone.alpha = 0.5 * norm(dx_hi - dx_lo, dy_hi - dy_lo);
-    cone.scale = 1.0 / (cone.alpha + norm(cone.ux, cone.uy));
-    // Directions too spread for a cone to help (or not finite): no common start.
-    cone.marching = cone.alpha < 0.5;
+    cones[g] = ConeOfBundle(x, y, dx, dy, g * kBundle, std::min(n, g * kBundle + kBundle));
   }
   // The cones march in lockstep, so that their dependent chains (position, cell, load, step)
   // overlap.
@@ -493,7 +687,7 @@ void GridRayCaster::BundleClearLengths(std::span<const double> x, std::span<cons
   for (bool marching = true; marching;) {
     marching = false;
     for (std::size_t g = 0; g < num_cones; ++g) {
-      Cone& cone = cones[g];
+      BundleCone& cone = cones[g];
       if (!cone.marching) continue;
       const double gx = (cone.cx + cone.t * cone.ux - ox_) * inv_res;
       const double gy = (cone.cy + cone.t * cone.uy - oy_) * inv_res;
@@ -554,35 +748,14 @@ std::size_t GridRayCaster::SphereTraceBatch(std::size_t num_sphere, Batch* batch
 
 std::size_t GridRayCaster::WalkBatch(std::size_t num_walk, double range_max, std::span<double> out,
                                      Batch* batch) const {
-  const std::array<double, 2> origin = {ox_, oy_};
-  const std::array<int, 2> cells = {width_, height_};
-  const std::array<const double*, 2> lines = {GridLines(0), GridLines(1)};
-  const std::uint8_t* clearance = ClearanceRow(0);
-  const std::ptrdiff_t w = stride_;
-  const int min_open = min_resume_clearance_;
-  // One step of a traversal that is in a cell it entered by a crossing, with that crossing in
-  // ray.t: the ray stops in the cell, with the cell's t_enter in t_stop, when its code is 0
-  // (occupied, or the padding just outside the map), when it is open (sphere tracing resumes
-  // there), or when the next cell lies beyond range_max; else it crosses to the next cell.
-  // Returns whether the ray goes on. No branch on the ray's data: which boundary comes next,
-  // and whether the ray stops, are coin tosses for the branch predictor.
-  const auto step_cell = [&](Batch::RayState& ray) {
-    const int c = clearance[ray.cell[1] * w + ray.cell[0]];
-    // The textbook step, across the nearer boundary (y on a tie, as in CastDda): the same
-    // crossings as CastDda's. The axis is an index, and only the crossed axis gets a new
-    // crossing; a zero step never crosses (its next stays +inf).
-    const std::size_t a = ray.next[0] < ray.next[1] ? 0 : 1;
-    const double t_next = ray.next[a];
-    const int step = ray.step[a];
-    // (Bitwise operators on the flags: && would be a branch.)
-    const bool going_on = (c != 0) & (c < min_open) & !(t_next > range_max);
-    ray.t_stop = ray.t;  // two stores rather than a select, which GCC would make a branch
-    ray.t = t_next;
-    // The cell stays as it is for a ray that stops (a product: a ?: would be a branch).
-    ray.cell[a] += step * static_cast<int>(going_on);
-    ray.next[a] = (lines[a][ray.cell[a] + (step > 0 ? 1 : 0)] - ray.p[a]) * ray.inv[a];
-    return going_on;
-  };
+  const Batch::Grid g{{ox_, oy_},
+                      {width_, height_},
+                      {GridLines(0), GridLines(1)},
+                      ClearanceRow(0),
+                      stride_,
+                      min_resume_clearance_,
+                      res_,
+                      range_max};
   // Each traversal starts in the state after every crossing up to the ray's t, in the cell
   // of the sphere-traced position (right but for rounding: checked by its crossings), and makes
   // its first crossing at once when that cell is free, as it is but for a ray that starts in an
@@ -593,56 +766,11 @@ std::size_t GridRayCaster::WalkBatch(std::size_t num_walk, double range_max, std
   std::size_t num = 0, num_started = 0;
   for (std::size_t k = 0; k < num_walk; ++k) {
     const std::uint16_t r = batch->walk[k];
-    Batch::RayState& ray = batch->rays[r];
-    const double t = ray.t;
-    // The cell and the next crossing of each axis at t, in scalars: in an array indexed by the
-    // axis they would go through memory, and reading them back stalls.
-    const auto start = [&](std::size_t a, double position, int* cell, double* next) {
-      // Cell i spans the crossings [lo, hi) of lines i and i + 1 going up, i + 1 and i going
-      // down; the crossing that leaves it is hi.
-      const int i = static_cast<int>(position), step = ray.step[a];
-      const double lo = (lines[a][step > 0 ? i : i + 1] - ray.p[a]) * ray.inv[a];
-      *next = (lines[a][step > 0 ? i + 1 : i] - ray.p[a]) * ray.inv[a];
-      *cell = i;
-      if (step == 0 || lo > t || *next <= t) {
-        *cell = AxisCellAt(t, position, ray.p[a], ray.inv[a], origin[a], res_, step, cells[a]);
-        *next = NextCrossing(*cell, origin[a], res_, ray.p[a], ray.inv[a], step);
-      }
-    };
-    int cell_x, cell_y;
-    double next_x, next_y;
-    start(0, ray.gx0 + t * ray.ux, &cell_x, &next_x);
-    start(1, ray.gy0 + t * ray.uy, &cell_y, &next_y);
-    if (static_cast<unsigned>(cell_x) >= static_cast<unsigned>(cells[0]) ||
-        static_cast<unsigned>(cell_y) >= static_cast<unsigned>(cells[1])) {
-      continue;  // left the map: no hit
-    }
-    if (clearance[cell_y * w + cell_x] == 0) {
-      out[r] = t;  // starts in an occupied cell
-      continue;
-    }
-    // The first crossing, as in step_cell, without a branch on which axis it crosses: the
-    // crossing is the smaller one (y on a tie), the cells move by products, and the axis not
-    // crossed gets its next crossing computed again, to the same number.
-    const int along_x = next_x < next_y ? 1 : 0;
-    const double t_next = std::min(next_y, next_x);
-    if (t_next > range_max) continue;  // no hit
-    cell_x += ray.step[0] * along_x;
-    cell_y += ray.step[1] * (1 - along_x);
-    if (ray.step[0] != 0) {
-      next_x = (lines[0][cell_x + (ray.step[0] > 0 ? 1 : 0)] - ray.p[0]) * ray.inv[0];
-    }
-    if (ray.step[1] != 0) {
-      next_y = (lines[1][cell_y + (ray.step[1] > 0 ? 1 : 0)] - ray.p[1]) * ray.inv[1];
-    }
-    ray.cell = {cell_x, cell_y};
-    ray.next = {next_x, next_y};
-    ray.t = t_next;
-    ray.t_stop = t_next;
-    const bool stops = clearance[cell_y * w + cell_x] == 0;
+    const Batch::WalkStart start = batch->rays[r].StartWalk(g, &out[r]);
+    if (start == Batch::WalkStart::kDone) continue;
     batch->walk[num] = r;
     batch->sphere[num_started - num] = r;
-    num += stops ? 0 : 1;
+    num += start == Batch::WalkStart::kStops ? 0 : 1;
     ++num_started;
   }
   // Rounds of one step per ray, so that the rays' steps overlap. The rays that stop go on to
@@ -656,27 +784,13 @@ std::size_t GridRayCaster::WalkBatch(std::size_t num_walk, double range_max, std
       const std::uint16_t r = list[k];
       kept_list[kept] = r;
       batch->sphere[num_stopped + k - kept] = r;
-      kept += step_cell(batch->rays[r]) ? 1 : 0;
+      kept += batch->rays[r].StepCell(g) ? 1 : 0;
     }
     std::swap(list, kept_list);
     num_stopped += num - kept;
     num = kept;
   }
-  // Sort out the rays that stopped by the code of their cell: an occupied cell is a hit at its
-  // t_enter; an open cell resumes sphere tracing from there; the padding or range_max is no hit.
-  std::size_t num_sphere = 0;
-  for (std::size_t k = 0; k < num_stopped; ++k) {
-    const std::uint16_t r = batch->sphere[k];
-    Batch::RayState& ray = batch->rays[r];
-    const int c = clearance[ray.cell[1] * w + ray.cell[0]];
-    const bool inside = static_cast<unsigned>(ray.cell[0]) < static_cast<unsigned>(width_) &&
-                        static_cast<unsigned>(ray.cell[1]) < static_cast<unsigned>(height_);
-    if (c == 0 && inside) out[r] = ray.t_stop;
-    ray.t = ray.t_stop;
-    batch->sphere[num_sphere] = r;
-    num_sphere += c >= min_open ? 1 : 0;
-  }
-  return num_sphere;
+  return batch->SortOutStopped(g, num_stopped, out);
 }
 
 template double GridRayCaster::Trace<true>(const Ray&, double, bool) const;

@@ -67,6 +67,17 @@ class GridRayCaster {
   // Direction, crossings and clipping of one ray; false when the ray misses the map or starts
   // beyond range_max (the result is kNoHit).
   bool Setup(double x, double y, double dx, double dy, double range_max, Ray* ray) const;
+  // Clips a ray from (x, y) (M) with inverse direction components inv_dx, inv_dy (1/m; 0 with
+  // a step of 0) to the map: [*t_lo, *t_end] (m), t_end at most range_max; false when the ray
+  // misses the map or enters it beyond range_max.
+  bool ClipToMap(double x, double y, double inv_dx, double inv_dy, int step_x, int step_y,
+                 double range_max, double* t_lo, double* t_end) const;
+  // Sets the clearance codes of the cells (padding ring included) from the occupancy mask and
+  // the distance transform (cells) of its dilation.
+  void FillClearance(const std::vector<std::uint8_t>& occupied,
+                     const std::vector<float>& clearance_cells);
+  // Sets the sphere step per code and the codes from which to step and to resume stepping.
+  void FillStepTables();
   // CastMany for at most Batch::kCapacity rays, in three passes over *batch: SetupBatch lists
   // the rays to trace (and answers the others), SphereTraceBatch steps the listed rays until
   // each is near an obstacle or past its end, WalkBatch finishes those near an obstacle cell by
@@ -77,6 +88,12 @@ class GridRayCaster {
   std::size_t SetupBatch(std::span<const double> x, std::span<const double> y,
                          std::span<const double> dx, std::span<const double> dy, double range_max,
                          std::span<double> out, Batch* batch) const;
+  // SetupBatch's last step: starts each of the first num_listed rays of batch->walk at its
+  // bundle's clear length (BundleClearLengths), listing in batch->sphere (their number
+  // returned) those that do not end before it.
+  std::size_t StartAtClearLengths(std::size_t num_listed, std::span<const double> x,
+                                  std::span<const double> y, std::span<const double> dx,
+                                  std::span<const double> dy, Batch* batch) const;
   // For each bundle of kBundle consecutive rays (from nearby origins in similar directions), the
   // length t_clear[g] (m) for which all are clear: x[r] + t' dx[r] misses every occupied cell
   // for all t' in [0, t_clear[g]]. 0 when the rays are not coherent enough.
@@ -91,6 +108,16 @@ class GridRayCaster {
   // sphere_now: whether to start with a sphere step (false right after a sphere step stopped).
   template <bool kSphere>
   double Trace(const Ray& ray, double t, bool sphere_now) const;
+  // Trace's steps (inv_res = 1 / res_; x_ahead, y_ahead: 1 for an axis the ray goes up).
+  struct Cell;
+  // Sphere-traces from *t as far as the clearance allows; false when the ray passes its end.
+  bool SphereSteps(const Ray& ray, double inv_res, double* t) const;
+  // Starts the exact traversal at t (the cell after every crossing up to t); false off the map.
+  bool EnterCell(const Ray& ray, double t, double inv_res, Cell* cell) const;
+  // The reference's textbook step into the next cell; false off the map or beyond range_max.
+  bool DdaStep(const Ray& ray, Cell* cell) const;
+  // DdaStep's crossing without a branch on the axis; false off the map or beyond range_max.
+  bool SelectStep(const Ray& ray, int x_ahead, int y_ahead, Cell* cell) const;
 
   const LikelihoodField* field_;
   double ox_, oy_, res_;
