@@ -241,11 +241,13 @@ nlohmann::json ComparisonJson(const Comparison& c) {
   return j;
 }
 
-std::string ComparisonMarkdown(const Comparison& c) {
+namespace {
+
+// What was run and how to read the table: seeds, runs, the intervals, the differences.
+void WriteMarkdownIntro(std::ostringstream& md, const Comparison& c) {
   const ComparisonInput& in = c.input;
   const std::string ref = ModeName(in.reference);
   const std::size_t n_seeds = in.seeds.size();
-  std::ostringstream md;
   md << "## Map modes compared: " << in.scenario_name << "\n\n";
   md << n_seeds << " seeds × " << in.repeats << " playback run" << (in.repeats == 1 ? "" : "s")
      << " per mode (scenario seeds " << SeedList(in.seeds)
@@ -264,7 +266,13 @@ std::string ComparisonMarkdown(const Comparison& c) {
      << ", with the interval of their mean; * marks a significant difference (its interval "
         "excludes 0). "
      << "Ratios are mean(mode) / mean(" << ref << ").\n\n";
+}
 
+// The table: a row per metric, each mode's interval, then each other mode's difference from the
+// reference and ratio to it.
+void WriteMarkdownTable(std::ostringstream& md, const Comparison& c) {
+  const ComparisonInput& in = c.input;
+  const std::string ref = ModeName(in.reference);
   md << "| metric | unit |";
   for (MapMode mode : in.modes) md << " " << ModeName(mode) << " |";
   for (std::size_t m = 0; m < in.modes.size(); ++m) {
@@ -292,8 +300,15 @@ std::string ComparisonMarkdown(const Comparison& c) {
     }
     md << "\n";
   }
+}
 
-  md << "\nRun outcomes (" << n_seeds * static_cast<std::size_t>(in.repeats) << " runs per mode):";
+// The runs' outcomes per mode, then each other mode's significant differences from the
+// reference.
+void WriteMarkdownFindings(std::ostringstream& md, const Comparison& c) {
+  const ComparisonInput& in = c.input;
+  const std::string ref = ModeName(in.reference);
+  md << "\nRun outcomes (" << in.seeds.size() * static_cast<std::size_t>(in.repeats)
+     << " runs per mode):";
   for (std::size_t m = 0; m < in.modes.size(); ++m) {
     md << (m ? ";" : "") << " " << ModeName(in.modes[m]) << " " << OutcomeText(c.outcomes[m]);
   }
@@ -310,6 +325,10 @@ std::string ComparisonMarkdown(const Comparison& c) {
     md << "Significant differences, " << ModeName(in.modes[m]) << " − " << ref << ": "
        << (significant.empty() ? "none" : significant) << ".\n";
   }
+}
+
+// What repeatability and n/a mean.
+void WriteMarkdownNotes(std::ostringstream& md) {
   md << "\nRepeatability: the mean, over stations along the taught path (metrics.station_spacing "
         "apart), "
         "of the standard deviation of the runs' lateral offsets; max spread: the largest max − min "
@@ -320,6 +339,16 @@ std::string ComparisonMarkdown(const Comparison& c) {
         "ratio needs a non-zero reference mean). Timing rows measure this machine under its load, "
         "not the "
         "navigation.\n";
+}
+
+}  // namespace
+
+std::string ComparisonMarkdown(const Comparison& c) {
+  std::ostringstream md;
+  WriteMarkdownIntro(md, c);
+  WriteMarkdownTable(md, c);
+  WriteMarkdownFindings(md, c);
+  WriteMarkdownNotes(md);
   return md.str();
 }
 
