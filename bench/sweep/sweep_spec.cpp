@@ -252,6 +252,232 @@ std::size_t CheckedProduct(std::size_t a, std::size_t b, const YAML::Node& node,
   return a * b;
 }
 
+// name, scenario, mode and repeats. The name (default: the file's stem) must be able to name a
+// results folder.
+void ReadSweepBasics(const YAML::Node& root, SpecReader& reader, SweepSpec* spec) {
+  const ReadContext& ctx = reader.ctx();
+  const std::filesystem::path& file = spec->file;
+  spec->name = root["name"] ? io::internal::ReadString(root["name"], ctx.Child("name"))
+                            : file.stem().string();
+  const std::string& name = spec->name;
+  const bool safe_name = !name.empty() && name != "." && name != ".." &&
+                         std::all_of(name.begin(), name.end(), [](unsigned char c) {
+                           return std::isalnum(c) != 0 || c == '_' || c == '-' || c == '.';
+                         });
+  if (!safe_name) {
+    Fail(root["name"] ? root["name"] : root, ctx.Child("name"),
+         "'" + name + "' cannot name a results folder: use letters, digits, '_', '-' and '.'");
+  }
+  if (!root["scenario"]) Fail(root, ctx.Child("scenario"), "missing: name the base scenario file");
+  spec->scenario =
+      file.parent_path() / io::internal::ReadString(root["scenario"], ctx.Child("scenario"));
+  if (root["mode"]) {
+    reader.CheckModeValue(root["mode"], ctx.Child("mode"));
+    spec->mode = *core::ParseEnum<MapMode>(root["mode"].Scalar());
+  }
+  if (root["repeats"]) {
+    spec->repeats = static_cast<int>(
+        io::internal::ReadInteger(root["repeats"], ctx.Child("repeats"), 1, 10000));
+  }
+}
+
+// Fixed overrides: `set` (flattened to key paths), then --set.
+void ReadFixedOverrides(const YAML::Node& root, SpecReader& reader,
+                        const std::vector<io::ConfigOverride>& cli_overrides, SweepSpec* spec) {
+  const ReadContext& ctx = reader.ctx();
+  if (const YAML::Node set = root["set"]) {
+    if (!set.IsMap()) Fail(set, ctx.Child("set"), "expected a mapping of key paths to values");
+    std::vector<std::pair<std::string, YAML::Node>> flat;
+    std::vector<YAML::Node> key_nodes;
+    for (const auto& kv : set) Flatten(kv.second, kv.first.Scalar(), flat, key_nodes, kv.first);
+    for (std::size_t i = 0; i < flat.size(); ++i) {
+      reader.CheckKeyPath(key_nodes[i], ctx.Child("set").Child(flat[i].first), flat[i].first);
+      spec->fixed.push_back({flat[i].first, ValueText(flat[i].second)});
+      spec->fixed_sources.push_back({"set", LineOf(key_nodes[i])});
+    }
+  }
+  for (const io::ConfigOverride& o : cli_overrides) {
+    spec->fixed.push_back(o);
+    spec->fixed_sources.push_back({"--set", 0});
+  }
+}
+
+// A fixed key must be a scenario key the sweep does not set itself (mode, playback.repeats).
+void RequireFixedKeysOfScenario(const SweepSpec& spec, const ReadContext& ctx) {
+  for (std::size_t i = 0; i < spec.fixed.size(); ++i) {
+    const std::string& key = spec.fixed[i].key_path;
+    const std::string where = spec.fixed_sources[i].line > 0
+                                  ? ctx.source + ":" + std::to_string(spec.fixed_sources[i].line)
+                                  : ctx.source + " (--set " + key + "=" + spec.fixed[i].value + ")";
+    if (key == "mode")
+      throw core::ConfigError(key, where + ": mode: not a scenario key; use the sweep's `mode`",
+                              true);
+    if (key == "playback.repeats" || key == "modes" || IsPrefixKey("modes", key)) {
+      throw core::ConfigError(
+          key,
+          where + ": " + key + ": set by the sweep itself (one playback of one `mode` per case)",
+          true);
+    }
+  }
+}
+
+// The rows of one varied section: [row][key].
+using SectionRows = std::vector<std::vector<std::string>>;
+
+// `grid`: every combination of its keys' values, the first key varying slowest.
+SectionRows ReadGridSection(const YAML::Node& grid, const ReadContext& at, SpecReader& reader,
+                            std::vector<std::string>* parameters) {
+  if (!grid.IsMap() || grid.size() == 0)
+    Fail(grid, at, "expected a mapping of key paths to lists of values");
+  SectionRows rows = {{}};
+  for (const auto& kv : grid) {
+    const std::string key = kv.first.Scalar();
+    reader.CheckVariedKey(kv.first, at.Child(key), key, "grid");
+    parameters->push_back(key);
+    const std::vector<std::string> values = reader.ReadList(kv.second, at.Child(key), key);
+    CheckedProduct(rows.size(), values.size(), kv.first, at.Child(key));
+    SectionRows next;
+    for (const auto& row : rows) {  // the first key varies slowest
+      for (const std::string& v : values) {
+        next.push_back(row);
+        next.back().push_back(v);
+      }
+    }
+    rows = std::move(next);
+  }
+  return rows;
+}
+
+// `zip`: row i holds the i-th value of every key; the lists have equal lengths.
+SectionRows ReadZipSection(const YAML::Node& zip, const ReadContext& at, SpecReader& reader,
+                           std::vector<std::string>* parameters) {
+  if (!zip.IsMap() || zip.size() == 0)
+    Fail(zip, at, "expected a mapping of key paths to lists of values");
+  SectionRows rows;
+  std::string first_key;
+  for (const auto& kv : zip) {
+    const std::string key = kv.first.Scalar();
+    reader.CheckVariedKey(kv.first, at.Child(key), key, "zip");
+    parameters->push_back(key);
+    const std::vector<std::string> values = reader.ReadList(kv.second, at.Child(key), key);
+    if (first_key.empty()) {
+      first_key = key;
+      rows.resize(values.size());
+    } else if (values.size() != rows.size()) {
+      Fail(kv.second, at.Child(key),
+           "has " + std::to_string(values.size()) + " values but zip." + first_key + " has " +
+               std::to_string(rows.size()) + ": zipped lists must have equal lengths");
+    }
+    for (std::size_t i = 0; i < values.size(); ++i) rows[i].push_back(values[i]);
+  }
+  return rows;
+}
+
+// `random`: `samples` rows, each key's value drawn from its distribution with the section's seed.
+SectionRows ReadRandomSection(const YAML::Node& random, const ReadContext& at, SpecReader& reader,
+                              std::vector<std::string>* parameters) {
+  if (!random.IsMap()) Fail(random, at, "expected {samples: N, seed: S, parameters: {...}}");
+  io::internal::CheckKeys(random, at, {"samples", "seed", "parameters"});
+  if (!random["samples"])
+    Fail(random, at.Child("samples"), "missing: how many random combinations to draw");
+  const auto samples = static_cast<std::size_t>(
+      io::internal::ReadInteger(random["samples"], at.Child("samples"), 1, kMaxSamples));
+  const std::uint64_t seed =
+      random["seed"]
+          ? static_cast<std::uint64_t>(io::internal::ReadInteger(
+                random["seed"], at.Child("seed"), 0, std::numeric_limits<std::int64_t>::max()))
+          : 1;
+  const YAML::Node distribution_nodes = random["parameters"];
+  const ReadContext pat = at.Child("parameters");
+  if (!distribution_nodes || !distribution_nodes.IsMap() || distribution_nodes.size() == 0) {
+    Fail(distribution_nodes ? distribution_nodes : random, pat,
+         "expected a mapping of key paths to distributions");
+  }
+  std::vector<Distribution> distributions;
+  for (const auto& kv : distribution_nodes) {
+    const std::string key = kv.first.Scalar();
+    reader.CheckVariedKey(kv.first, pat.Child(key), key, "random");
+    parameters->push_back(key);
+    distributions.push_back(ReadDistribution(reader, kv.second, pat.Child(key), key));
+  }
+  // Sample by sample, each parameter in file order: the draws depend on the seed alone.
+  core::Rng rng(seed);
+  SectionRows rows(samples);
+  for (auto& row : rows) {
+    for (const Distribution& d : distributions) row.push_back(d.Draw(rng));
+  }
+  return rows;
+}
+
+// A fixed key inside a varied one would be overwritten by it without a word.
+void RequireFixedKeysNotVaried(const std::vector<Varied>& varied, const SweepSpec& spec,
+                               const ReadContext& ctx) {
+  for (const Varied& v : varied) {
+    for (std::size_t i = 0; i < spec.fixed.size(); ++i) {
+      const std::string& fixed_key = spec.fixed[i].key_path;
+      if (fixed_key == v.key || IsPrefixKey(v.key, fixed_key)) {
+        const std::string fixed_where =
+            spec.fixed_sources[i].line > 0
+                ? "`set` (line " + std::to_string(spec.fixed_sources[i].line) + ")"
+                : "--set";
+        Fail(v.key_node, ctx.Child(v.source.section).Child(v.key),
+             "is varied, but '" + fixed_key + "' is also fixed by " + fixed_where);
+      }
+    }
+  }
+}
+
+// The list under `key` (labels, plot), if given: varied parameters, each once.
+void ReadVariedNames(const YAML::Node& root, const ReadContext& ctx, const char* key,
+                     const std::vector<std::string>& parameters, std::vector<std::string>* out) {
+  const YAML::Node node = root[key];
+  if (!node) return;
+  const ReadContext at = ctx.Child(key);
+  if (!node.IsSequence()) Fail(node, at, "expected a list of varied parameters");
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string name = io::internal::ReadString(node[i], at.Element(i));
+    if (std::find(parameters.begin(), parameters.end(), name) == parameters.end()) {
+      Fail(node[i], at.Element(i),
+           "'" + name + "' is not a varied parameter (in grid, zip or random)");
+    }
+    if (std::find(out->begin(), out->end(), name) != out->end())
+      Fail(node[i], at.Element(i), "'" + name + "' is listed twice");
+    out->push_back(name);
+  }
+}
+
+// The combinations: the product of the sections, the first section outermost; with the repeats,
+// no more cases than a sweep may have.
+void ExpandCombinations(const std::vector<SectionRows>& section_rows, const YAML::Node& root,
+                        const ReadContext& ctx, SweepSpec* spec) {
+  spec->combinations = {{}};
+  for (const auto& rows : section_rows) {
+    CheckedProduct(spec->combinations.size() * static_cast<std::size_t>(spec->repeats), rows.size(),
+                   root, ctx);
+    SectionRows next;
+    for (const auto& outer : spec->combinations) {
+      for (const auto& inner : rows) {
+        next.push_back(outer);
+        next.back().insert(next.back().end(), inner.begin(), inner.end());
+      }
+    }
+    spec->combinations = std::move(next);
+  }
+  CheckedProduct(spec->combinations.size(), static_cast<std::size_t>(spec->repeats), root, ctx);
+}
+
+// The metrics (listed, else the defaults), the timing ones apart; at least one not timing.
+void ReadSweepMetrics(const YAML::Node& root, const ReadContext& ctx, SweepSpec* spec) {
+  const std::vector<std::string> metrics =
+      root["metrics"] ? ReadMetrics(root["metrics"], ctx.Child("metrics")) : DefaultSweepMetrics();
+  for (const std::string& m : metrics)
+    (IsTimingMetric(m) ? spec->timing_metrics : spec->metrics).push_back(m);
+  if (spec->metrics.empty()) {
+    Fail(root["metrics"], ctx.Child("metrics"),
+         "lists only timing metrics (cpu.*); add at least one other");
+  }
+}
+
 }  // namespace
 
 MapMode SweepSpec::CombinationMode(std::size_t c) const {
@@ -307,207 +533,34 @@ SweepSpec LoadSweepSpec(const std::filesystem::path& file,
 
   SweepSpec spec;
   spec.file = file;
-  spec.name = root["name"] ? io::internal::ReadString(root["name"], ctx.Child("name"))
-                           : file.stem().string();
-  const bool safe_name = !spec.name.empty() && spec.name != "." && spec.name != ".." &&
-                         std::all_of(spec.name.begin(), spec.name.end(), [](unsigned char c) {
-                           return std::isalnum(c) != 0 || c == '_' || c == '-' || c == '.';
-                         });
-  if (!safe_name) {
-    Fail(root["name"] ? root["name"] : root, ctx.Child("name"),
-         "'" + spec.name + "' cannot name a results folder: use letters, digits, '_', '-' and '.'");
-  }
-  if (!root["scenario"]) Fail(root, ctx.Child("scenario"), "missing: name the base scenario file");
-  spec.scenario =
-      file.parent_path() / io::internal::ReadString(root["scenario"], ctx.Child("scenario"));
-  if (root["mode"]) {
-    reader.CheckModeValue(root["mode"], ctx.Child("mode"));
-    spec.mode = *core::ParseEnum<MapMode>(root["mode"].Scalar());
-  }
-  if (root["repeats"]) {
-    spec.repeats = static_cast<int>(
-        io::internal::ReadInteger(root["repeats"], ctx.Child("repeats"), 1, 10000));
-  }
-
-  // Fixed overrides: `set`, then --set.
-  if (const YAML::Node set = root["set"]) {
-    if (!set.IsMap()) Fail(set, ctx.Child("set"), "expected a mapping of key paths to values");
-    std::vector<std::pair<std::string, YAML::Node>> flat;
-    std::vector<YAML::Node> key_nodes;
-    for (const auto& kv : set) Flatten(kv.second, kv.first.Scalar(), flat, key_nodes, kv.first);
-    for (std::size_t i = 0; i < flat.size(); ++i) {
-      reader.CheckKeyPath(key_nodes[i], ctx.Child("set").Child(flat[i].first), flat[i].first);
-      spec.fixed.push_back({flat[i].first, ValueText(flat[i].second)});
-      spec.fixed_sources.push_back({"set", LineOf(key_nodes[i])});
-    }
-  }
-  for (const io::ConfigOverride& o : cli_overrides) {
-    spec.fixed.push_back(o);
-    spec.fixed_sources.push_back({"--set", 0});
-  }
-  for (std::size_t i = 0; i < spec.fixed.size(); ++i) {
-    const std::string& key = spec.fixed[i].key_path;
-    const std::string where = spec.fixed_sources[i].line > 0
-                                  ? ctx.source + ":" + std::to_string(spec.fixed_sources[i].line)
-                                  : ctx.source + " (--set " + key + "=" + spec.fixed[i].value + ")";
-    if (key == "mode")
-      throw core::ConfigError(key, where + ": mode: not a scenario key; use the sweep's `mode`",
-                              true);
-    if (key == "playback.repeats" || key == "modes" || IsPrefixKey("modes", key)) {
-      throw core::ConfigError(
-          key,
-          where + ": " + key + ": set by the sweep itself (one playback of one `mode` per case)",
-          true);
-    }
-  }
+  ReadSweepBasics(root, reader, &spec);
+  ReadFixedOverrides(root, reader, cli_overrides, &spec);
+  RequireFixedKeysOfScenario(spec, ctx);
 
   // The varied sections, each expanded into its own list of rows.
-  std::vector<std::vector<std::vector<std::string>>> section_rows;  // [section][row][key]
-  if (const YAML::Node grid = root["grid"]) {
-    const ReadContext at = ctx.Child("grid");
-    if (!grid.IsMap() || grid.size() == 0)
-      Fail(grid, at, "expected a mapping of key paths to lists of values");
-    std::vector<std::vector<std::string>> rows = {{}};
-    for (const auto& kv : grid) {
-      const std::string key = kv.first.Scalar();
-      reader.CheckVariedKey(kv.first, at.Child(key), key, "grid");
-      spec.parameters.push_back(key);
-      const std::vector<std::string> values = reader.ReadList(kv.second, at.Child(key), key);
-      CheckedProduct(rows.size(), values.size(), kv.first, at.Child(key));
-      std::vector<std::vector<std::string>> next;
-      for (const auto& row : rows) {  // the first key varies slowest
-        for (const std::string& v : values) {
-          next.push_back(row);
-          next.back().push_back(v);
-        }
-      }
-      rows = std::move(next);
-    }
-    section_rows.push_back(std::move(rows));
-  }
-  if (const YAML::Node zip = root["zip"]) {
-    const ReadContext at = ctx.Child("zip");
-    if (!zip.IsMap() || zip.size() == 0)
-      Fail(zip, at, "expected a mapping of key paths to lists of values");
-    std::vector<std::vector<std::string>> rows;
-    std::string first_key;
-    for (const auto& kv : zip) {
-      const std::string key = kv.first.Scalar();
-      reader.CheckVariedKey(kv.first, at.Child(key), key, "zip");
-      spec.parameters.push_back(key);
-      const std::vector<std::string> values = reader.ReadList(kv.second, at.Child(key), key);
-      if (first_key.empty()) {
-        first_key = key;
-        rows.resize(values.size());
-      } else if (values.size() != rows.size()) {
-        Fail(kv.second, at.Child(key),
-             "has " + std::to_string(values.size()) + " values but zip." + first_key + " has " +
-                 std::to_string(rows.size()) + ": zipped lists must have equal lengths");
-      }
-      for (std::size_t i = 0; i < values.size(); ++i) rows[i].push_back(values[i]);
-    }
-    section_rows.push_back(std::move(rows));
-  }
+  std::vector<SectionRows> section_rows;
+  if (const YAML::Node grid = root["grid"])
+    section_rows.push_back(ReadGridSection(grid, ctx.Child("grid"), reader, &spec.parameters));
+  if (const YAML::Node zip = root["zip"])
+    section_rows.push_back(ReadZipSection(zip, ctx.Child("zip"), reader, &spec.parameters));
   if (const YAML::Node random = root["random"]) {
-    const ReadContext at = ctx.Child("random");
-    if (!random.IsMap()) Fail(random, at, "expected {samples: N, seed: S, parameters: {...}}");
-    io::internal::CheckKeys(random, at, {"samples", "seed", "parameters"});
-    if (!random["samples"])
-      Fail(random, at.Child("samples"), "missing: how many random combinations to draw");
-    const auto samples = static_cast<std::size_t>(
-        io::internal::ReadInteger(random["samples"], at.Child("samples"), 1, kMaxSamples));
-    const std::uint64_t seed =
-        random["seed"]
-            ? static_cast<std::uint64_t>(io::internal::ReadInteger(
-                  random["seed"], at.Child("seed"), 0, std::numeric_limits<std::int64_t>::max()))
-            : 1;
-    const YAML::Node parameters = random["parameters"];
-    const ReadContext pat = at.Child("parameters");
-    if (!parameters || !parameters.IsMap() || parameters.size() == 0) {
-      Fail(parameters ? parameters : random, pat,
-           "expected a mapping of key paths to distributions");
-    }
-    std::vector<Distribution> distributions;
-    for (const auto& kv : parameters) {
-      const std::string key = kv.first.Scalar();
-      reader.CheckVariedKey(kv.first, pat.Child(key), key, "random");
-      spec.parameters.push_back(key);
-      distributions.push_back(ReadDistribution(reader, kv.second, pat.Child(key), key));
-    }
-    // Sample by sample, each parameter in file order: the draws depend on the seed alone.
-    core::Rng rng(seed);
-    std::vector<std::vector<std::string>> rows(samples);
-    for (auto& row : rows) {
-      for (const Distribution& d : distributions) row.push_back(d.Draw(rng));
-    }
-    section_rows.push_back(std::move(rows));
+    section_rows.push_back(
+        ReadRandomSection(random, ctx.Child("random"), reader, &spec.parameters));
   }
-  for (const Varied& v : reader.varied()) {
-    spec.parameter_sources.push_back(v.source);
-    for (std::size_t i = 0; i < spec.fixed.size(); ++i) {
-      const std::string& fixed_key = spec.fixed[i].key_path;
-      // A fixed key inside a varied one would be overwritten by it without a word.
-      if (fixed_key == v.key || IsPrefixKey(v.key, fixed_key)) {
-        const std::string fixed_where =
-            spec.fixed_sources[i].line > 0
-                ? "`set` (line " + std::to_string(spec.fixed_sources[i].line) + ")"
-                : "--set";
-        Fail(v.key_node, ctx.Child(v.source.section).Child(v.key),
-             "is varied, but '" + fixed_key + "' is also fixed by " + fixed_where);
-      }
-    }
-  }
+  for (const Varied& v : reader.varied()) spec.parameter_sources.push_back(v.source);
+  RequireFixedKeysNotVaried(reader.varied(), spec, ctx);
 
   // Labels and plotted parameters name varied keys.
-  auto read_names = [&](const char* key, std::vector<std::string>& out) {
-    const YAML::Node node = root[key];
-    if (!node) return;
-    const ReadContext at = ctx.Child(key);
-    if (!node.IsSequence()) Fail(node, at, "expected a list of varied parameters");
-    for (std::size_t i = 0; i < node.size(); ++i) {
-      const std::string name = io::internal::ReadString(node[i], at.Element(i));
-      if (std::find(spec.parameters.begin(), spec.parameters.end(), name) ==
-          spec.parameters.end()) {
-        Fail(node[i], at.Element(i),
-             "'" + name + "' is not a varied parameter (in grid, zip or random)");
-      }
-      if (std::find(out.begin(), out.end(), name) != out.end())
-        Fail(node[i], at.Element(i), "'" + name + "' is listed twice");
-      out.push_back(name);
-    }
-  };
-  read_names("labels", spec.labels);
+  ReadVariedNames(root, ctx, "labels", spec.parameters, &spec.labels);
   if (std::find(spec.labels.begin(), spec.labels.end(), "mode") != spec.labels.end()) {
     Fail(root["labels"], ctx.Child("labels"),
          "'mode' is applied to every case; it cannot be a label");
   }
-  read_names("plot", spec.plot_parameters);
+  ReadVariedNames(root, ctx, "plot", spec.parameters, &spec.plot_parameters);
   if (!root["plot"]) spec.plot_parameters = spec.parameters;
 
-  // The product of the sections, the first section outermost.
-  spec.combinations = {{}};
-  for (const auto& rows : section_rows) {
-    CheckedProduct(spec.combinations.size() * static_cast<std::size_t>(spec.repeats), rows.size(),
-                   root, ctx);
-    std::vector<std::vector<std::string>> next;
-    for (const auto& outer : spec.combinations) {
-      for (const auto& inner : rows) {
-        next.push_back(outer);
-        next.back().insert(next.back().end(), inner.begin(), inner.end());
-      }
-    }
-    spec.combinations = std::move(next);
-  }
-  CheckedProduct(spec.combinations.size(), static_cast<std::size_t>(spec.repeats), root, ctx);
-
-  const std::vector<std::string> metrics =
-      root["metrics"] ? ReadMetrics(root["metrics"], ctx.Child("metrics")) : DefaultSweepMetrics();
-  for (const std::string& m : metrics)
-    (IsTimingMetric(m) ? spec.timing_metrics : spec.metrics).push_back(m);
-  if (spec.metrics.empty()) {
-    Fail(root["metrics"], ctx.Child("metrics"),
-         "lists only timing metrics (cpu.*); add at least one other");
-  }
+  ExpandCombinations(section_rows, root, ctx, &spec);
+  ReadSweepMetrics(root, ctx, &spec);
   return spec;
 }
 
