@@ -115,6 +115,137 @@ std::uint64_t FirstLoopIndex(const core::Rng& crowd_rng, std::size_t person,
   return w.UniformIndex(static_cast<std::uint64_t>(waypoints));
 }
 
+// The row's pedestrian count (at least two) and the density it gives, with Weidmann's speed there.
+FundamentalDiagramRow RowForDensity(const FundamentalDiagramConfig& config, double density) {
+  FundamentalDiagramRow row;
+  row.requested_density = density;
+  const double area = config.area();
+  row.count = std::max(2, static_cast<int>(std::lround(density * area)));
+  row.density = row.count / area;
+  row.weidmann_speed = WeidmannSpeed(row.density);
+  return row;
+}
+
+// The radii (m) the lanes (loop waypoints) lie between: this far inside the walls, so that the
+// walk planner finds them free; start points stay a jitter further in.
+struct LaneBand {
+  double min = 0.0;
+  double max = 0.0;
+};
+
+LaneBand LaneBandOf(const FundamentalDiagramConfig& config) {
+  const double inset = config.pedestrian_radius + config.crowd.planner.margin +
+                       kCellSlack * config.crowd.planner.cell_size;
+  return {config.inner_radius + inset, config.outer_radius() - inset};
+}
+
+// Directions (+1 counter-clockwise, -1 clockwise): a random half of the sites walks clockwise.
+std::vector<int> RandomDirections(std::size_t sites, core::Rng& layout) {
+  std::vector<int> direction(sites, 1);
+  std::vector<std::size_t> order(sites);
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  for (std::size_t i = order.size(); i > 1; --i)
+    std::swap(order[i - 1], order[layout.UniformIndex(i)]);
+  for (std::size_t k = 0; k < order.size() / 2; ++k) direction[order[k]] = -1;
+  return direction;
+}
+
+// The crowd of the ring: one group per person, and the waypoint each is meant to head for first.
+struct RingGroups {
+  std::vector<sim::PedestrianGroupConfig> groups;
+  std::vector<Vec2> first_goals;
+};
+
+// One group per person: its start box round its site and a loop of waypoints on a lane of its
+// own, in its direction.
+RingGroups RingWalkers(const FundamentalDiagramConfig& config, const Lattice& lattice,
+                       const std::vector<int>& direction, double jitter, const LaneBand& lanes,
+                       core::Rng& layout, const core::Rng& crowd_rng) {
+  RingGroups ring;
+  for (std::size_t i = 0; i < lattice.sites.size(); ++i) {
+    const Vec2& site = lattice.sites[i];
+    // Everyone keeps to a lane of their own, drawn across the corridor: with the lattice rows as
+    // lanes, two people walking towards each other on one row would meet exactly head-on, where
+    // the model's repulsion has no sideways part and both stop until the progress check makes
+    // one step aside.
+    const double lane = layout.Uniform(lanes.min, lanes.max);
+    const double angle0 = std::atan2(site.y(), site.x());
+    sim::PedestrianGroupConfig g;
+    g.count = 1;
+    g.region_min = site - Vec2(jitter, jitter);
+    g.region_max = site + Vec2(jitter, jitter);
+    g.mode = sim::PedestrianMode::kLoop;
+    g.speed_mean = config.speed_mean;
+    g.speed_std = config.speed_std;
+    g.radius = config.pedestrian_radius;
+    // Pedestrians starts a loop at a random waypoint of it; the waypoint that draw picks is
+    // made the first one ahead, so that nobody walks half the ring the wrong way first.
+    const auto first = static_cast<int>(FirstLoopIndex(crowd_rng, i, g, config.waypoints));
+    for (int k = 0; k < config.waypoints; ++k) {
+      const int ahead = 1 + (k - first + config.waypoints) % config.waypoints;
+      const double a = angle0 + direction[i] * 2.0 * core::kPi * ahead / config.waypoints;
+      g.waypoints.push_back(lane * Vec2(std::cos(a), std::sin(a)));
+    }
+    ring.first_goals.push_back(g.waypoints[static_cast<std::size_t>(first)]);
+    ring.groups.push_back(std::move(g));
+  }
+  return ring;
+}
+
+// Sums of the speed samples: along the corridor in each person's direction, and of |v|.
+struct RingSpeeds {
+  double sum = 0.0;
+  double sum2 = 0.0;
+  double sum_abs = 0.0;
+  std::int64_t n = 0;
+};
+
+// Walks the crowd through the warm-up and the measured duration, sampling every person's
+// speed every sample_period after the warm-up.
+RingSpeeds WalkAndMeasure(const FundamentalDiagramConfig& config, const std::vector<int>& direction,
+                          sim::Pedestrians& crowd, sim::PhysicsWorld& world) {
+  const auto warmup_steps =
+      static_cast<std::int64_t>(std::llround(config.warmup / config.time_step));
+  const auto total_steps =
+      warmup_steps + static_cast<std::int64_t>(std::llround(config.duration / config.time_step));
+  const auto sample_every =
+      std::max<std::int64_t>(1, std::llround(config.sample_period / config.time_step));
+  RingSpeeds speeds;
+  for (std::int64_t step = 0; step < total_steps; ++step) {
+    crowd.Update(world);
+    world.Step();
+    if (step + 1 <= warmup_steps || (step + 1 - warmup_steps) % sample_every != 0) continue;
+    for (std::size_t i = 0; i < crowd.status().size(); ++i) {
+      const int id = crowd.status()[i].id;
+      const Vec2 p = world.PedestrianPosition(id);
+      const Vec2 v = world.PedestrianVelocity(id);
+      const double pn = p.norm();
+      if (pn < 1e-9) continue;
+      const Vec2 tangent(-p.y() / pn, p.x() / pn);  // counter-clockwise
+      const double along = direction[i] * v.dot(tangent);
+      speeds.sum += along;
+      speeds.sum2 += along * along;
+      speeds.sum_abs += v.norm();
+      ++speeds.n;
+    }
+  }
+  return speeds;
+}
+
+// The row's mean speed, its spread, the mean |v| and the deviation from Weidmann's curve.
+void SetSpeedStatistics(const RingSpeeds& speeds, FundamentalDiagramRow* row) {
+  const std::int64_t n = speeds.n;
+  row->samples = n;
+  if (n > 0) {
+    row->mean_speed = speeds.sum / n;
+    row->speed_std = std::sqrt(std::max(0.0, speeds.sum2 / n - row->mean_speed * row->mean_speed));
+    row->mean_abs_speed = speeds.sum_abs / n;
+  }
+  row->relative_deviation = row->weidmann_speed > 0.0
+                                ? (row->mean_speed - row->weidmann_speed) / row->weidmann_speed
+                                : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 double WeidmannSpeed(double density, const WeidmannCurve& curve) {
@@ -199,129 +330,44 @@ void ValidateDensities(const std::vector<double>& densities) {
 
 FundamentalDiagramRow RunDensity(const FundamentalDiagramConfig& config, double density,
                                  std::uint64_t seed, std::size_t index) {
-  FundamentalDiagramRow row;
-  row.requested_density = density;
-  const double area = config.area();
-  row.count = std::max(2, static_cast<int>(std::lround(density * area)));
-  row.density = row.count / area;
-  row.weidmann_speed = WeidmannSpeed(row.density);
-
+  FundamentalDiagramRow row = RowForDensity(config, density);
   const core::Rng rng = core::Rng(seed).Split("fundamental_diagram").Split(index);
   core::Rng layout = rng.Split("layout");
-  const double r = config.pedestrian_radius;
-  const double cell = config.crowd.planner.cell_size;
-  const double inset = r + config.crowd.planner.margin + kCellSlack * cell;
-  // Lanes (loop waypoints) stay this far inside the walls; start points a jitter further.
-  const double lane_min = config.inner_radius + inset;
-  const double lane_max = config.outer_radius() - inset;
-  const Lattice lattice = RingLattice(row.count, lane_min + kMaxJitter, lane_max - kMaxJitter,
+  const LaneBand lanes = LaneBandOf(config);
+  const Lattice lattice = RingLattice(row.count, lanes.min + kMaxJitter, lanes.max - kMaxJitter,
                                       layout.Uniform(0.0, 2.0 * core::kPi));
   row.lattice_spacing = lattice.spacing;
-  const double needed = 2.0 * r + config.crowd.spawn_gap;
+  const double needed = 2.0 * config.pedestrian_radius + config.crowd.spawn_gap;
   if (!(lattice.spacing >= needed + 1e-9)) {
     row.note = FormatFd(
         "%d pedestrians of radius %.2f m do not fit between the walls: the start lattice's "
         "spacing %.3f m is below 2 x radius + spawn gap = %.3f m",
-        row.count, r, lattice.spacing, needed);
+        row.count, config.pedestrian_radius, lattice.spacing, needed);
     return row;
   }
   // Each start point is drawn from a small box round its site (by the crowd's own rng), small
   // enough that two boxes never hold points closer than `needed`.
   const double jitter =
       std::clamp(0.5 * (lattice.spacing - needed) / std::sqrt(2.0), 1e-3, kMaxJitter);
-
-  // Directions: a random half of the sites walks clockwise.
-  std::vector<int> direction(lattice.sites.size(), 1);
-  std::vector<std::size_t> order(lattice.sites.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  for (std::size_t i = order.size(); i > 1; --i)
-    std::swap(order[i - 1], order[layout.UniformIndex(i)]);
-  for (std::size_t k = 0; k < order.size() / 2; ++k) direction[order[k]] = -1;
-
+  const std::vector<int> direction = RandomDirections(lattice.sites.size(), layout);
   const core::Rng crowd_rng = rng.Split("pedestrians");
-  std::vector<Vec2> first_goals;
-  // One group per person: its start box and a loop of waypoints on its own lane, in its
-  // direction.
-  std::vector<sim::PedestrianGroupConfig> groups;
-  for (std::size_t i = 0; i < lattice.sites.size(); ++i) {
-    const Vec2& site = lattice.sites[i];
-    // Everyone keeps to a lane of their own, drawn across the corridor: with the lattice rows as
-    // lanes, two people walking towards each other on one row would meet exactly head-on, where
-    // the model's repulsion has no sideways part and both stop until the progress check makes
-    // one step aside.
-    const double lane = layout.Uniform(lane_min, lane_max);
-    const double angle0 = std::atan2(site.y(), site.x());
-    sim::PedestrianGroupConfig g;
-    g.count = 1;
-    g.region_min = site - Vec2(jitter, jitter);
-    g.region_max = site + Vec2(jitter, jitter);
-    g.mode = sim::PedestrianMode::kLoop;
-    g.speed_mean = config.speed_mean;
-    g.speed_std = config.speed_std;
-    g.radius = r;
-    // Pedestrians starts a loop at a random waypoint of it; the waypoint that draw picks is
-    // made the first one ahead, so that nobody walks half the ring the wrong way first.
-    const auto first = static_cast<int>(FirstLoopIndex(crowd_rng, i, g, config.waypoints));
-    for (int k = 0; k < config.waypoints; ++k) {
-      const int ahead = 1 + (k - first + config.waypoints) % config.waypoints;
-      const double a = angle0 + direction[i] * 2.0 * core::kPi * ahead / config.waypoints;
-      g.waypoints.push_back(lane * Vec2(std::cos(a), std::sin(a)));
-    }
-    first_goals.push_back(g.waypoints[static_cast<std::size_t>(first)]);
-    groups.push_back(std::move(g));
-  }
+  const RingGroups ring = RingWalkers(config, lattice, direction, jitter, lanes, layout, crowd_rng);
 
   const sim::StaticGeometry geometry = RingGeometry(config);
   sim::PhysicsConfig physics_config;
   physics_config.time_step = config.time_step;
   sim::PhysicsWorld world(geometry, physics_config);
-  sim::Pedestrians crowd(groups, config.crowd, geometry, crowd_rng, {}, world);
-  for (std::size_t i = 0; i < first_goals.size(); ++i) {
-    if ((crowd.status()[i].goal - first_goals[i]).norm() > 1e-9) ++row.misaligned_starts;
+  sim::Pedestrians crowd(ring.groups, config.crowd, geometry, crowd_rng, {}, world);
+  for (std::size_t i = 0; i < ring.first_goals.size(); ++i) {
+    if ((crowd.status()[i].goal - ring.first_goals[i]).norm() > 1e-9) ++row.misaligned_starts;
   }
-
-  const auto warmup_steps =
-      static_cast<std::int64_t>(std::llround(config.warmup / config.time_step));
-  const auto total_steps =
-      warmup_steps + static_cast<std::int64_t>(std::llround(config.duration / config.time_step));
-  const auto sample_every =
-      std::max<std::int64_t>(1, std::llround(config.sample_period / config.time_step));
-  double sum = 0.0;
-  double sum2 = 0.0;
-  double sum_abs = 0.0;
-  std::int64_t n = 0;
-  for (std::int64_t step = 0; step < total_steps; ++step) {
-    crowd.Update(world);
-    world.Step();
-    if (step + 1 <= warmup_steps || (step + 1 - warmup_steps) % sample_every != 0) continue;
-    for (std::size_t i = 0; i < crowd.status().size(); ++i) {
-      const int id = crowd.status()[i].id;
-      const Vec2 p = world.PedestrianPosition(id);
-      const Vec2 v = world.PedestrianVelocity(id);
-      const double pn = p.norm();
-      if (pn < 1e-9) continue;
-      const Vec2 tangent(-p.y() / pn, p.x() / pn);  // counter-clockwise
-      const double along = direction[i] * v.dot(tangent);
-      sum += along;
-      sum2 += along * along;
-      sum_abs += v.norm();
-      ++n;
-    }
-  }
+  const RingSpeeds speeds = WalkAndMeasure(config, direction, crowd, world);
   for (const sim::PedestrianStatus& st : crowd.status()) {
     row.yields += st.replans;
     row.goals_abandoned += st.goals_abandoned;
   }
   row.spawned = true;
-  row.samples = n;
-  if (n > 0) {
-    row.mean_speed = sum / n;
-    row.speed_std = std::sqrt(std::max(0.0, sum2 / n - row.mean_speed * row.mean_speed));
-    row.mean_abs_speed = sum_abs / n;
-  }
-  row.relative_deviation = row.weidmann_speed > 0.0
-                               ? (row.mean_speed - row.weidmann_speed) / row.weidmann_speed
-                               : std::numeric_limits<double>::quiet_NaN();
+  SetSpeedStatistics(speeds, &row);
   return row;
 }
 
