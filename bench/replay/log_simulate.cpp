@@ -19,12 +19,11 @@ namespace {
 // The smallest range the simulated LiDAR may have (m): a log's 0 means "not given".
 constexpr double kMinRangeMin = 0.01;
 
-}  // namespace
-
-LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams,
-                          const ModeTeach& world_teach,
-                          const std::filesystem::path& world_teach_dir, const LogConfig& config,
-                          const LogWindow& window, const std::filesystem::path& out) {
+// The world is the one map of a teach folder built with a reference; the log has a reference to
+// drive in it.
+void RequireSimulatableLog(const logs::LogIndex& index, const LogStreams& streams,
+                           const ModeTeach& world_teach,
+                           const std::filesystem::path& world_teach_dir) {
   if (world_teach.bundle.maps.size() != 1 || world_teach.trace.X_WR.empty()) {
     throw core::ConfigError("--teach",
                             "the world is the map of a teach folder of one map built with a "
@@ -38,18 +37,13 @@ LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams
                         ": no reference to drive in the simulator (give --reference FILE, or "
                         "--synthetic-odometry for a corrected log)");
   }
-  // The world: the taught map, in its frame M; the reference placed in it by the teach trace.
-  sim::WorldConfig world;
-  world.name = "log-simulate";
-  world.maps.push_back({"maps/ogm_0.yaml", 0.65});
-  const sim::StaticGeometry geometry = sim::BuildGeometry(world, world_teach_dir);
-  const TeachMapTrace& trace = world_teach.trace.maps.front();
-  const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
+}
 
-  // The log's LiDAR. The simulator centres its fan on the LiDAR's x axis; a log's fan may not be
-  // (the Intel log's runs from -90 to +89 degrees), so the simulated LiDAR is turned by the
-  // centre's angle and its scans are labelled with the log's angles again.
-  const logs::ScanGeometry& g = index.scan;
+// The log's LiDAR. The simulator centres its fan on the LiDAR's x axis; a log's fan may not be
+// (the Intel log's runs from -90 to +89 degrees), so the simulated LiDAR is turned by the
+// centre's angle and its scans are labelled with the log's angles again.
+sim::LidarConfig LoggedLidar(const logs::ScanGeometry& g, const LogStreams& streams,
+                             const LogConfig& config) {
   const double fov = g.field_of_view();
   sim::LidarConfig lidar;
   lidar.beams = static_cast<int>(g.beams);
@@ -58,52 +52,99 @@ LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams
   lidar.range_max = g.range_max;
   lidar.noise = config.sim.lidar.noise;
   lidar.mount = streams.robot.X_RL * core::Pose2(0.0, 0.0, g.angle_min + 0.5 * fov);
-  const sim::Lidar sensor(lidar, geometry);
+  return lidar;
+}
+
+// The simulated log being written: the log's odometry and reference, from the first simulated
+// scan's stamp on, interleaved with the simulated scans in stamp order.
+class SimulatedLogWriter {
+ public:
+  SimulatedLogWriter(const std::filesystem::path& out, const LogStreams& streams)
+      : streams_(streams),
+        writer_(out, logs::McapCompression::kZstd),
+        scan_channel_(writer_.AddChannel("/scan", "sensor_msgs/msg/LaserScan")),
+        odom_channel_(writer_.AddChannel("/odom", "nav_msgs/msg/Odometry")),
+        truth_channel_(writer_.AddChannel("/ground_truth", "geometry_msgs/msg/PoseStamped")),
+        static_channel_(writer_.AddChannel("/tf_static", "tf2_msgs/msg/TFMessage")) {}
+
+  // The LiDAR's mount, once, at the first scan's stamp (from which the poses are written).
+  void Start(double stamp) {
+    first_stamp_ = stamp;
+    writer_.Write(static_channel_, logs::LogTimeNs(stamp),
+                  logs::EncodeTfMessage({{{stamp, "base_link", "laser", streams_.robot.X_RL}}}));
+  }
+
+  // The poses up to `stamp` not written yet, from the first scan's on.
+  void WritePosesUpTo(double stamp) {
+    for (;
+         next_odometry_ < streams_.odometry.size() && streams_.odometry[next_odometry_].t <= stamp;
+         ++next_odometry_) {
+      const io::StampedPose& p = streams_.odometry[next_odometry_];
+      if (p.t < first_stamp_) continue;
+      writer_.Write(odom_channel_, logs::LogTimeNs(p.t),
+                    logs::EncodeOdometry({p.t, "odom", "base_link", p.pose}));
+    }
+    for (; next_reference_ < streams_.reference.size() &&
+           streams_.reference[next_reference_].t <= stamp;
+         ++next_reference_) {
+      const io::StampedPose& p = streams_.reference[next_reference_];
+      if (p.t < first_stamp_) continue;
+      writer_.Write(truth_channel_, logs::LogTimeNs(p.t),
+                    logs::EncodePoseStamped({p.t, "world", p.pose}));
+    }
+  }
+
+  void WriteScan(double stamp, const core::LaserScan& scan) {
+    writer_.Write(scan_channel_, logs::LogTimeNs(stamp), logs::EncodeLaserScan({scan, "laser"}));
+  }
+
+  void Close() { writer_.Close(); }
+
+ private:
+  const LogStreams& streams_;
+  logs::McapWriter writer_;
+  std::uint16_t scan_channel_;
+  std::uint16_t odom_channel_;
+  std::uint16_t truth_channel_;
+  std::uint16_t static_channel_;
+  double first_stamp_ = 0.0;
+  std::size_t next_odometry_ = 0;
+  std::size_t next_reference_ = 0;
+};
+
+}  // namespace
+
+LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams,
+                          const ModeTeach& world_teach,
+                          const std::filesystem::path& world_teach_dir, const LogConfig& config,
+                          const LogWindow& window, const std::filesystem::path& out) {
+  RequireSimulatableLog(index, streams, world_teach, world_teach_dir);
+  // The world: the taught map, in its frame M; the reference placed in it by the teach trace.
+  sim::WorldConfig world;
+  world.name = "log-simulate";
+  world.maps.push_back({"maps/ogm_0.yaml", 0.65});
+  const sim::StaticGeometry geometry = sim::BuildGeometry(world, world_teach_dir);
+  const TeachMapTrace& trace = world_teach.trace.maps.front();
+  const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
+  const logs::ScanGeometry& g = index.scan;
+  const sim::Lidar sensor(LoggedLidar(g, streams, config), geometry);
   core::Rng rng = core::Rng(config.seed).Split("log-simulate");
 
-  logs::McapWriter writer(out, logs::McapCompression::kZstd);
-  const std::uint16_t scan_channel = writer.AddChannel("/scan", "sensor_msgs/msg/LaserScan");
-  const std::uint16_t odom_channel = writer.AddChannel("/odom", "nav_msgs/msg/Odometry");
-  const std::uint16_t truth_channel =
-      writer.AddChannel("/ground_truth", "geometry_msgs/msg/PoseStamped");
-  const std::uint16_t static_channel = writer.AddChannel("/tf_static", "tf2_msgs/msg/TFMessage");
-
+  SimulatedLogWriter writer(out, streams);
   LogSimulation result;
-  std::size_t next_odometry = 0;
-  std::size_t next_reference = 0;
-  // The poses up to `stamp`, from the first scan's on.
-  const auto write_poses = [&](double stamp) {
-    for (; next_odometry < streams.odometry.size() && streams.odometry[next_odometry].t <= stamp;
-         ++next_odometry) {
-      const io::StampedPose& p = streams.odometry[next_odometry];
-      if (p.t < result.first_stamp) continue;
-      writer.Write(odom_channel, logs::LogTimeNs(p.t),
-                   logs::EncodeOdometry({p.t, "odom", "base_link", p.pose}));
-    }
-    for (;
-         next_reference < streams.reference.size() && streams.reference[next_reference].t <= stamp;
-         ++next_reference) {
-      const io::StampedPose& p = streams.reference[next_reference];
-      if (p.t < result.first_stamp) continue;
-      writer.Write(truth_channel, logs::LogTimeNs(p.t),
-                   logs::EncodePoseStamped({p.t, "world", p.pose}));
-    }
-  };
   logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double) {
     const double stamp = m.scan.stamp;
     const std::optional<core::Pose2> X_WR = logs::PoseAt(streams.reference, stamp);
     if (!X_WR || !logs::PoseAt(streams.odometry, stamp)) return;
     if (result.scans == 0) {
       result.first_stamp = stamp;
-      writer.Write(static_channel, logs::LogTimeNs(stamp),
-                   logs::EncodeTfMessage({{{stamp, "base_link", "laser", streams.robot.X_RL}}}));
+      writer.Start(stamp);
     }
-    write_poses(stamp);
+    writer.WritePosesUpTo(stamp);
     sim::LidarReading reading = sensor.Scan(X_MW * *X_WR, {}, stamp, rng);
     reading.scan.angle_min = g.angle_min;
     reading.scan.angle_increment = g.angle_increment;
-    writer.Write(scan_channel, logs::LogTimeNs(stamp),
-                 logs::EncodeLaserScan({reading.scan, "laser"}));
+    writer.WriteScan(stamp, reading.scan);
     result.last_stamp = stamp;
     ++result.scans;
   });
@@ -113,7 +154,7 @@ LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams
                         core::FormatNumber(window.to_s) + " s of the log");
   }
   // The poses up to a little past the last scan, so that its odometry interpolates.
-  write_poses(result.last_stamp + 1.0);
+  writer.WritePosesUpTo(result.last_stamp + 1.0);
   writer.Close();
   return result;
 }

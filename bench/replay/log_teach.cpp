@@ -40,6 +40,36 @@ std::vector<core::Vec2> DrivenPath(const logs::LogIndex& index, const LogStreams
   return path;
 }
 
+// The switch points known before teaching: suggested from the driven path (auto) or given;
+// none when online (the recorders choose them while teaching).
+std::vector<double> PlannedSwitchPoints(const logs::LogIndex& index, const LogStreams& streams,
+                                        const LogConfig& config, const LogWindow& window) {
+  if (config.route.switch_points.is(SwitchPlanning::kAuto)) {
+    const std::vector<core::Vec2> path = DrivenPath(index, streams, window);
+    if (path.size() >= 2) return SuggestSwitchPoints(path, config.route.revisit_radius);
+    return {};
+  }
+  if (config.route.switch_points.is(SwitchPlanning::kOnline)) return {};
+  return config.route.switch_points.value;
+}
+
+// The window held two scans with their poses at least, and the drive reached every switch point.
+void RequireTaughtDrive(const logs::LogIndex& index, const LogStreams& streams,
+                        const LogWindow& window, const LogTeachResult& result) {
+  if (result.scans < 2) {
+    throw core::IoError(index.name + ": fewer than two scans with odometry" +
+                        std::string(streams.reference.empty() ? "" : " and reference") +
+                        " between " + core::FormatNumber(window.from_s) + " and " +
+                        core::FormatNumber(window.to_s) + " s of the log");
+  }
+  if (!result.switch_points.empty() && result.switch_points.back() >= result.driven_m) {
+    throw core::ConfigError("route.switch_points", "the last switch point, " +
+                                                       ArcLengthText(result.switch_points.back()) +
+                                                       ", lies beyond the driven path (" +
+                                                       ArcLengthText(result.driven_m) + ")");
+  }
+}
+
 }  // namespace
 
 std::vector<MapMode> LogTeachModes(const LogConfig& config, const LogStreams& streams) {
@@ -74,14 +104,7 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
   LogTeachResult result;
 
   const bool online = config.route.switch_points.is(SwitchPlanning::kOnline);
-  if (config.route.switch_points.is(SwitchPlanning::kAuto)) {
-    const std::vector<core::Vec2> path = DrivenPath(index, streams, window);
-    if (path.size() >= 2)
-      result.switch_points = SuggestSwitchPoints(path, config.route.revisit_radius);
-  } else if (!online) {
-    result.switch_points = config.route.switch_points.value;
-  }
-
+  result.switch_points = PlannedSwitchPoints(index, streams, config, window);
   std::optional<nav::OnlineSwitchingConfig> online_config;
   if (online) {
     online_config = config.route.OnlineSwitching();
@@ -118,18 +141,7 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
       r.recorder.OnScan(m.scan);
     }
   });
-  if (result.scans < 2) {
-    throw core::IoError(index.name + ": fewer than two scans with odometry" +
-                        std::string(streams.reference.empty() ? "" : " and reference") +
-                        " between " + core::FormatNumber(window.from_s) + " and " +
-                        core::FormatNumber(window.to_s) + " s of the log");
-  }
-  if (!result.switch_points.empty() && result.switch_points.back() >= result.driven_m) {
-    throw core::ConfigError("route.switch_points", "the last switch point, " +
-                                                       ArcLengthText(result.switch_points.back()) +
-                                                       ", lies beyond the driven path (" +
-                                                       ArcLengthText(result.driven_m) + ")");
-  }
+  RequireTaughtDrive(index, streams, window, result);
 
   result.modes = FinishModeRecorders(recorders, trace, trace.time, trace.X_WR);
   result.cpu_time_s = ThreadCpuSeconds() - cpu_start;
