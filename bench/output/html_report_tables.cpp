@@ -62,9 +62,9 @@ const std::vector<Headline>& Headlines() {
   return kRows;
 }
 
-}  // namespace
-
-std::optional<Section> SummarySection(const Folder& folder) {
+// The folder's metrics.json files as columns, in mode order: a run's aggregate, or a
+// log-localize run's whole file without its runs.
+std::vector<MetricsColumn> ReadMetricsColumns(const Folder& folder) {
   std::vector<MetricsColumn> columns;
   for (const fs::path& rel : folder.Named("metrics.json")) {
     const json j = ReadJson(folder.dir, rel);
@@ -83,16 +83,24 @@ std::optional<Section> SummarySection(const Folder& folder) {
     }
     columns.push_back(std::move(column));
   }
-  if (columns.empty()) return std::nullopt;
   std::stable_sort(columns.begin(), columns.end(), [](const auto& a, const auto& b) {
     return ModeOrder(a.label) < ModeOrder(b.label);
   });
+  return columns;
+}
 
+// The head row: a column per metrics file, titled with its path.
+std::string MetricsHeadRow(const std::vector<MetricsColumn>& columns) {
   std::string head = "<tr><th>metric</th>";
   for (const MetricsColumn& c : columns)
     head += "<th title=\"" + HtmlEscape(Generic(c.file)) + "\">" + HtmlEscape(c.label) + "</th>";
   head += "</tr>\n";
+  return head;
+}
 
+// The summary's rows: success, outcomes, then the headline metrics; a row only where a column
+// has its value.
+std::string HeadlineRows(const std::vector<MetricsColumn>& columns) {
   std::string rows;
   auto row = [&](const std::string& label, auto&& value_of) {
     std::string cells;
@@ -127,7 +135,16 @@ std::optional<Section> SummarySection(const Folder& folder) {
       return std::nullopt;
     });
   }
+  return rows;
+}
 
+// Every metric of any column, flattened, a row each in name order.
+struct EveryMetricRows {
+  std::string html;
+  std::size_t count = 0;
+};
+
+EveryMetricRows AllMetricsRows(const std::vector<MetricsColumn>& columns) {
   std::vector<std::map<std::string, json>> flat(columns.size());
   std::vector<std::string> names;
   for (std::size_t i = 0; i < columns.size(); ++i) {
@@ -145,6 +162,85 @@ std::optional<Section> SummarySection(const Folder& folder) {
     }
     all += "</tr>\n";
   }
+  return {all, names.size()};
+}
+
+// The suite's verdict, its counts and the baseline it was compared with, as one paragraph.
+std::string SuiteVerdictParagraph(const json& j) {
+  const std::string verdict = j.contains("verdict") ? Text(j["verdict"]) : "?";
+  const bool failed = verdict == "FAIL";
+  std::string html = "<p>Suite <strong>" +
+                     HtmlEscape(j.contains("suite") ? Text(j["suite"]) : "?") +
+                     "</strong>: <span class=\"" + (failed ? "fail-text" : "pass-text") + "\">" +
+                     HtmlEscape(verdict) + "</span>";
+  if (const json* counts = Find(j, "counts"); counts != nullptr && counts->is_object()) {
+    std::string parts;
+    for (const auto& [key, value] : counts->items())
+      parts += (parts.empty() ? "" : ", ") + HtmlEscape(key) + " " + HtmlEscape(Text(value));
+    html += " (" + parts + ")";
+  }
+  if (const json* b = Find(j, "baseline"); b != nullptr && b->is_object()) {
+    html += "; baseline <code>" + HtmlEscape(b->contains("file") ? Text((*b)["file"]) : "?") +
+            "</code>";
+    if (b->contains("git_revision")) html += ", git " + HtmlEscape(Text((*b)["git_revision"]));
+    if (b->contains("date")) html += ", " + HtmlEscape(Text((*b)["date"]));
+  }
+  return html + "</p>\n";
+}
+
+// A field of a suite report row, null when it has none.
+json SuiteRowValue(const json& row, const char* key) {
+  return row.contains(key) ? row[key] : json(nullptr);
+}
+
+// The baseline, now and delta cells of a suite report row.
+std::string SuiteNumberCells(const json& row) {
+  const json delta = SuiteRowValue(row, "delta");
+  return "<td class=\"num\">" + HtmlEscape(Text(SuiteRowValue(row, "baseline"))) +
+         "</td><td class=\"num\">" + HtmlEscape(Text(SuiteRowValue(row, "now"))) +
+         "</td><td class=\"num\">" +
+         HtmlEscape(delta.is_number() ? SignedNumber(delta.get<double>()) : Text(delta)) + "</td>";
+}
+
+// The suite report's rows as HTML: the regressions' (FAIL) rows and every metric's rows.
+struct SuiteRowsHtml {
+  std::string regressions;
+  std::string all;
+  int failures = 0;
+};
+
+SuiteRowsHtml SuiteTableRows(const json& rows) {
+  SuiteRowsHtml out;
+  for (const json& row : rows) {
+    if (!row.is_object()) continue;
+    const std::string v = Text(SuiteRowValue(row, "verdict"));
+    const std::string name = HtmlEscape(Text(SuiteRowValue(row, "metric")));
+    const std::string tolerance = HtmlEscape(Text(SuiteRowValue(row, "tolerance")));
+    if (v == "FAIL") {
+      ++out.failures;
+      out.regressions += "<tr class=\"fail\"><td>" + name + "</td>" + SuiteNumberCells(row) +
+                         "<td>" + tolerance + "</td><td>" +
+                         HtmlEscape(Text(SuiteRowValue(row, "reason"))) + "</td></tr>\n";
+    }
+    const std::string cls = v == "FAIL"       ? " class=\"fail\""
+                            : v == "improved" ? " class=\"improved\""
+                                              : "";
+    out.all += "<tr" + cls + "><td>" + name + "</td>" + SuiteNumberCells(row) +
+               Cell(SuiteRowValue(row, "seed_sd")) + "<td>" + HtmlEscape(v) + "</td><td>" +
+               tolerance + "</td><td><code>" + HtmlEscape(Text(SuiteRowValue(row, "pattern"))) +
+               "</code></td></tr>\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<Section> SummarySection(const Folder& folder) {
+  const std::vector<MetricsColumn> columns = ReadMetricsColumns(folder);
+  if (columns.empty()) return std::nullopt;
+  const std::string head = MetricsHeadRow(columns);
+  const std::string rows = HeadlineRows(columns);
+  const EveryMetricRows all = AllMetricsRows(columns);
 
   Section s{"summary", "Summary", ""};
   std::string files;
@@ -153,8 +249,8 @@ std::optional<Section> SummarySection(const Folder& folder) {
   s.html = "<p class=\"note\">From " + files +
            (columns.front().values.contains("runs") ? "; pooled over each mode's runs." : ".") +
            "</p>\n<div class=\"scroll\"><table>\n" + head + rows +
-           "</table></div>\n<details><summary>All " + std::to_string(names.size()) +
-           " metrics</summary>\n<div class=\"scroll\"><table>\n" + head + all +
+           "</table></div>\n<details><summary>All " + std::to_string(all.count) +
+           " metrics</summary>\n<div class=\"scroll\"><table>\n" + head + all.html +
            "</table></div>\n</details>\n";
   return s;
 }
@@ -167,71 +263,22 @@ std::optional<Section> SuiteSection(const Folder& folder) {
   }
   const json j = ReadJson(folder.dir, "report.json");
   if (!j.is_object() || !j.contains("rows") || !j["rows"].is_array()) return std::nullopt;
-  const std::string verdict = j.contains("verdict") ? Text(j["verdict"]) : "?";
-  const bool failed = verdict == "FAIL";
-  Section s{"suite", "Regression suite", ""};
-  s.html = "<p>Suite <strong>" + HtmlEscape(j.contains("suite") ? Text(j["suite"]) : "?") +
-           "</strong>: <span class=\"" + (failed ? "fail-text" : "pass-text") + "\">" +
-           HtmlEscape(verdict) + "</span>";
-  if (const json* counts = Find(j, "counts"); counts != nullptr && counts->is_object()) {
-    std::string parts;
-    for (const auto& [key, value] : counts->items())
-      parts += (parts.empty() ? "" : ", ") + HtmlEscape(key) + " " + HtmlEscape(Text(value));
-    s.html += " (" + parts + ")";
-  }
-  if (const json* b = Find(j, "baseline"); b != nullptr && b->is_object()) {
-    s.html += "; baseline <code>" + HtmlEscape(b->contains("file") ? Text((*b)["file"]) : "?") +
-              "</code>";
-    if (b->contains("git_revision")) s.html += ", git " + HtmlEscape(Text((*b)["git_revision"]));
-    if (b->contains("date")) s.html += ", " + HtmlEscape(Text((*b)["date"]));
-  }
-  s.html += "</p>\n";
-
-  auto value = [](const json& row, const char* key) {
-    return row.contains(key) ? row[key] : json(nullptr);
-  };
-  auto numbers = [&](const json& row) {
-    const json delta = value(row, "delta");
-    return "<td class=\"num\">" + HtmlEscape(Text(value(row, "baseline"))) +
-           "</td><td class=\"num\">" + HtmlEscape(Text(value(row, "now"))) +
-           "</td><td class=\"num\">" +
-           HtmlEscape(delta.is_number() ? SignedNumber(delta.get<double>()) : Text(delta)) +
-           "</td>";
-  };
-  std::string regressions, all;
-  int failures = 0;
-  for (const json& row : j["rows"]) {
-    if (!row.is_object()) continue;
-    const std::string v = Text(value(row, "verdict"));
-    const std::string name = HtmlEscape(Text(value(row, "metric")));
-    const std::string tolerance = HtmlEscape(Text(value(row, "tolerance")));
-    if (v == "FAIL") {
-      ++failures;
-      regressions += "<tr class=\"fail\"><td>" + name + "</td>" + numbers(row) + "<td>" +
-                     tolerance + "</td><td>" + HtmlEscape(Text(value(row, "reason"))) +
-                     "</td></tr>\n";
-    }
-    const std::string cls = v == "FAIL"       ? " class=\"fail\""
-                            : v == "improved" ? " class=\"improved\""
-                                              : "";
-    all += "<tr" + cls + "><td>" + name + "</td>" + numbers(row) + Cell(value(row, "seed_sd")) +
-           "<td>" + HtmlEscape(v) + "</td><td>" + tolerance + "</td><td><code>" +
-           HtmlEscape(Text(value(row, "pattern"))) + "</code></td></tr>\n";
-  }
+  Section s{"suite", "Regression suite", SuiteVerdictParagraph(j)};
+  const SuiteRowsHtml rows = SuiteTableRows(j["rows"]);
   s.html += "<h3>Regressions</h3>\n";
-  if (failures == 0) {
+  if (rows.failures == 0) {
     s.html += "<p class=\"pass-text\">None: every gated metric is within its tolerance.</p>\n";
   } else {
     s.html +=
         "<div class=\"scroll\"><table>\n<tr><th>metric</th><th>baseline</th><th>now</th>"
         "<th>delta</th><th>tolerance</th><th>why</th></tr>\n" +
-        regressions + "</table></div>\n";
+        rows.regressions + "</table></div>\n";
   }
   s.html +=
       "<h3>Every metric</h3>\n<div class=\"scroll\"><table>\n<tr><th>metric</th>"
       "<th>baseline</th><th>now</th><th>delta</th><th>seed sd</th><th>verdict</th>"
       "<th>tolerance</th><th>pattern</th></tr>\n" +
-      all + "</table></div>\n";
+      rows.all + "</table></div>\n";
   return s;
 }
 
