@@ -170,6 +170,102 @@ void RunCases(const SweepPlan& plan, const std::vector<std::size_t>& todo, int j
   RunEpisodes(std::move(episodes), jobs, nullptr, callbacks);
 }
 
+// sweep.json at the start: the plan, the command and how many cases the folder holds already.
+nlohmann::json StartRecord(const SweepPlan& plan, const SweepShard& shard,
+                           const std::string& command_line, const FolderState& state,
+                           const std::filesystem::path& out) {
+  nlohmann::json record = SweepJson(plan, shard);
+  record["command"] = command_line;
+  record["git_revision"] = RETRACE_GIT_REVISION;
+  record["build_type"] = RETRACE_BUILD_TYPE;
+  record["cases_done"] = state.results.rows.size();
+  io::WriteJsonAtomic(out / "sweep.json", record);
+  for (const std::string& warning : plan.warnings)
+    std::cerr << "retrace: warning: " << warning << "\n";
+  if (!state.results.dropped.empty()) {
+    std::cerr
+        << "retrace: warning: " << (out / "results.csv").string()
+        << ": dropped a half-written last row (the sweep was interrupted); its case runs again\n";
+  }
+  return record;
+}
+
+// The shard's cases that results.csv does not hold yet, in case order.
+std::vector<std::size_t> CasesToRun(const SweepPlan& plan, const SweepShard& shard,
+                                    const FolderState& state) {
+  std::set<std::size_t> done;
+  for (const SweepRow& row : state.results.rows) done.insert(row.case_id);
+  std::vector<std::size_t> todo;
+  for (std::size_t id = 0; id < plan.spec.case_count(); ++id) {
+    if (shard.Contains(id) && !done.contains(id)) todo.push_back(id);
+  }
+  return todo;
+}
+
+// Runs the cases `todo`, appending each one's rows as soon as it is done, with a countdown.
+void RunAndAppend(const SweepPlan& plan, const std::vector<std::size_t>& todo, int jobs,
+                  const std::filesystem::path& out, const FolderState& state,
+                  std::size_t shard_cases) {
+  const SweepSpec& spec = plan.spec;
+  std::set<std::size_t> timed;
+  for (const SweepRow& row : state.timings.rows) timed.insert(row.case_id);
+  SweepTableAppender results(out / "results.csv", ResultsSchema(spec.parameters, spec.metrics),
+                             state.results.complete_size);
+  SweepTableAppender timings(out / "timings.csv", TimingsSchema(spec.timing_metrics),
+                             state.timings.complete_size);
+  ProgressLine progress;
+  progress.CountdownPhase("sweep " + spec.name, static_cast<int>(shard_cases),
+                          static_cast<int>(shard_cases - todo.size()));
+  try {
+    RunCases(plan, todo, jobs, [&](std::size_t id, const CaseOutput& output) {
+      // results.csv first: a case counts as done once its row is there; its timing row is
+      // informative only.
+      results.Append(output.results);
+      if (!timed.contains(id)) timings.Append(output.timings);
+      progress.UnitDone();
+    });
+  } catch (...) {
+    progress.Clear();
+    throw;
+  }
+  progress.Clear();
+}
+
+// Every case of the shard is done: the tables rewritten sorted by case id; returns the results.
+SweepTable PublishTables(const SweepSpec& spec, const std::filesystem::path& out,
+                         std::size_t shard_cases) {
+  const SweepTableSchema results_schema = ResultsSchema(spec.parameters, spec.metrics);
+  const SweepTableSchema timings_schema = TimingsSchema(spec.timing_metrics);
+  SweepTable final_results =
+      ReadSweepTable(out / "results.csv", results_schema, PartialRow::kReject);
+  RETRACE_CHECK(final_results.rows.size() == shard_cases);
+  WriteSortedSweepTable(out / "results.csv", results_schema, final_results.rows);
+  WriteSortedSweepTable(
+      out / "timings.csv", timings_schema,
+      ReadSweepTable(out / "timings.csv", timings_schema, PartialRow::kDrop).rows);
+  return final_results;
+}
+
+// What the sweep did, and its summary table (or how to join the shards).
+void PrintSweepSummary(const SweepSpec& spec, const SweepShard& shard, std::size_t shard_cases,
+                       std::size_t cases_run, double wall_time, const std::filesystem::path& out,
+                       const SweepTable& final_results) {
+  std::cout << "sweep " << spec.name << " (" << spec.scenario.string()
+            << "): " << spec.combinations.size() << " combinations x " << spec.repeats
+            << " repeats = " << spec.case_count() << " cases\n";
+  if (shard.count > 1) std::cout << "shard " << shard.ToString() << ": ";
+  std::cout << shard_cases << (shard_cases == 1 ? " case" : " cases") << " done (" << cases_run
+            << " now, " << shard_cases - cases_run << " before) in " << FormatDuration(wall_time)
+            << "; results in " << (out / "results.csv").string() << "\n";
+  if (shard.count == 1) {
+    std::cout << SweepSummaryTable(ResultsSchema(spec.parameters, spec.metrics),
+                                   spec.parameters.size(), final_results.rows);
+  } else {
+    std::cout << "join the " << shard.count
+              << " shards with `retrace merge <their folders> --out <folder>`\n";
+  }
+}
+
 }  // namespace
 
 void AddSweepOptions(CLI::App* command, SweepOptions* options) {
@@ -209,59 +305,11 @@ int RunSweepCommand(const SweepOptions& options, const std::string& command_line
   const SweepFolderLock lock(out);
   // Again, now that no other process can write the folder.
   const FolderState state = InspectFolder(out, plan, shard);
-  const SweepTableSchema results_schema = ResultsSchema(spec.parameters, spec.metrics);
-  const SweepTableSchema timings_schema = TimingsSchema(spec.timing_metrics);
+  nlohmann::json record = StartRecord(plan, shard, command_line, state, out);
   const std::size_t shard_cases = shard.CaseCount(spec.case_count());
-  nlohmann::json record = SweepJson(plan, shard);
-  record["command"] = command_line;
-  record["git_revision"] = RETRACE_GIT_REVISION;
-  record["build_type"] = RETRACE_BUILD_TYPE;
-  record["cases_done"] = state.results.rows.size();
-  io::WriteJsonAtomic(out / "sweep.json", record);
-  for (const std::string& warning : plan.warnings)
-    std::cerr << "retrace: warning: " << warning << "\n";
-  if (!state.results.dropped.empty()) {
-    std::cerr
-        << "retrace: warning: " << (out / "results.csv").string()
-        << ": dropped a half-written last row (the sweep was interrupted); its case runs again\n";
-  }
-
-  std::set<std::size_t> done, timed;
-  for (const SweepRow& row : state.results.rows) done.insert(row.case_id);
-  for (const SweepRow& row : state.timings.rows) timed.insert(row.case_id);
-  std::vector<std::size_t> todo;
-  for (std::size_t id = 0; id < spec.case_count(); ++id) {
-    if (shard.Contains(id) && !done.contains(id)) todo.push_back(id);
-  }
-  {
-    SweepTableAppender results(out / "results.csv", results_schema, state.results.complete_size);
-    SweepTableAppender timings(out / "timings.csv", timings_schema, state.timings.complete_size);
-    ProgressLine progress;
-    progress.CountdownPhase("sweep " + spec.name, static_cast<int>(shard_cases),
-                            static_cast<int>(shard_cases - todo.size()));
-    try {
-      RunCases(plan, todo, jobs, [&](std::size_t id, const CaseOutput& output) {
-        // results.csv first: a case counts as done once its row is there; its timing row is
-        // informative only.
-        results.Append(output.results);
-        if (!timed.contains(id)) timings.Append(output.timings);
-        progress.UnitDone();
-      });
-    } catch (...) {
-      progress.Clear();
-      throw;
-    }
-    progress.Clear();
-  }
-
-  // Every case of the shard is done: publish the tables sorted by case id.
-  const SweepTable final_results =
-      ReadSweepTable(out / "results.csv", results_schema, PartialRow::kReject);
-  RETRACE_CHECK(final_results.rows.size() == shard_cases);
-  WriteSortedSweepTable(out / "results.csv", results_schema, final_results.rows);
-  WriteSortedSweepTable(
-      out / "timings.csv", timings_schema,
-      ReadSweepTable(out / "timings.csv", timings_schema, PartialRow::kDrop).rows);
+  const std::vector<std::size_t> todo = CasesToRun(plan, shard, state);
+  RunAndAppend(plan, todo, jobs, out, state, shard_cases);
+  const SweepTable final_results = PublishTables(spec, out, shard_cases);
   const double wall_time = SecondsSince(wall_start);
   record["cases_done"] = shard_cases;
   record["complete"] = true;
@@ -275,20 +323,7 @@ int RunSweepCommand(const SweepOptions& options, const std::string& command_line
     if (!problem.empty())
       std::cerr << "retrace: warning: no sweep.png: " << problem << " (results.csv is complete)\n";
   }
-
-  std::cout << "sweep " << spec.name << " (" << spec.scenario.string()
-            << "): " << spec.combinations.size() << " combinations x " << spec.repeats
-            << " repeats = " << spec.case_count() << " cases\n";
-  if (shard.count > 1) std::cout << "shard " << shard.ToString() << ": ";
-  std::cout << shard_cases << (shard_cases == 1 ? " case" : " cases") << " done (" << todo.size()
-            << " now, " << shard_cases - todo.size() << " before) in " << FormatDuration(wall_time)
-            << "; results in " << (out / "results.csv").string() << "\n";
-  if (shard.count == 1) {
-    std::cout << SweepSummaryTable(results_schema, spec.parameters.size(), final_results.rows);
-  } else {
-    std::cout << "join the " << shard.count
-              << " shards with `retrace merge <their folders> --out <folder>`\n";
-  }
+  PrintSweepSummary(spec, shard, shard_cases, todo.size(), wall_time, out, final_results);
   if (options.report) WriteReportAtEnd(out);
   return 0;
 }
