@@ -176,6 +176,56 @@ std::string VerdictLine(const SuiteSpec& spec, const SuiteReport& report,
          " reported; " + work;
 }
 
+// --set and --only against --update-baseline: a baseline is the whole suite as its file says.
+void RefuseBaselineWithChanges(const BenchOptions& options) {
+  if (options.update_baseline && !options.overrides.empty()) {
+    throw core::ConfigError(
+        "",
+        "--set cannot be combined with --update-baseline: a baseline must be reproducible from "
+        "the suite file, so put the override into the entries' `set`",
+        true);
+  }
+  if (options.update_baseline && !options.only.empty()) {
+    throw core::ConfigError("",
+                            "--only cannot be combined with --update-baseline: a baseline "
+                            "covers the whole suite",
+                            true);
+  }
+}
+
+// Each scenario warning of an entry, once however many seeds give it.
+void WarnOncePerEntry(const SuiteSpec& spec, const SuiteScenarios& scenarios) {
+  for (std::size_t e = 0; e < spec.entries.size(); ++e) {
+    std::set<std::string> seen;
+    for (const Scenario& scenario : scenarios.scenarios[e]) {
+      for (const std::string& warning : scenario.warnings) {
+        if (seen.insert(warning).second)
+          std::cerr << "retrace: warning: " << spec.entries[e].name << ": " << warning << "\n";
+      }
+    }
+  }
+}
+
+// Where the report's numbers come from.
+ReportContext MakeContext(const BenchOptions& options, const SuiteSpec& spec,
+                          const std::filesystem::path& baseline_file, const Baseline* compared,
+                          double wall_time, int jobs) {
+  ReportContext context;
+  context.suite_file = spec.source;
+  context.suite_digest = spec.digest;
+  context.baseline_file = baseline_file;
+  context.baseline = compared;
+  context.git_revision = BuildRevision();
+  context.date = UtcNow();
+  context.wall_time_s = wall_time;
+  context.jobs = jobs;
+  context.overrides = options.overrides;
+  context.only = options.only;
+  context.version = BuildVersion();
+  context.recording = options.update_baseline;
+  return context;
+}
+
 }  // namespace
 
 void AddBenchOptions(CLI::App* command, BenchOptions* options) {
@@ -207,20 +257,7 @@ int RunBenchCommand(const BenchOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   std::vector<io::ConfigOverride> overrides;
   for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
-  if (options.update_baseline && !overrides.empty()) {
-    throw core::ConfigError(
-        "",
-        "--set cannot be combined with --update-baseline: a baseline must be reproducible from "
-        "the suite file, so put the override into the entries' `set`",
-        true);
-  }
-
-  if (options.update_baseline && !options.only.empty()) {
-    throw core::ConfigError("",
-                            "--only cannot be combined with --update-baseline: a baseline "
-                            "covers the whole suite",
-                            true);
-  }
+  RefuseBaselineWithChanges(options);
 
   // Everything that can be wrong with the input is found here, before anything runs.
   RequireOutputFiles(options);
@@ -236,15 +273,7 @@ int RunBenchCommand(const BenchOptions& options) {
   if (baseline && !options.only.empty()) baseline = Restricted(std::move(*baseline), spec);
   const int jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
   const SuiteScenarios scenarios = LoadSuiteScenarios(spec, overrides, jobs);
-  for (std::size_t e = 0; e < spec.entries.size(); ++e) {
-    std::set<std::string> seen;  // the same warning for every seed is said once
-    for (const Scenario& scenario : scenarios.scenarios[e]) {
-      for (const std::string& warning : scenario.warnings) {
-        if (seen.insert(warning).second)
-          std::cerr << "retrace: warning: " << spec.entries[e].name << ": " << warning << "\n";
-      }
-    }
-  }
+  WarnOncePerEntry(spec, scenarios);
 
   ProgressLine progress;
   const SuiteResults results = RunSuite(spec, scenarios, jobs, &progress);
@@ -254,21 +283,8 @@ int RunBenchCommand(const BenchOptions& options) {
 
   const Baseline* compared = baseline ? &*baseline : nullptr;
   const SuiteReport report = CompareWithBaseline(spec, results, compared);
-  ReportContext context;
-  context.suite_file = spec.source;
-  context.suite_digest = spec.digest;
-  context.baseline_file = baseline_file;
-  context.baseline = compared;
-  context.git_revision = BuildRevision();
-  context.date = UtcNow();
-  context.wall_time_s = wall_time;
-  context.jobs = jobs;
-  context.overrides = options.overrides;
-  context.only = options.only;
-  context.version = BuildVersion();
-  context.recording = options.update_baseline;
-  WriteResults(options, spec, results, report, context, out);
-
+  WriteResults(options, spec, results, report,
+               MakeContext(options, spec, baseline_file, compared, wall_time, jobs), out);
   std::cout << ReportTable(report)
             << VerdictLine(spec, report, results, baseline_file, compared, options.update_baseline,
                            out, wall_time, options.only)
