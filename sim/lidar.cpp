@@ -31,14 +31,20 @@ float ToReading(double r, double range_min, double range_max) {
   return f;
 }
 
-// The reading of one beam whose static geometry lies at `wall` and whose nearest pedestrian (or
-// range_max) at `limit` (m), with the dropouts, spurious returns and range noise of `noise`;
-// sets the beam's truth (its pedestrian_id as the pedestrians left it).
-float ReadLidarBeam(double wall, double limit, const LidarNoiseConfig& noise, double range_min,
-                    double range_max, BeamTruth* truth, core::Rng& rng) {
-  const double p_drop = noise.dropout_probability;
-  const double p_event = noise.dropout_probability + noise.short_probability;
-  const bool noisy = noise.sigma0 > 0.0 || noise.sigma1 > 0.0;
+// A short return in [lo, hi) (m): uniform when lambda is 0, else the exponential density
+// lambda exp(-lambda z) truncated to the interval, by inverting its distribution function. One
+// uniform draw either way.
+double DrawShortReturn(double lo, double hi, double lambda, core::Rng& rng) {
+  if (lambda == 0.0) return rng.Uniform(lo, hi);
+  const double u = rng.Uniform();
+  // z = lo - log(1 - u (1 - exp(-lambda (hi - lo)))) / lambda, in the stable log1p/expm1 form.
+  const double z = lo - std::log1p(u * std::expm1(-lambda * (hi - lo))) / lambda;
+  return std::clamp(z, lo, hi);
+}
+
+// The beam's truth from its static geometry at `wall` and its nearest pedestrian (or
+// range_max) at `limit` (m); returns the true range (m, +inf without a return).
+double BeamTruthRange(double wall, double limit, BeamTruth* truth) {
   double t = kNoReturn;
   if (wall <= limit) {
     t = wall;
@@ -51,19 +57,37 @@ float ReadLidarBeam(double wall, double limit, const LidarNoiseConfig& noise, do
     truth->source = BeamSource::kNothing;
   }
   truth->range = t;
+  return t;
+}
 
-  // One uniform draw per beam decides dropout / spurious / regular, whatever the geometry.
+// The reading of one beam whose static geometry lies at `wall` and whose nearest pedestrian (or
+// range_max) at `limit` (m), with the dropouts, spurious returns and range noise of `noise`;
+// sets the beam's truth (its pedestrian_id as the pedestrians left it).
+float ReadLidarBeam(double wall, double limit, const LidarNoiseConfig& noise, double range_min,
+                    double range_max, BeamTruth* truth, core::Rng& rng) {
+  const double p_drop = noise.dropout_probability;
+  const double p_short_end = p_drop + noise.short_probability;
+  const double p_event = p_short_end + noise.random_probability;
+  const bool noisy = noise.sigma0 > 0.0 || noise.sigma1 > 0.0;
+  const double t = BeamTruthRange(wall, limit, truth);
+
+  // One uniform draw per beam decides dropout / short / random / regular, whatever the
+  // geometry (none when every event has probability 0).
   const double u = p_event > 0.0 ? rng.Uniform() : 1.0;
   if (u < p_drop) {
     truth->source = BeamSource::kDropout;
     return std::numeric_limits<float>::infinity();
   }
-  if (u < p_event) {
+  if (u < p_short_end) {
     const double upper = std::min(t, range_max);
     if (upper > range_min) {
       truth->source = BeamSource::kSpurious;
-      return ToReading(rng.Uniform(range_min, upper), range_min, range_max);
+      return ToReading(DrawShortReturn(range_min, upper, noise.short_lambda, rng), range_min,
+                       range_max);
     }
+  } else if (u < p_event) {
+    truth->source = BeamSource::kSpurious;
+    return ToReading(rng.Uniform(range_min, range_max), range_min, range_max);
   }
   if (t == kNoReturn) return std::numeric_limits<float>::infinity();
   double r = t;
@@ -80,9 +104,16 @@ void LidarNoiseConfig::Validate() const {
   core::RequireNonNegative("sigma1", sigma1);
   RequireProbability("dropout_probability", dropout_probability);
   RequireProbability("short_probability", short_probability);
+  core::RequireNonNegative("short_lambda", short_lambda);
+  RequireProbability("random_probability", random_probability);
   if (dropout_probability + short_probability > 1.0) {
     throw core::ConfigError("short_probability",
                             "dropout_probability + short_probability must not exceed 1");
+  }
+  if (dropout_probability + short_probability + random_probability > 1.0) {
+    throw core::ConfigError(
+        "random_probability",
+        "dropout_probability + short_probability + random_probability must not exceed 1");
   }
 }
 

@@ -16,16 +16,25 @@
 
 namespace retrace::sim {
 
-/// Range noise and spurious readings. Defaults are those of a Hokuyo UTM-30LX: the datasheet's
-/// accuracy is +-30 mm up to 10 m and +-50 mm up to 30 m, which sigma = 0.01 m + 0.001 * range
-/// stays inside.
+/// Range noise and spurious readings: per beam, the four-part mixture of Probabilistic Robotics
+/// §6.3 (docs/METHOD.md, "The simulated LiDAR's mixture"). One uniform draw per beam picks a
+/// dropout (dropout_probability), a short return (short_probability), a random return
+/// (random_probability) or else the noisy true range. Defaults are those of a Hokuyo UTM-30LX:
+/// the datasheet's accuracy is +-30 mm up to 10 m and +-50 mm up to 30 m, which sigma = 0.01 m +
+/// 0.001 * range stays inside. With short_lambda and random_probability at 0 (their defaults)
+/// no random number is drawn for them: scans are bit-identical to the three-part model's.
 struct LidarNoiseConfig {
   double sigma0 = 0.01;               ///< m, standard deviation at range 0
   double sigma1 = 0.001;              ///< m per m of range: sigma = sigma0 + sigma1 * range
-  double dropout_probability = 0.01;  ///< per beam: the beam reads +inf (no return)
-  /// Per beam: a spurious return (ground, clutter) uniform in [range_min, true range), or in
-  /// [range_min, range_max) if nothing is in range.
+  double dropout_probability = 0.01;  ///< per beam: the beam reads +inf (no return; z_max)
+  /// Per beam: a spurious return (ground, clutter) in [range_min, true range), or in
+  /// [range_min, range_max) if nothing is in range, with the density of short_lambda.
   double short_probability = 0.002;
+  /// 1/m: a short return's density is proportional to exp(-short_lambda * z) on its interval
+  /// (a truncated exponential); 0 is uniform, the limit of small short_lambda.
+  double short_lambda = 0.0;
+  /// Per beam: a random return, uniform in [range_min, range_max), whatever the geometry.
+  double random_probability = 0.0;
 
   template <class V>
   void Reflect(V& v) {
@@ -33,8 +42,11 @@ struct LidarNoiseConfig {
     v("sigma1", sigma1);
     v("dropout_probability", dropout_probability);
     v("short_probability", short_probability);
+    v("short_lambda", short_lambda);
+    v("random_probability", random_probability);
   }
-  /// Throws core::ConfigError naming the key (e.g. "sigma0").
+  /// Throws core::ConfigError naming the key (e.g. "sigma0"); the three probabilities must not
+  /// sum to more than 1 ("random_probability" named then).
   void Validate() const;
 };
 
@@ -68,7 +80,7 @@ enum class BeamSource : std::uint8_t {
   kNothing,     ///< no surface within range_max: reads +inf
   kStatic,      ///< static geometry (a noisy range, or +-inf when out of the valid interval)
   kPedestrian,  ///< a pedestrian (likewise)
-  kSpurious,    ///< a spurious short return
+  kSpurious,    ///< a spurious return: short or random
   kDropout,     ///< the return was lost: reads +inf
 };
 
