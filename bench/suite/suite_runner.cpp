@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scheduler.hpp"
@@ -83,19 +85,30 @@ SuiteScenarios LoadSuiteScenarios(const SuiteSpec& spec,
   return out;
 }
 
-SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, int jobs,
-                      ProgressSink* progress) {
-  // A job is one (entry, seed): one teaching drive, then `repeats` runs per mode.
-  struct Unit {
-    std::size_t entry;
-    std::size_t seed;
-  };
-  std::vector<Unit> units;
+namespace {
+
+// One job of the suite: an (entry, seed), one teaching drive, then `repeats` runs per mode.
+struct SuiteUnit {
+  std::size_t entry;
+  std::size_t seed;
+};
+
+// What a unit's mode keeps: its runs until the last one is done, then only its flat aggregate,
+// so that memory holds the traces of the modes still running.
+struct SuiteSlot {
+  std::vector<RunTrace> runs;
+  std::vector<RunMetrics> run_metrics;
+  std::map<std::string, double> aggregate;
+};
+
+// The suite's jobs, one per (entry, seed), and their units.
+std::vector<EpisodeJob> SuiteEpisodes(const SuiteSpec& spec, const SuiteScenarios& scenarios,
+                                      std::vector<SuiteUnit>* units) {
   std::vector<EpisodeJob> episodes;
   for (std::size_t e = 0; e < spec.entries.size(); ++e) {
     for (std::size_t s = 0; s < spec.entries[e].seeds.size(); ++s) {
       const Scenario& scenario = scenarios.scenarios[e][s];
-      units.push_back({e, s});
+      units->push_back({e, s});
       EpisodeJob job;
       job.scenario = &scenario;
       job.modes = scenario.config.modes;
@@ -103,46 +116,13 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
       episodes.push_back(std::move(job));
     }
   }
+  return episodes;
+}
 
-  // Each (unit, mode) keeps its runs until the last one is done, then only its flat aggregate:
-  // memory holds the traces of the modes still running.
-  struct Slot {
-    std::vector<RunTrace> runs;
-    std::vector<RunMetrics> run_metrics;
-    std::map<std::string, double> aggregate;
-  };
-  std::vector<std::vector<Slot>> slots(units.size());
-  int playback_runs = 0;
-  for (std::size_t u = 0; u < units.size(); ++u) {
-    const auto repeats = static_cast<std::size_t>(episodes[u].repeats);
-    slots[u].resize(episodes[u].modes.size());
-    for (Slot& slot : slots[u]) {
-      slot.runs.resize(repeats);
-      slot.run_metrics.resize(repeats);
-      playback_runs += static_cast<int>(repeats);
-    }
-  }
-  EpisodeCallbacks callbacks;
-  callbacks.run_done = [&](std::size_t u, std::size_t m, const ModeTeach& teach, RunTrace&& run) {
-    Slot& slot = slots[u][m];
-    const auto i = static_cast<std::size_t>(run.run);
-    slot.run_metrics[i] = ComputeRunMetrics(
-        teach.trace, run, scenarios.scenarios[units[u].entry][units[u].seed].config.metrics);
-    slot.runs[i] = std::move(run);
-  };
-  callbacks.mode_done = [&](std::size_t u, std::size_t m, ModeTeach&& teach) {
-    Slot& slot = slots[u][m];
-    slot.aggregate = FlatMetrics(AggregateMode(scenarios.scenarios[units[u].entry][units[u].seed],
-                                               teach, slot.runs, slot.run_metrics));
-    slot.runs = {};
-    slot.run_metrics = {};
-  };
-  RunEpisodes(std::move(episodes), jobs, progress, callbacks);
-
-  // Per entry and mode, the seeds' values and their mean.
+// Per entry and mode, the seeds' values and their mean.
+SuiteResults CollectSuiteResults(const SuiteSpec& spec, const std::vector<SuiteUnit>& units,
+                                 const std::vector<std::vector<SuiteSlot>>& slots) {
   SuiteResults results;
-  results.teaching_drives = static_cast<int>(units.size());
-  results.playback_runs = playback_runs;
   for (std::size_t u = 0; u < units.size(); ++u) {
     const SuiteEntry& entry = spec.entries[units[u].entry];
     for (std::size_t m = 0; m < entry.modes.size(); ++m) {
@@ -156,6 +136,47 @@ SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, in
     }
   }
   for (auto& [name, metric] : results.metrics) metric.mean = MeanOfDefined(metric.per_seed);
+  return results;
+}
+
+}  // namespace
+
+SuiteResults RunSuite(const SuiteSpec& spec, const SuiteScenarios& scenarios, int jobs,
+                      ProgressSink* progress) {
+  std::vector<SuiteUnit> units;
+  std::vector<EpisodeJob> episodes = SuiteEpisodes(spec, scenarios, &units);
+  std::vector<std::vector<SuiteSlot>> slots(units.size());
+  int playback_runs = 0;
+  for (std::size_t u = 0; u < units.size(); ++u) {
+    const auto repeats = static_cast<std::size_t>(episodes[u].repeats);
+    slots[u].resize(episodes[u].modes.size());
+    for (SuiteSlot& slot : slots[u]) {
+      slot.runs.resize(repeats);
+      slot.run_metrics.resize(repeats);
+      playback_runs += static_cast<int>(repeats);
+    }
+  }
+  const auto scenario_of = [&](std::size_t u) -> const Scenario& {
+    return scenarios.scenarios[units[u].entry][units[u].seed];
+  };
+  EpisodeCallbacks callbacks;
+  callbacks.run_done = [&](std::size_t u, std::size_t m, const ModeTeach& teach, RunTrace&& run) {
+    SuiteSlot& slot = slots[u][m];
+    const auto i = static_cast<std::size_t>(run.run);
+    slot.run_metrics[i] = ComputeRunMetrics(teach.trace, run, scenario_of(u).config.metrics);
+    slot.runs[i] = std::move(run);
+  };
+  callbacks.mode_done = [&](std::size_t u, std::size_t m, ModeTeach&& teach) {
+    SuiteSlot& slot = slots[u][m];
+    slot.aggregate = FlatMetrics(AggregateMode(scenario_of(u), teach, slot.runs, slot.run_metrics));
+    slot.runs = {};
+    slot.run_metrics = {};
+  };
+  RunEpisodes(std::move(episodes), jobs, progress, callbacks);
+
+  SuiteResults results = CollectSuiteResults(spec, units, slots);
+  results.teaching_drives = static_cast<int>(units.size());
+  results.playback_runs = playback_runs;
   return results;
 }
 
