@@ -261,7 +261,7 @@ int RunReportingErrors(const Commands& c, const std::string& command_line) {
 int main(int argc, char** argv) {
   CLI::App app{"retrace: teaching-playback navigation without a consistent map, simulated"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "retrace " + BuildVersion());
+  app.set_version_flag("--version", "retrace " + retrace::bench::BuildVersion());
   Commands commands;
   AddCommands(app, commands);
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
