@@ -12,9 +12,13 @@ cd "$(dirname "$0")/.."
 jobs=$(nproc)
 start=$SECONDS
 stage_start=$SECONDS
+stage_names=()
+stage_seconds=()
 stage() {  # stage <title>: closes the previous stage's timing, opens the next
   if [ -n "${stage_name:-}" ]; then
     echo "== ${stage_name}: $((SECONDS - stage_start)) s"
+    stage_names+=("$stage_name")
+    stage_seconds+=("$((SECONDS - stage_start))")
   fi
   stage_name="$1"
   stage_start=$SECONDS
@@ -54,4 +58,9 @@ stage "Fuzzing: every parser's fuzz target for ${RETRACE_FUZZ_SECONDS:-10} s"
 scripts/fuzz.sh build-asan "${RETRACE_FUZZ_SECONDS:-10}"
 
 stage ""
-echo "== all stages: $((SECONDS - start)) s"
+# The stage table, as docs/BENCHMARKS.md "CI stages" keeps its history.
+echo
+echo "| stage | s |"
+echo "|---|---|"
+for i in "${!stage_names[@]}"; do echo "| ${stage_names[$i]} | ${stage_seconds[$i]} |"; done
+echo "| **total** | **$((SECONDS - start))** |"
