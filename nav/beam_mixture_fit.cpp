@@ -21,6 +21,7 @@ struct Responsibilities {
 double NormalCdf(double x) { return 0.5 * std::erfc(-x / kSqrt2); }
 
 double HitDensity(double sigma, double z, double z_star, double range_min, double range_max) {
+  // z_star here is the hit part's mean, z* + b.
   const double norm =
       NormalCdf((range_max - z_star) / sigma) - NormalCdf((range_min - z_star) / sigma);
   const double u = (z - z_star) / sigma;
@@ -96,7 +97,7 @@ Responsibilities EStep(const BeamMixture& m, const BeamSample& s, double range_m
     *log_likelihood += std::log(std::max(m.z_max, 1e-300));
     return e;
   }
-  e.hit = m.z_hit * HitDensity(m.sigma_hit, s.z, s.z_star, range_min, range_max);
+  e.hit = m.z_hit * HitDensity(m.sigma_hit, s.z, s.z_star + m.hit_offset, range_min, range_max);
   e.short_part = m.z_short * ShortDensity(m.lambda_short, s.z, s.z_star, range_min);
   e.rand = m.z_rand / (range_max - range_min);
   const double total = e.hit + e.short_part + e.rand;
@@ -113,6 +114,7 @@ double Change(const BeamMixture& a, const BeamMixture& b) {
   double c = std::max({std::abs(a.z_hit - b.z_hit), std::abs(a.z_short - b.z_short),
                        std::abs(a.z_max - b.z_max), std::abs(a.z_rand - b.z_rand)});
   c = std::max(c, std::abs(a.sigma_hit - b.sigma_hit) / b.sigma_hit);
+  c = std::max(c, std::abs(a.hit_offset - b.hit_offset) / b.sigma_hit);
   return std::max(c, std::abs(a.lambda_short - b.lambda_short) / std::max(b.lambda_short, 0.01));
 }
 
@@ -120,7 +122,7 @@ double Change(const BeamMixture& a, const BeamMixture& b) {
 BeamMixture Iterate(const BeamMixture& m, std::span<const BeamSample> samples, double range_min,
                     double range_max, std::vector<double>* e_short, double* log_likelihood) {
   Responsibilities sum;
-  double hit_sq = 0.0;
+  double hit_d = 0.0, hit_sq = 0.0;  // Σ e_hit d, Σ e_hit d², d = z − z* − b
   *log_likelihood = 0.0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const Responsibilities e = EStep(m, samples[i], range_min, range_max, log_likelihood);
@@ -128,8 +130,11 @@ BeamMixture Iterate(const BeamMixture& m, std::span<const BeamSample> samples, d
     sum.short_part += e.short_part;
     sum.max += e.max;
     sum.rand += e.rand;
-    const double d = samples[i].z - samples[i].z_star;
-    if (e.hit > 0.0) hit_sq += e.hit * d * d;
+    const double d = samples[i].z - samples[i].z_star - m.hit_offset;
+    if (e.hit > 0.0) {
+      hit_d += e.hit * d;
+      hit_sq += e.hit * d * d;
+    }
     (*e_short)[i] = e.short_part;
   }
   const double n = static_cast<double>(samples.size());
@@ -138,7 +143,13 @@ BeamMixture Iterate(const BeamMixture& m, std::span<const BeamSample> samples, d
   next.z_short = sum.short_part / n;
   next.z_max = sum.max / n;
   next.z_rand = sum.rand / n;
-  if (sum.hit > 0.0) next.sigma_hit = std::max(std::sqrt(hit_sq / sum.hit), kMinSigma);
+  if (sum.hit > 0.0) {
+    // Centred on the new mean: Σ e (d − δ)² = Σ e d² − δ Σ e d with δ = Σ e d / Σ e.
+    const double shift = hit_d / sum.hit;
+    next.hit_offset = m.hit_offset + shift;
+    const double variance = std::max(hit_sq / sum.hit - shift * shift, 0.0);
+    next.sigma_hit = std::max(std::sqrt(variance), kMinSigma);
+  }
   if (sum.short_part > 0.0)
     next.lambda_short = SolveLambda(samples, *e_short, range_min, m.lambda_short);
   return next;
@@ -176,7 +187,7 @@ BeamFitResult FitBeamMixture(std::span<const BeamSample> samples, double range_m
 double BeamMixtureDensity(const BeamMixture& m, double z, double z_star, double range_min,
                           double range_max) {
   if (!(z >= range_min && z < range_max)) return 0.0;
-  return m.z_hit * HitDensity(m.sigma_hit, z, z_star, range_min, range_max) +
+  return m.z_hit * HitDensity(m.sigma_hit, z, z_star + m.hit_offset, range_min, range_max) +
          m.z_short * ShortDensity(m.lambda_short, z, z_star, range_min) +
          m.z_rand / (range_max - range_min);
 }

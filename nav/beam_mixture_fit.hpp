@@ -6,18 +6,18 @@
 // The mixture is the one the simulated LiDAR draws (docs/METHOD.md), on the sensor's valid
 // interval [range_min, range_max]:
 //
-//   p_hit   = N(z; z*, σ²) / (Φ((range_max − z*)/σ) − Φ((range_min − z*)/σ))
+//   p_hit   = N(z; z* + b, σ²) / (Φ((range_max − z* − b)/σ) − Φ((range_min − z* − b)/σ))
 //   p_short = λ exp(−λ (z − range_min)) / (1 − exp(−λ (z* − range_min)))   range_min ≤ z ≤ z*
 //             (1 / (z* − range_min) at λ = 0)
 //   p_max   = a no-return reading (z ≥ range_max or +inf): a point mass
 //   p_rand  = 1 / (range_max − range_min)
 //
 // E-step: the responsibilities e_hit, e_short, e_max, e_rand of every beam (a no-return beam is
-// all max; a finite one is never max). M-step: each weight is its mean responsibility; σ² =
-// Σ e_hit (z − z*)² / Σ e_hit; λ the maximum of Σ e_short log p_short, which solves
-// Σ e_short · mean_λ(z* − range_min) = Σ e_short (z − range_min) with mean_λ(L) = 1/λ −
-// L / (exp(λ L) − 1) the mean of the exponential truncated at L (Table 6.2's λ = Σ e_short /
-// Σ e_short z is its limit for L → ∞); λ is kept >= 0 (0: short returns uniform).
+// all max; a finite one is never max). M-step: each weight is its mean responsibility; b =
+// Σ e_hit (z − z*) / Σ e_hit and σ² = Σ e_hit (z − z* − b)² / Σ e_hit; λ the maximum of Σ e_short
+// log p_short, which solves Σ e_short · mean_λ(z* − range_min) = Σ e_short (z − range_min) with
+// mean_λ(L) = 1/λ − L / (exp(λ L) − 1) the mean of the exponential truncated at L (Table 6.2's λ =
+// Σ e_short / Σ e_short z is its limit for L → ∞); λ is kept >= 0 (0: short returns uniform).
 
 #include <cstddef>
 #include <span>
@@ -39,23 +39,24 @@ struct BeamMixture {
   double z_rand = 0.1;
   double sigma_hit = 0.1;     ///< m
   double lambda_short = 0.1;  ///< 1/m
+  double hit_offset = 0.0;    ///< m, b: the hit part's mean is z* + b
 };
 
 struct BeamFitOptions {
   int max_iterations = 1000;
-  /// Converged when no weight moves by more than this, nor σ and λ by more than this relative
-  /// to their value (λ: to max(λ, 0.01 1/m)), in one iteration.
+  /// Converged when no weight moves by more than this, nor σ, λ and b by more than this relative
+  /// to their value (λ: to max(λ, 0.01 1/m); b: to σ), in one iteration.
   double tolerance = 1e-6;
   BeamMixture initial;  ///< where EM starts
 };
 
 struct BeamFitResult {
-  BeamMixture mixture;         ///< after the last iteration
-  int iterations = 0;          ///< EM iterations run
-  bool converged = false;      ///< false: stopped at max_iterations
-  double last_change = 0.0;    ///< the largest (relative) parameter change of the last iteration
-  double log_likelihood = 0.0; ///< Σ log p (densities 1/m, the max part as a probability)
-  std::size_t beams = 0;       ///< samples used
+  BeamMixture mixture;           ///< after the last iteration
+  int iterations = 0;            ///< EM iterations run
+  bool converged = false;        ///< false: stopped at max_iterations
+  double last_change = 0.0;      ///< the largest (relative) parameter change of the last iteration
+  double log_likelihood = 0.0;   ///< Σ log p (densities 1/m, the max part as a probability)
+  std::size_t beams = 0;         ///< samples used
   std::size_t max_readings = 0;  ///< of them, no returns
 };
 
@@ -64,7 +65,7 @@ BeamFitResult FitBeamMixture(std::span<const BeamSample> samples, double range_m
                              double range_max, const BeamFitOptions& options = {});
 
 /// The continuous part of the mixture at a finite reading z (1/m): z_hit p_hit + z_short p_short
-/// + z_rand p_rand (0 outside [range_min, range_max)).
+/// + z_rand p_rand, p_hit centred on z* + hit_offset (0 outside [range_min, range_max)).
 double BeamMixtureDensity(const BeamMixture& m, double z, double z_star, double range_min,
                           double range_max);
 

@@ -25,17 +25,6 @@ namespace retrace::bench {
 
 namespace {
 
-// The mode of a teach folder `<mode>/teach` from its parent's name (partial when it is not one).
-MapMode ModeOfTeachFolder(const std::filesystem::path& dir) {
-  std::filesystem::path normal = dir.lexically_normal();
-  if (normal.filename().empty()) normal = normal.parent_path();
-  const std::string parent = normal.parent_path().filename().string();
-  for (const auto& [mode, name] : core::EnumTraits<MapMode>::kNames) {
-    if (parent == name) return mode;
-  }
-  return MapMode::kPartial;
-}
-
 // "x,y,yaw_deg" → a pose in map 0.
 core::Pose2 ParseInitialPose(const std::string& text) {
   double x = 0.0, y = 0.0, yaw_deg = 0.0;
@@ -191,7 +180,8 @@ int RunLogLocalizeCommand(const LogLocalizeOptions& options, const std::string& 
   LogReplayOptions replay;
   if (!options.initial_pose.empty()) replay.initial = ParseInitialPose(options.initial_pose);
   replay.every_odometry_tick = options.every_odometry_tick;
-  const ModeTeach teach = ReadTeachFolder(options.teach_dir, ModeOfTeachFolder(options.teach_dir));
+  const ModeTeach teach = ReadTeachFolder(
+      options.teach_dir, TeachFolderMode(options.teach_dir).value_or(MapMode::kPartial));
   const logs::LogIndex index = logs::IndexLog(options.run.log, options.run.streams);
   const LogStreams streams =
       PrepareLogStreams(index, config, options.run.synthetic_odometry, options.run.reference);

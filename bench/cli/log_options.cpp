@@ -1,7 +1,10 @@
 #include "bench/cli/log_options.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+
+#include "core/errors.hpp"
 
 namespace retrace::bench {
 
@@ -16,6 +19,27 @@ void AddLogArgument(CLI::App* cmd, std::filesystem::path* log) {
                   "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
                   "rosbag2 folder")
       ->required();
+}
+
+void AddWindowOptions(CLI::App* cmd, LogWindow* window) {
+  cmd->add_option("--from", window->from_s,
+                  "Start of the part to use: s since the log's first message (default 0)");
+  cmd->add_option("--to", window->to_s,
+                  "End of the part to use: s since the log's first message (default: the end)");
+}
+
+void RequireWindow(const LogWindow& window) {
+  if (!(window.from_s >= 0.0) || !std::isfinite(window.from_s))
+    throw core::ConfigError("--from",
+                            "must be a time >= 0 s, got " + core::FormatNumber(window.from_s));
+  if (!(window.to_s > window.from_s))
+    throw core::ConfigError(
+        "--to", "must be later than --from (" + core::FormatNumber(window.from_s) + " s)");
+}
+
+void AddReferenceOption(CLI::App* cmd, std::optional<std::filesystem::path>* reference) {
+  cmd->add_option("--reference", *reference,
+                  "TUM file with a reference trajectory on the log's clock");
 }
 
 void AddStreamOptions(CLI::App* cmd, logs::StreamChoice* choice) {

@@ -123,15 +123,11 @@ void PrintTeachSummary(const logs::LogIndex& index, const LogStreams& streams,
 void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options) {
   AddLogArgument(cmd, &options->log);
   cmd->add_option("--out,-o", options->out, "Results folder to write")->required();
-  cmd->add_option("--from", options->window.from_s,
-                  "Start of the part to use: s since the log's first message (default 0)");
-  cmd->add_option("--to", options->window.to_s,
-                  "End of the part to use: s since the log's first message (default: the end)");
+  AddWindowOptions(cmd, &options->window);
   cmd->add_flag("--synthetic-odometry", options->synthetic_odometry,
                 "Draw drifting odometry from the reference (or from the log's odometry, which "
                 "then becomes the reference) with the simulator's model: sim.odometry, seed");
-  cmd->add_option("--reference", options->reference,
-                  "TUM file with a reference trajectory on the log's clock");
+  AddReferenceOption(cmd, &options->reference);
   cmd->add_option("--config", options->config,
                   "Settings file (YAML): seed, modes, route, sim.odometry, nav, playback, metrics");
   cmd->add_option("--set", options->overrides, "Override a setting: a.b.c=value (repeatable)");
@@ -153,12 +149,7 @@ void AddLogTeachOptions(CLI::App* cmd, LogTeachOptions* options) {
 }
 
 LogConfig LoadLogRunConfig(const LogRunOptions& options, const std::vector<std::string>& extra) {
-  if (!(options.window.from_s >= 0.0) || !std::isfinite(options.window.from_s))
-    throw core::ConfigError(
-        "--from", "must be a time >= 0 s, got " + core::FormatNumber(options.window.from_s));
-  if (!(options.window.to_s > options.window.from_s))
-    throw core::ConfigError(
-        "--to", "must be later than --from (" + core::FormatNumber(options.window.from_s) + " s)");
+  RequireWindow(options.window);
   std::vector<io::ConfigOverride> overrides;
   for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
   if (options.seed) overrides.push_back(io::ParseOverride("seed=" + std::to_string(*options.seed)));

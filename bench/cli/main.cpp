@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bench/cli/bench_command.hpp"
+#include "bench/cli/calibrate_lidar_command.hpp"
 #include "bench/cli/campus_command.hpp"
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/compare_command.hpp"
@@ -78,6 +79,8 @@ struct Commands {
   CLI::App* log_simulate_cmd = nullptr;
   bench::LogCompareOptions log_compare;
   CLI::App* log_compare_cmd = nullptr;
+  bench::CalibrateLidarOptions calibrate_lidar;
+  CLI::App* calibrate_lidar_cmd = nullptr;
   bench::CrowdCheckOptions crowd_check;
   CLI::App* crowd_check_cmd = nullptr;
 };
@@ -159,7 +162,8 @@ void AddStudyCommands(CLI::App& app, Commands& c) {
   bench::AddMergeOptions(c.merge_cmd, &c.merge);
 }
 
-// `log-info`, `log-teach`, `log-localize`, `log-simulate` and `log-compare`: recorded logs.
+// `log-info`, `log-teach`, `log-localize`, `log-simulate`, `log-compare` and `calibrate-lidar`:
+// recorded logs.
 void AddLogCommands(CLI::App& app, Commands& c) {
   c.log_info_cmd = app.add_subcommand(
       "log-info",
@@ -180,6 +184,11 @@ void AddLogCommands(CLI::App& app, Commands& c) {
   c.log_compare_cmd = app.add_subcommand(
       "log-compare", "Put log-localize results side by side: one table, one figure of errors");
   bench::AddLogCompareOptions(c.log_compare_cmd, &c.log_compare);
+  c.calibrate_lidar_cmd = app.add_subcommand(
+      "calibrate-lidar",
+      "Fit the beam model's noise (hit, short, max, random) to a log's scans against its "
+      "consistent map: a sim.lidar.noise block");
+  bench::AddCalibrateLidarOptions(c.calibrate_lidar_cmd, &c.calibrate_lidar);
 }
 
 // Every subcommand, in the order --help lists them.
@@ -230,6 +239,8 @@ int RunNamedCommand(const Commands& c, const std::string& command_line) {
   if (*c.log_localize_cmd) return bench::RunLogLocalizeCommand(c.log_localize, command_line);
   if (*c.log_simulate_cmd) return bench::RunLogSimulateCommand(c.log_simulate);
   if (*c.log_compare_cmd) return bench::RunLogCompareCommand(c.log_compare);
+  if (*c.calibrate_lidar_cmd)
+    return bench::RunCalibrateLidarCommand(c.calibrate_lidar, command_line);
   if (*c.report_cmd) return bench::RunReportCommand(c.report);
   if (*c.crowd_check_cmd) return bench::RunCrowdCheckCommand(c.crowd_check);
   if (*c.render_cmd) {

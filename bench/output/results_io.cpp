@@ -103,6 +103,16 @@ void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach) 
   }
 }
 
+std::optional<MapMode> TeachFolderMode(const std::filesystem::path& dir) {
+  std::filesystem::path normal = dir.lexically_normal();
+  if (normal.filename().empty()) normal = normal.parent_path();
+  const std::string parent = normal.parent_path().filename().string();
+  for (const auto& [mode, name] : core::EnumTraits<MapMode>::kNames) {
+    if (parent == name) return mode;
+  }
+  return std::nullopt;
+}
+
 ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
   if (!std::filesystem::is_directory(dir)) {
     throw core::IoError(dir.string() +

@@ -24,6 +24,7 @@
 // TUM lines are `t x y z qx qy qz qw` (z = 0, rotation about z), readable by evo.
 
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "bench/engine/snapshot.hpp"
@@ -39,6 +40,10 @@ void WriteSnapshot(const std::filesystem::path& path, const LocalizationSnapshot
 
 /// Writes the teach bundle and the references of one mode into `dir`.
 void WriteTeachFolder(const std::filesystem::path& dir, const ModeTeach& teach);
+
+/// The mode of a teach folder `<mode>/teach` (as run, teach and log-teach write them) from its
+/// parent folder's name; none when that is not a mode's name.
+std::optional<MapMode> TeachFolderMode(const std::filesystem::path& dir);
 
 /// Reads a folder written by WriteTeachFolder (`retrace playback --teach DIR`). Throws
 /// core::IoError naming the folder and the missing or malformed file.

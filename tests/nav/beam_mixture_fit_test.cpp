@@ -1,6 +1,6 @@
 // The beam model's EM (Probabilistic Robotics Table 6.2) on synthetic beams drawn from a known
-// mixture: it recovers the weights, σ and λ within their sampling error, for a fixed list of
-// seeds; and it reports when it stops at its iteration cap.
+// mixture: it recovers the weights, σ, λ and the hit offset within their sampling error, for a
+// fixed list of seeds; and it reports when it stops at its iteration cap.
 
 #include "nav/beam_mixture_fit.hpp"
 
@@ -26,6 +26,7 @@ BeamMixture TrueMixture() {
   m.z_rand = 0.05;
   m.sigma_hit = 0.04;
   m.lambda_short = 0.4;
+  m.hit_offset = 0.06;
   return m;
 }
 
@@ -44,12 +45,11 @@ std::vector<BeamSample> Draw(const BeamMixture& m, int n, core::Rng rng) {
       const double v = rng.Uniform();
       s.z = m.lambda_short == 0.0
                 ? kRangeMin + v * length
-                : kRangeMin - std::log1p(v * std::expm1(-m.lambda_short * length)) /
-                                  m.lambda_short;
+                : kRangeMin - std::log1p(v * std::expm1(-m.lambda_short * length)) / m.lambda_short;
     } else if (u < m.z_max + m.z_short + m.z_rand) {
       s.z = rng.Uniform(kRangeMin, kRangeMax);
     } else {
-      s.z = s.z_star + m.sigma_hit * rng.Normal();
+      s.z = s.z_star + m.hit_offset + m.sigma_hit * rng.Normal();
     }
     out.push_back(s);
   }
@@ -70,6 +70,7 @@ TEST(BeamMixtureFit, RecoversTheParametersOfAKnownMixture) {
     EXPECT_NEAR(m.z_rand, truth.z_rand, 0.008) << seed;
     EXPECT_NEAR(m.sigma_hit / truth.sigma_hit, 1.0, 0.03) << seed;
     EXPECT_NEAR(m.lambda_short / truth.lambda_short, 1.0, 0.12) << seed;
+    EXPECT_NEAR(m.hit_offset, truth.hit_offset, 0.002) << seed;
     EXPECT_NEAR(m.z_hit + m.z_short + m.z_max + m.z_rand, 1.0, 1e-9);
     EXPECT_EQ(fit.beams, samples.size());
   }

@@ -1,0 +1,169 @@
+#include "bench/cli/calibrate_lidar_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "bench/cli/cli_checks.hpp"
+#include "bench/cli/log_options.hpp"
+#include "bench/output/results_io.hpp"
+#include "bench/replay/lidar_calibration.hpp"
+#include "bench/replay/lidar_calibration_figure.hpp"
+#include "bench/replay/log_streams.hpp"
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "viz/render_error.hpp"
+
+namespace retrace::bench {
+
+namespace {
+
+std::string PartRow(const std::string& name, const LidarFit& fit) {
+  const nav::BeamMixture& m = fit.result.mixture;
+  char line[256];
+  std::snprintf(
+      line, sizeof line, "%-12s %8.1f %8.1f %8zu %7.4f %7.4f %7.4f %7.4f %9.4f %9.3f %7.4f %5d",
+      name.c_str(), fit.from_stamp, fit.to_stamp, fit.result.beams, m.z_hit, m.z_short, m.z_max,
+      m.z_rand, m.sigma_hit, m.lambda_short, m.hit_offset, fit.result.iterations);
+  return line;
+}
+
+// How far apart the halves' fits are: weights in points, σ and λ relative to the whole's.
+std::string HalvesSpread(const LidarCalibration& c) {
+  const nav::BeamMixture& a = c.first_half.result.mixture;
+  const nav::BeamMixture& b = c.second_half.result.mixture;
+  const nav::BeamMixture& w = c.whole.result.mixture;
+  const auto points = [](double x, double y) { return FixedText(100.0 * std::abs(x - y), 2); };
+  const auto percent = [](double x, double y, double whole) {
+    return whole > 0.0 ? FixedText(100.0 * std::abs(x - y) / whole, 1) + " %" : "-";
+  };
+  return "halves differ by: z_hit " + points(a.z_hit, b.z_hit) + ", z_short " +
+         points(a.z_short, b.z_short) + ", z_max " + points(a.z_max, b.z_max) + ", z_rand " +
+         points(a.z_rand, b.z_rand) + " points; sigma_hit " +
+         percent(a.sigma_hit, b.sigma_hit, w.sigma_hit) + ", lambda_short " +
+         (a.lambda_short == b.lambda_short
+              ? std::string("0 %")
+              : percent(a.lambda_short, b.lambda_short, w.lambda_short)) +
+         " of the whole's; hit offset " +
+         FixedText(100.0 * std::abs(a.hit_offset - b.hit_offset), 1) + " cm";
+}
+
+// The fit report: what was used, then one row per part and the halves' spread.
+std::vector<std::string> FitReport(const LidarCalibration& c, const std::string& log_name,
+                                   const std::filesystem::path& teach_dir) {
+  const CalibrationBeams& b = c.beams;
+  std::vector<std::string> lines = {
+      log_name + ": " + std::to_string(b.scans) + " scans (stamps " + FixedText(b.first_stamp, 1) +
+          " to " + FixedText(b.last_stamp, 1) + " s), " + std::to_string(b.beams) + " beams",
+      "map: " + teach_dir.string() + "; expected range known for " +
+          std::to_string(b.samples.size() + b.invalid) + " beams (" + std::to_string(b.unknown) +
+          " unknown, " + std::to_string(b.invalid) + " of the known below range_min and left out)",
+      "LiDAR range " + FixedText(b.range_min, 2) + " to " + FixedText(b.range_max, 2) +
+          " m; EM of Probabilistic Robotics Table 6.2",
+      "part         from (s)   to (s)    beams   z_hit z_short   z_max  z_rand sigma_hit "
+      "lambda_sh  offset  iter",
+      PartRow("whole", c.whole),
+      PartRow("first half", c.first_half),
+      PartRow("second half", c.second_half),
+      HalvesSpread(c),
+      "(sigma_hit and the hit offset in m, lambda_short in 1/m; times are the scans' stamps)",
+      "hit offset: the readings' Gaussian is centred " +
+          FixedText(c.whole.result.mixture.hit_offset, 3) +
+          " m beyond the cast range z*, a property of the grid map (the cast stops at the face "
+          "of the first occupied cell), not of the sensor: not part of sim.lidar.noise"};
+  return lines;
+}
+
+// The YAML file: the fit report as comments, then the sim.lidar.noise block.
+std::string CalibrationYaml(const std::vector<std::string>& report,
+                            const sim::LidarNoiseConfig& noise, const std::string& command_line) {
+  std::string text = "# retrace calibrate-lidar: the simulated LiDAR's noise fitted to a log\n";
+  text += "# " + command_line + "\n#\n";
+  for (const std::string& line : report) text += "# " + line + "\n";
+  text +=
+      "#\n# The block below is the whole fit's mixture in sim.lidar.noise keys (docs/METHOD.md):\n"
+      "# --config takes this file as it is; the lines above are comments.\n";
+  text += "sim:\n  lidar:\n    noise:\n";
+  sim::LidarNoiseConfig copy = noise;
+  auto write_key = [&](std::string_view key, double value) {
+    text += "      " + std::string(key) + ": " + core::FormatNumber(value) + "\n";
+  };
+  copy.Reflect(write_key);
+  return text;
+}
+
+std::filesystem::path FigurePath(const CalibrateLidarOptions& options) {
+  if (options.figure) return *options.figure;
+  std::filesystem::path png = options.out;
+  return png.replace_extension(".png");
+}
+
+}  // namespace
+
+void AddCalibrateLidarOptions(CLI::App* cmd, CalibrateLidarOptions* options) {
+  AddLogArgument(cmd, &options->log);
+  cmd->add_option("--teach", options->teach_dir,
+                  "The consistent teach folder of the same place (log-teach's consistent/teach)")
+      ->required();
+  cmd->add_option("--out,-o", options->out, "The YAML file to write (a sim.lidar.noise block)")
+      ->required();
+  cmd->add_option("--figure", options->figure,
+                  "The range error figure (PNG; default: --out with the extension .png)");
+  cmd->add_flag("!--no-figures", options->figures, "Do not render the figure");
+  AddWindowOptions(cmd, &options->window);
+  AddReferenceOption(cmd, &options->reference);
+  cmd->add_flag("--synthetic-odometry", options->synthetic_odometry,
+                "A corrected log's poses are the reference, as with log-teach "
+                "--synthetic-odometry (the drawn odometry itself is not used)");
+  cmd->add_option("--max-iterations", options->max_iterations,
+                  "EM iterations allowed per fit (default 1000)")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--min-beams", options->min_beams,
+                  "Beams with an expected range the map knows needed in each half of the "
+                  "window (default 1000)")
+      ->check(CLI::Range(1, 1000000000));
+  AddStreamOptions(cmd, &options->streams);
+}
+
+int RunCalibrateLidarCommand(const CalibrateLidarOptions& options,
+                             const std::string& command_line) {
+  RequireWindow(options.window);
+  const ModeTeach teach = ReadTeachFolder(options.teach_dir, MapMode::kConsistent);
+  RequireWorldMap(teach, options.teach_dir, TeachFolderMode(options.teach_dir));
+  const logs::LogIndex index = logs::IndexLog(options.log, options.streams);
+  logs::RequireUsable(index);
+  const LogStreams streams =
+      PrepareLogStreams(index, LogConfig{}, options.synthetic_odometry, options.reference);
+  LidarCalibrationOptions calibration_options;
+  calibration_options.min_beams_per_half = options.min_beams;
+  calibration_options.fit.max_iterations = options.max_iterations;
+  const LidarCalibration calibration =
+      FitLidarCalibration(CollectCalibrationBeams(index, streams, teach, options.window),
+                          index.name, calibration_options);
+
+  const std::vector<std::string> report = FitReport(calibration, index.name, options.teach_dir);
+  const sim::LidarNoiseConfig noise = NoiseOfMixture(calibration.whole.result.mixture);
+  io::WriteFileAtomic(options.out, CalibrationYaml(report, noise, command_line));
+  for (const std::string& line : report) std::cout << line << "\n";
+  std::cout << "sim.lidar.noise: " << options.out.string() << "\n";
+  if (options.figures) {
+    try {
+      const std::filesystem::path png = FigurePath(options);
+      viz::RenderRangeErrorFigure(
+          RangeErrorFigureOf(calibration, index.name + ", " +
+                                              std::to_string(calibration.beams.samples.size()) +
+                                              " beams against " + options.teach_dir.string()),
+          png);
+      std::cout << "figure: " << png.string() << "\n";
+    } catch (const viz::RenderError& e) {
+      std::cout << "figure not rendered: " << e.what() << "\n";
+    }
+  }
+  return 0;
+}
+
+}  // namespace retrace::bench

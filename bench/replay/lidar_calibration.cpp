@@ -1,0 +1,191 @@
+#include "bench/replay/lidar_calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "core/errors.hpp"
+#include "io/ros_map.hpp"
+#include "nav/grid_ray_caster.hpp"
+#include "nav/likelihood_field.hpp"
+
+namespace retrace::bench {
+
+namespace {
+
+// A cell is known free below map_saver's free threshold (trinary maps hold 0.05, 0.5, 0.95).
+constexpr double kFreeBelow = 0.196;
+
+// The map with every cell that is neither occupied nor known free made occupied: a ray cast in
+// it stops at the first unknown cell as well.
+core::OccupancyGrid UnknownAsOccupied(const core::OccupancyGrid& grid, double occupied_threshold) {
+  core::OccupancyGrid blocked = grid;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const double p = grid.Probability({x, y});
+      if (p >= kFreeBelow && p < occupied_threshold)
+        blocked.SetProbability({x, y}, io::kRosMapOccupiedProbability);
+    }
+  }
+  return blocked;
+}
+
+// Expected ranges where the map knows them: the range to the first occupied cell when the cast
+// in the map with unknown cells made occupied stops at the same range.
+class KnownRangeCaster {
+ public:
+  KnownRangeCaster(const core::OccupancyGrid& grid, double range_max)
+      : map_(grid, {}, range_max),
+        blocked_(UnknownAsOccupied(grid, nav::LikelihoodFieldConfig{}.occupied_threshold), {},
+                 range_max),
+        map_caster_(map_),
+        blocked_caster_(blocked_),
+        range_max_(range_max) {}
+
+  // z* (m) from origin (M) along the unit direction, or NaN when the map does not know it.
+  double Cast(const core::Vec2& origin, const core::Vec2& dir) const {
+    const double z = map_caster_.Cast(origin, dir, range_max_);
+    if (z == nav::kNoHit) return std::nan("");
+    return blocked_caster_.Cast(origin, dir, range_max_) == z ? z : std::nan("");
+  }
+
+ private:
+  nav::LikelihoodField map_, blocked_;
+  nav::GridRayCaster map_caster_, blocked_caster_;
+  double range_max_;
+};
+
+// The beams of one scan from the LiDAR pose X_ML into *beams.
+void AddScanBeams(const core::LaserScan& scan, const core::Pose2& X_ML,
+                  const KnownRangeCaster& caster, CalibrationBeams* beams) {
+  const core::Vec2 origin = X_ML.translation();
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    ++beams->beams;
+    const double a = X_ML.theta + scan.Angle(i);
+    const double z_star = caster.Cast(origin, {std::cos(a), std::sin(a)});
+    if (!(z_star > beams->range_min)) {  // NaN: unknown
+      ++beams->unknown;
+      continue;
+    }
+    const double r = scan.ranges[i];
+    if (!(r >= beams->range_min)) {
+      ++beams->invalid;
+      continue;
+    }
+    const double z = r >= beams->range_max ? std::numeric_limits<double>::infinity() : r;
+    beams->samples.push_back({z, z_star});
+    beams->stamps.push_back(scan.stamp);
+  }
+}
+
+std::string Count(std::size_t n) { return std::to_string(n); }
+
+// The fit of the samples in [lo, hi) of `beams`, refused below `min_beams` or unconverged.
+LidarFit FitPart(const CalibrationBeams& beams, std::size_t lo, std::size_t hi,
+                 const std::string& what, const std::string& log_name,
+                 const LidarCalibrationOptions& options, std::size_t min_beams) {
+  min_beams = std::max<std::size_t>(min_beams, 1);
+  if (hi - lo < min_beams) {
+    throw core::IoError(
+        log_name + ": only " + Count(hi - lo) + " beams in the " + what + " (of " +
+        Count(beams.beams) + " in " + Count(beams.scans) +
+        " scans) have an expected range that the map knows; at least " + Count(min_beams) +
+        " are needed: the map does not cover this part of the log (" + Count(beams.unknown) +
+        " beams meet unknown cells, leave the map or meet nothing within range_max)");
+  }
+  const std::span<const nav::BeamSample> part(beams.samples.data() + lo, hi - lo);
+  LidarFit fit{nav::FitBeamMixture(part, beams.range_min, beams.range_max, options.fit),
+               beams.stamps[lo], beams.stamps[hi - 1]};
+  if (!fit.result.converged) {
+    throw core::ConfigError(
+        "--max-iterations",
+        "the EM fit of the " + what + " did not converge in " +
+            Count(static_cast<std::size_t>(fit.result.iterations)) + " iterations (last change " +
+            core::FormatNumber(fit.result.last_change) + ", tolerance " +
+            core::FormatNumber(options.fit.tolerance) +
+            "); allow more iterations, or check that the map is the log's place");
+  }
+  return fit;
+}
+
+}  // namespace
+
+void RequireWorldMap(const ModeTeach& teach, const std::filesystem::path& teach_dir,
+                     std::optional<MapMode> mode) {
+  if (mode != MapMode::kConsistent) {
+    throw core::ConfigError(
+        "--teach", teach_dir.string() + " is " +
+                       (mode ? "a " + std::string(core::EnumName(*mode)) + " teach folder"
+                             : "not a <mode>/teach folder") +
+                       ": calibration needs a map that is the world, a consistent teach folder "
+                       "built from the reference (log-teach's consistent/teach)");
+  }
+  if (teach.bundle.maps.size() != 1 || teach.trace.X_WR.empty()) {
+    throw core::ConfigError("--teach", teach_dir.string() + " holds " +
+                                           Count(teach.bundle.maps.size()) + " maps" +
+                                           (teach.trace.X_WR.empty() ? " and no reference" : "") +
+                                           ": a consistent teach folder holds one map and its "
+                                           "reference (gt.tum)");
+  }
+}
+
+CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogStreams& streams,
+                                         const ModeTeach& world_teach, const LogWindow& window) {
+  if (streams.reference.empty()) {
+    throw core::IoError(index.name +
+                        ": no reference trajectory; calibration compares each beam with the "
+                        "range the map predicts from where the robot was (give --reference "
+                        "FILE.tum, or --synthetic-odometry for a corrected log whose poses are "
+                        "the reference)");
+  }
+  CalibrationBeams beams;
+  beams.range_min = index.scan.range_min;
+  beams.range_max = index.scan.range_max;
+  const KnownRangeCaster caster(world_teach.bundle.maps.front().grid, beams.range_max);
+  const TeachMapTrace& trace = world_teach.trace.maps.front();
+  const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
+  logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double) {
+    const std::optional<core::Pose2> X_WR = logs::PoseAt(streams.reference, m.scan.stamp);
+    if (!X_WR) {
+      ++beams.scans_without_reference;
+      return;
+    }
+    if (beams.scans == 0) beams.first_stamp = m.scan.stamp;
+    beams.last_stamp = m.scan.stamp;
+    ++beams.scans;
+    AddScanBeams(m.scan, X_MW * *X_WR * streams.robot.X_RL, caster, &beams);
+  });
+  return beams;
+}
+
+LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& log_name,
+                                     const LidarCalibrationOptions& options) {
+  const double middle = 0.5 * (beams.first_stamp + beams.last_stamp);
+  const std::size_t split = static_cast<std::size_t>(
+      std::lower_bound(beams.stamps.begin(), beams.stamps.end(), middle) - beams.stamps.begin());
+  const std::size_t n = beams.samples.size();
+  LidarCalibration out;
+  out.first_half = FitPart(beams, 0, split, "first half of the window", log_name, options,
+                           options.min_beams_per_half);
+  out.second_half = FitPart(beams, split, n, "second half of the window", log_name, options,
+                            options.min_beams_per_half);
+  out.whole = FitPart(beams, 0, n, "whole window", log_name, options, 0);
+  out.beams = std::move(beams);
+  return out;
+}
+
+sim::LidarNoiseConfig NoiseOfMixture(const nav::BeamMixture& mixture) {
+  sim::LidarNoiseConfig noise;
+  noise.sigma0 = mixture.sigma_hit;
+  noise.sigma1 = 0.0;
+  noise.dropout_probability = mixture.z_max;
+  noise.short_probability = mixture.z_short;
+  noise.short_lambda = mixture.lambda_short;
+  noise.random_probability = mixture.z_rand;
+  return noise;
+}
+
+}  // namespace retrace::bench

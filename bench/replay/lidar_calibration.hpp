@@ -1,0 +1,80 @@
+#pragma once
+// `retrace calibrate-lidar`: the beam model's intrinsic parameters fitted to a log's real scans
+// against the map of the same place (docs/METHOD.md, "Calibrating the LiDAR from a log"). Each
+// beam's expected range z* is ray-cast (nav/grid_ray_caster.hpp) in the map of a consistent
+// teach folder from the log's reference pose at the scan's stamp, composed with the LiDAR mount;
+// only beams whose z* the map knows are used: the ray reaches an occupied cell before
+// range_max through known free cells only. The fit is nav::FitBeamMixture over the whole window
+// and over each half of it by time.
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/engine/teach_drive.hpp"
+#include "bench/replay/log_streams.hpp"
+#include "bench/replay/log_teach.hpp"
+#include "logs/sensor_log.hpp"
+#include "nav/beam_mixture_fit.hpp"
+#include "sim/lidar.hpp"
+
+namespace retrace::bench {
+
+struct LidarCalibrationOptions {
+  /// Beams with a known expected range needed in each half of the window.
+  std::size_t min_beams_per_half = 1000;
+  nav::BeamFitOptions fit;
+};
+
+/// The beams of the window, sorted out: the samples with a known z*, in stamp order.
+struct CalibrationBeams {
+  std::vector<nav::BeamSample> samples;
+  std::vector<double> stamps;  ///< one per sample: its scan's stamp (s)
+  std::size_t scans = 0;       ///< scans with a reference pose
+  std::size_t beams = 0;       ///< all beams of those scans
+  std::size_t unknown = 0;     ///< z* not known to the map (open, unknown cells, off the map)
+  std::size_t invalid = 0;     ///< known z* but the reading below range_min, -inf or NaN
+  std::size_t scans_without_reference = 0;
+  double first_stamp = 0.0;  ///< s, the first and last scan used
+  double last_stamp = 0.0;
+  double range_min = 0.0;  ///< m, the log's LiDAR (its first scan)
+  double range_max = 0.0;
+};
+
+/// One fit and the part of the window it covers.
+struct LidarFit {
+  nav::BeamFitResult result;
+  double from_stamp = 0.0;  ///< s
+  double to_stamp = 0.0;
+};
+
+struct LidarCalibration {
+  CalibrationBeams beams;
+  LidarFit whole, first_half, second_half;
+};
+
+/// Refuses a teach folder whose map is not the world: `mode` must be consistent (from the folder's
+/// name, `<mode>/teach`; kPartial-like modes are built from odometry), with one map and a
+/// reference. Throws core::ConfigError("--teach", ...).
+void RequireWorldMap(const ModeTeach& teach, const std::filesystem::path& teach_dir,
+                     std::optional<MapMode> mode);
+
+/// The beams of `index` in `window`, each with its expected range in the map of `world_teach`.
+/// Throws core::IoError for a log without a reference.
+CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogStreams& streams,
+                                         const ModeTeach& world_teach, const LogWindow& window);
+
+/// Fits the whole window and its halves. Throws core::IoError when a half has fewer than
+/// options.min_beams_per_half beams with a known expected range, core::ConfigError
+/// ("--max-iterations") when a fit does not converge.
+LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& log_name,
+                                     const LidarCalibrationOptions& options);
+
+/// The simulated LiDAR's noise that draws the fitted mixture: sigma0 = σ_hit, sigma1 = 0,
+/// dropout_probability = z_max, short_probability = z_short, short_lambda = λ_short,
+/// random_probability = z_rand (the hit part takes the rest, z_hit).
+sim::LidarNoiseConfig NoiseOfMixture(const nav::BeamMixture& mixture);
+
+}  // namespace retrace::bench
