@@ -38,8 +38,7 @@ double NormalCdf(double x, double mean, double sigma) {
 // The mixture's probability of a finite reading in [a, b) (m), a and b within the range limits.
 double MixtureMass(const LidarNoiseConfig& n, double range_min, double range_max, double a,
                    double b) {
-  const double p_hit =
-      1.0 - n.dropout_probability - n.short_probability - n.random_probability;
+  const double p_hit = 1.0 - n.dropout_probability - n.short_probability - n.random_probability;
   const double hit = NormalCdf(b, kWall, n.sigma0) - NormalCdf(a, kWall, n.sigma0);
   const auto short_cdf = [&](double z) {
     z = std::clamp(z, range_min, kWall);
