@@ -25,10 +25,10 @@ namespace {
 std::string PartRow(const std::string& name, const LidarFit& fit) {
   const nav::BeamMixture& m = fit.result.mixture;
   char line[256];
-  std::snprintf(
-      line, sizeof line, "%-12s %8.1f %8.1f %8zu %7.4f %7.4f %7.4f %7.4f %9.4f %9.3f %7.4f %5d",
-      name.c_str(), fit.from_stamp, fit.to_stamp, fit.result.beams, m.z_hit, m.z_short, m.z_max,
-      m.z_rand, m.sigma_hit, m.lambda_short, m.hit_offset, fit.result.iterations);
+  std::snprintf(line, sizeof line,
+                "%-12s %8.1f %8.1f %8zu %7.4f %7.4f %7.4f %7.4f %9.4f %9.3f %7.4f %5d",
+                name.c_str(), fit.from_s, fit.to_s, fit.result.beams, m.z_hit, m.z_short, m.z_max,
+                m.z_rand, m.sigma_hit, m.lambda_short, m.hit_offset, fit.result.iterations);
   return line;
 }
 
@@ -57,8 +57,9 @@ std::vector<std::string> FitReport(const LidarCalibration& c, const std::string&
                                    const std::filesystem::path& teach_dir) {
   const CalibrationBeams& b = c.beams;
   std::vector<std::string> lines = {
-      log_name + ": " + std::to_string(b.scans) + " scans (stamps " + FixedText(b.first_stamp, 1) +
-          " to " + FixedText(b.last_stamp, 1) + " s), " + std::to_string(b.beams) + " beams",
+      log_name + ": " + std::to_string(b.scans) + " scans (" + FixedText(b.first_s, 1) + " to " +
+          FixedText(b.last_s, 1) + " s of log time, as --from/--to), " + std::to_string(b.beams) +
+          " beams",
       "map: " + teach_dir.string() + "; expected range known for " +
           std::to_string(b.samples.size() + b.invalid) + " beams (" + std::to_string(b.unknown) +
           " unknown, " + std::to_string(b.invalid) + " of the known below range_min and left out)",
@@ -70,7 +71,8 @@ std::vector<std::string> FitReport(const LidarCalibration& c, const std::string&
       PartRow("first half", c.first_half),
       PartRow("second half", c.second_half),
       HalvesSpread(c),
-      "(sigma_hit and the hit offset in m, lambda_short in 1/m; times are the scans' stamps)",
+      "(sigma_hit and the hit offset in m, lambda_short in 1/m; times: s since the log's first "
+      "scan)",
       "hit offset: the readings' Gaussian is centred " +
           FixedText(c.whole.result.mixture.hit_offset, 3) +
           " m beyond the cast range z*, a property of the grid map (the cast stops at the face "

@@ -59,7 +59,7 @@ class KnownRangeCaster {
 };
 
 // The beams of one scan from the LiDAR pose X_ML into *beams.
-void AddScanBeams(const core::LaserScan& scan, const core::Pose2& X_ML,
+void AddScanBeams(const core::LaserScan& scan, double log_time_s, const core::Pose2& X_ML,
                   const KnownRangeCaster& caster, CalibrationBeams* beams) {
   const core::Vec2 origin = X_ML.translation();
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
@@ -77,7 +77,7 @@ void AddScanBeams(const core::LaserScan& scan, const core::Pose2& X_ML,
     }
     const double z = r >= beams->range_max ? std::numeric_limits<double>::infinity() : r;
     beams->samples.push_back({z, z_star});
-    beams->stamps.push_back(scan.stamp);
+    beams->times.push_back(log_time_s);
   }
 }
 
@@ -98,7 +98,7 @@ LidarFit FitPart(const CalibrationBeams& beams, std::size_t lo, std::size_t hi,
   }
   const std::span<const nav::BeamSample> part(beams.samples.data() + lo, hi - lo);
   LidarFit fit{nav::FitBeamMixture(part, beams.range_min, beams.range_max, options.fit),
-               beams.stamps[lo], beams.stamps[hi - 1]};
+               beams.times[lo], beams.times[hi - 1]};
   if (!fit.result.converged) {
     throw core::ConfigError(
         "--max-iterations",
@@ -147,25 +147,25 @@ CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogS
   const KnownRangeCaster caster(world_teach.bundle.maps.front().grid, beams.range_max);
   const TeachMapTrace& trace = world_teach.trace.maps.front();
   const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
-  logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double) {
+  logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double t) {
     const std::optional<core::Pose2> X_WR = logs::PoseAt(streams.reference, m.scan.stamp);
     if (!X_WR) {
       ++beams.scans_without_reference;
       return;
     }
-    if (beams.scans == 0) beams.first_stamp = m.scan.stamp;
-    beams.last_stamp = m.scan.stamp;
+    if (beams.scans == 0) beams.first_s = t;
+    beams.last_s = t;
     ++beams.scans;
-    AddScanBeams(m.scan, X_MW * *X_WR * streams.robot.X_RL, caster, &beams);
+    AddScanBeams(m.scan, t, X_MW * *X_WR * streams.robot.X_RL, caster, &beams);
   });
   return beams;
 }
 
 LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& log_name,
                                      const LidarCalibrationOptions& options) {
-  const double middle = 0.5 * (beams.first_stamp + beams.last_stamp);
+  const double middle = 0.5 * (beams.first_s + beams.last_s);
   const std::size_t split = static_cast<std::size_t>(
-      std::lower_bound(beams.stamps.begin(), beams.stamps.end(), middle) - beams.stamps.begin());
+      std::lower_bound(beams.times.begin(), beams.times.end(), middle) - beams.times.begin());
   const std::size_t n = beams.samples.size();
   LidarCalibration out;
   out.first_half = FitPart(beams, 0, split, "first half of the window", log_name, options,

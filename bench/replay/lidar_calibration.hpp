@@ -28,17 +28,17 @@ struct LidarCalibrationOptions {
   nav::BeamFitOptions fit;
 };
 
-/// The beams of the window, sorted out: the samples with a known z*, in stamp order.
+/// The beams of the window, sorted out: the samples with a known z*, in log order.
 struct CalibrationBeams {
   std::vector<nav::BeamSample> samples;
-  std::vector<double> stamps;  ///< one per sample: its scan's stamp (s)
-  std::size_t scans = 0;       ///< scans with a reference pose
-  std::size_t beams = 0;       ///< all beams of those scans
-  std::size_t unknown = 0;     ///< z* not known to the map (open, unknown cells, off the map)
-  std::size_t invalid = 0;     ///< known z* but the reading below range_min, -inf or NaN
+  std::vector<double> times;  ///< one per sample: its scan's log time (s, as --from/--to)
+  std::size_t scans = 0;      ///< scans with a reference pose
+  std::size_t beams = 0;      ///< all beams of those scans
+  std::size_t unknown = 0;    ///< z* not known to the map (open, unknown cells, off the map)
+  std::size_t invalid = 0;    ///< known z* but the reading below range_min, -inf or NaN
   std::size_t scans_without_reference = 0;
-  double first_stamp = 0.0;  ///< s, the first and last scan used
-  double last_stamp = 0.0;
+  double first_s = 0.0;    ///< log time (s, as --from/--to) of the first scan used
+  double last_s = 0.0;     ///< ... and of the last
   double range_min = 0.0;  ///< m, the log's LiDAR (its first scan)
   double range_max = 0.0;
 };
@@ -46,8 +46,8 @@ struct CalibrationBeams {
 /// One fit and the part of the window it covers.
 struct LidarFit {
   nav::BeamFitResult result;
-  double from_stamp = 0.0;  ///< s
-  double to_stamp = 0.0;
+  double from_s = 0.0;  ///< log time (s, as --from/--to)
+  double to_s = 0.0;
 };
 
 struct LidarCalibration {
@@ -56,8 +56,8 @@ struct LidarCalibration {
 };
 
 /// Refuses a teach folder whose map is not the world: `mode` must be consistent (from the folder's
-/// name, `<mode>/teach`; kPartial-like modes are built from odometry), with one map and a
-/// reference. Throws core::ConfigError("--teach", ...).
+/// name, `<mode>/teach`; partial, scan_matched and single maps are built from odometry), with
+/// one map and a reference. Throws core::ConfigError("--teach", ...).
 void RequireWorldMap(const ModeTeach& teach, const std::filesystem::path& teach_dir,
                      std::optional<MapMode> mode);
 
