@@ -6,6 +6,7 @@
 
 #include "bench/output/internal/report_page.hpp"
 #include "io/atomic_file.hpp"
+#include "io/markup_escape.hpp"
 
 namespace retrace::bench {
 
@@ -62,24 +63,10 @@ std::string HtmlEscape(std::string_view text) {
   std::string out;
   out.reserve(text.size());
   for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
+    if (const char* entity = io::MarkupEntity(c)) {
+      out += entity;
+    } else {
+      out += c;
     }
   }
   return out;

@@ -8,6 +8,7 @@
 
 #include "bench/suite/suite_spec.hpp"
 #include "bench/suite/tolerance.hpp"
+#include "io/markup_escape.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -58,22 +59,11 @@ std::string Escape(std::string_view text, bool attribute) {
       continue;
     }
     const char c = text[i++];
+    if (const char* entity = io::MarkupEntity(c)) {
+      out += entity;
+      continue;
+    }
     switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
       case '\n':
         out += attribute ? "&#10;" : "\n";
         break;

@@ -22,18 +22,18 @@
 #include "tests/support/trajectory_hash.hpp"
 
 namespace retrace::bench {
-namespace {
+namespace scheduler_test {  // not anonymous: unity builds batch test files together
 
 using retrace::testing::kSource;
 using retrace::testing::TrajectoryHash;
 
-Scenario Small(const std::string& set = "") {
+Scenario SchedulerScenario(const std::string& set = "") {
   std::vector<io::ConfigOverride> overrides;
   if (!set.empty()) overrides.push_back(io::ParseOverride(set));
   return LoadScenario(kSource / "scenarios/small.yaml", overrides);
 }
 
-struct Outcome {
+struct MixedOutcome {
   std::map<std::tuple<std::size_t, std::size_t, int>, std::uint64_t> runs;  // hash per run
   std::map<std::pair<std::size_t, std::size_t>, int> handed_over;           // mode_done calls
   bool handed_over_after_runs = true;
@@ -42,8 +42,8 @@ struct Outcome {
 
 // Job 0 is given its scenario (1 run of partial), job 1 loads a scenario of another seed
 // (1 run), job 2 is given job 0's teach read back (1 run), job 3 only teaches.
-Outcome RunMixedJobs(int threads) {
-  static const Scenario given = Small();
+MixedOutcome RunMixedJobs(int threads) {
+  static const Scenario given = SchedulerScenario();
   static const TeachResult taught = RunTeachDrive(given, {MapMode::kPartial});
   std::optional<Scenario> loaded;
   std::atomic<int> loads{0};
@@ -53,7 +53,7 @@ Outcome RunMixedJobs(int threads) {
   jobs[0].repeats = 1;
   jobs[1].load = [&]() -> const Scenario* {
     ++loads;
-    return &loaded.emplace(Small("seed=7"));
+    return &loaded.emplace(SchedulerScenario("seed=7"));
   };
   jobs[1].modes = {MapMode::kPartial};
   jobs[1].repeats = 1;
@@ -64,7 +64,7 @@ Outcome RunMixedJobs(int threads) {
   jobs[3].scenario = &given;
   jobs[3].modes = {MapMode::kSingle, MapMode::kPartial};
 
-  Outcome out;
+  MixedOutcome out;
   std::mutex mutex;
   EpisodeCallbacks callbacks;
   callbacks.run_done = [&](std::size_t j, std::size_t m, const ModeTeach&, RunTrace&& run) {
@@ -83,15 +83,15 @@ Outcome RunMixedJobs(int threads) {
 }
 
 TEST(Scheduler, MixedJobsGiveTheSameRunsOnOneOrThreeThreads) {
-  const Outcome one = RunMixedJobs(1);
-  const Outcome three = RunMixedJobs(3);
+  const MixedOutcome one = RunMixedJobs(1);
+  const MixedOutcome three = RunMixedJobs(3);
   EXPECT_EQ(one.runs.size(), 3u);
   EXPECT_EQ(one.runs, three.runs);
   // Job 2 plays back job 0's teach with run index 0, as job 0's first run does.
   EXPECT_EQ(one.runs.at({2, 0, 0}), one.runs.at({0, 0, 0}));
   // A scenario of another seed gives another run.
   EXPECT_NE(one.runs.at({1, 0, 0}), one.runs.at({0, 0, 0}));
-  for (const Outcome* o : {&one, &three}) {
+  for (const MixedOutcome* o : {&one, &three}) {
     EXPECT_EQ(o->loads, 1);
     EXPECT_TRUE(o->handed_over_after_runs);
     const std::map<std::pair<std::size_t, std::size_t>, int> once = {
@@ -122,5 +122,5 @@ TEST(Scheduler, TheFirstFailingJobInTheQueuesOrderIsReportedByName) {
   }
 }
 
-}  // namespace
+}  // namespace scheduler_test
 }  // namespace retrace::bench
