@@ -70,9 +70,10 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
     io::WriteTum(dir / "est.tum", est);
     io::WriteTum(dir / "reference.tum", reference);
   }
-  io::CsvWriter updates(dir / "updates.csv",
-                        {"time", "beams_tested", "beams_rejected", "spread_m", "rejection_particles",
-                         "cpu_ms", "lost", "trial_updates", "trial_log_bayes_factor", "reacquired"});
+  io::CsvWriter updates(
+      dir / "updates.csv",
+      {"time", "beams_tested", "beams_rejected", "spread_m", "rejection_particles", "cpu_ms",
+       "lost", "trial_updates", "trial_log_bayes_factor", "reacquired"});
   for (const LocalizerSample& u : run.updates) {
     updates.AddRow({u.time, u.beams_tested, u.beams_rejected, u.spread, u.rejection_particles,
                     u.cpu_s * 1e3, int{u.lost}, u.trial_updates, u.trial_log_bayes_factor,
@@ -159,6 +160,35 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
   return text;
 }
 
+// The manifest of a localization run: what was localized in what, and its notes and warnings.
+LogManifestInfo LocalizeManifest(const LogLocalizeOptions& options, const std::string& command_line,
+                                 const logs::LogIndex& index, const LogStreams& streams,
+                                 const LogLocalizeResult& run, const LogLocalizeSeries& series,
+                                 const ModeTeach& teach) {
+  LogManifestInfo manifest;
+  manifest.command_line = command_line;
+  manifest.fields = {
+      {"log", index.name},
+      {"log_format", std::string(logs::LogFormatName(index.format))},
+      {"teach", options.teach_dir.string()},
+      {"mode", std::string(core::EnumName(teach.mode))},
+      {"scan_topic", index.scan_topic},
+      {"odometry", streams.odometry_source},
+      {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
+      {"lidar_mount", index.mount_source},
+      {"from_s", core::FormatNumber(run.first_s)},
+      {"to_s", core::FormatNumber(run.last_s)}};
+  manifest.notes = index.notes;
+  if (const std::string off_route = OffRouteWarning(series); !off_route.empty())
+    manifest.notes.push_back("warning: " + off_route);
+  if (!streams.reference.empty() && teach.trace.X_WR.empty()) {
+    manifest.notes.push_back(
+        "the teach folder has no reference (gt.tum): no local truth, so no "
+        "localization error");
+  }
+  return manifest;
+}
+
 }  // namespace
 
 void AddLogLocalizeOptions(CLI::App* cmd, LogLocalizeOptions* options) {
@@ -196,27 +226,8 @@ int RunLogLocalizeCommand(const LogLocalizeOptions& options, const std::string& 
   j["log"] = index.name;
   j["teach"] = options.teach_dir.string();
   io::WriteJsonAtomic(folder.path() / "metrics.json", j);
-  LogManifestInfo manifest;
-  manifest.command_line = command_line;
-  manifest.fields = {
-      {"log", index.name},
-      {"log_format", std::string(logs::LogFormatName(index.format))},
-      {"teach", options.teach_dir.string()},
-      {"mode", std::string(core::EnumName(teach.mode))},
-      {"scan_topic", index.scan_topic},
-      {"odometry", streams.odometry_source},
-      {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
-      {"lidar_mount", index.mount_source},
-      {"from_s", core::FormatNumber(run.first_s)},
-      {"to_s", core::FormatNumber(run.last_s)}};
-  manifest.notes = index.notes;
-  if (const std::string off_route = OffRouteWarning(series); !off_route.empty())
-    manifest.notes.push_back("warning: " + off_route);
-  if (!streams.reference.empty() && teach.trace.X_WR.empty()) {
-    manifest.notes.push_back(
-        "the teach folder has no reference (gt.tum): no local truth, so no "
-        "localization error");
-  }
+  LogManifestInfo manifest =
+      LocalizeManifest(options, command_line, index, streams, run, series, teach);
   manifest.config_yaml = io::ConfigToYaml(config);
   manifest.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

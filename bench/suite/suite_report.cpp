@@ -66,6 +66,46 @@ double SeedStdDev(const std::vector<double>& values) {
   return std::sqrt(sum / static_cast<double>(finite.size() - 1));
 }
 
+namespace {
+
+// The suite's metrics in its order, then any the baseline has that are no longer computed.
+std::vector<std::string> ReportNames(const SuiteSpec& spec, const Baseline* baseline) {
+  std::vector<std::string> names = SuiteMetricNames(spec);
+  if (baseline == nullptr) return names;
+  const std::set<std::string> known(names.begin(), names.end());
+  for (const auto* table : {&baseline->metrics, &baseline->timing}) {
+    for (const auto& [name, value] : *table) {
+      if (!known.contains(name)) names.push_back(name);
+    }
+  }
+  return names;
+}
+
+// The row of metric `name`, decided by `rule`: its value now, the baseline's and the verdict.
+ReportRow MakeRow(const std::string& name, const MetricRule& rule, const SuiteResults& results,
+                  const Baseline* baseline) {
+  ReportRow row;
+  row.name = name;
+  row.pattern = rule.pattern;
+  row.tolerance = rule.tolerance;
+  row.seed_sd = kNaN;
+  if (const auto it = results.metrics.find(name); it != results.metrics.end()) {
+    row.now = it->second.mean;
+    row.seed_sd = SeedStdDev(it->second.per_seed);
+  }
+  if (baseline != nullptr) row.baseline = baseline->Find(name);
+  // The metric part of the name, after "<entry>.<mode>.", sets the direction and the timing rule.
+  const std::string metric = SplitSuiteMetricName(name).metric;
+  if (!row.now) {
+    row.check = {Verdict::kFail, "no longer computed"};
+  } else {
+    row.check = CheckMetric(metric, row.baseline, *row.now, rule.tolerance);
+  }
+  return row;
+}
+
+}  // namespace
+
 SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& results,
                                 const Baseline* baseline) {
   SuiteReport report;
@@ -73,44 +113,17 @@ SuiteReport CompareWithBaseline(const SuiteSpec& spec, const SuiteResults& resul
   report.compared = baseline != nullptr;
   std::vector<std::string> patterns;
   for (const MetricRule& rule : spec.rules) patterns.push_back(rule.pattern);
-
-  // The suite's metrics in its order, then any the baseline has that are no longer computed.
-  std::vector<std::string> names = SuiteMetricNames(spec);
-  if (baseline != nullptr) {
-    const std::set<std::string> known(names.begin(), names.end());
-    for (const auto* table : {&baseline->metrics, &baseline->timing}) {
-      for (const auto& [name, value] : *table) {
-        if (!known.contains(name)) names.push_back(name);
-      }
-    }
-  }
+  const std::vector<std::string> names = ReportNames(spec, baseline);
 
   // Rows by entry and mode, then in the order of the rules that decide them.
   const std::size_t block_size = AggregateMetricNames().size();
   std::vector<std::pair<std::size_t, int>> order_keys;
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string& name = names[i];
-    const int decider = DecidingPattern(patterns, name);
+    const int decider = DecidingPattern(patterns, names[i]);
     if (decider < 0) continue;
     order_keys.emplace_back(i / block_size, decider);
-    const MetricRule& rule = spec.rules[static_cast<std::size_t>(decider)];
-    ReportRow row;
-    row.name = name;
-    row.pattern = rule.pattern;
-    row.tolerance = rule.tolerance;
-    row.seed_sd = kNaN;
-    if (const auto it = results.metrics.find(name); it != results.metrics.end()) {
-      row.now = it->second.mean;
-      row.seed_sd = SeedStdDev(it->second.per_seed);
-    }
-    if (baseline != nullptr) row.baseline = baseline->Find(name);
-    // The metric part of the name, after "<entry>.<mode>.", sets the direction and the timing rule.
-    const std::string metric = SplitSuiteMetricName(name).metric;
-    if (!row.now) {
-      row.check = {Verdict::kFail, "no longer computed"};
-    } else {
-      row.check = CheckMetric(metric, row.baseline, *row.now, rule.tolerance);
-    }
+    ReportRow row =
+        MakeRow(names[i], spec.rules[static_cast<std::size_t>(decider)], results, baseline);
     if (report.compared) {
       if (IsFailure(row.check.verdict)) ++report.failures;
       if (row.check.verdict == Verdict::kImproved) ++report.improved;

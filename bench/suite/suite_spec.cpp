@@ -57,6 +57,37 @@ std::string ScenarioName(const std::filesystem::path& scenario) {
   return scenario.stem().string();
 }
 
+// The entry's `name`, or its scenario's when it has none; either must be able to name metrics.
+std::string ReadEntryName(const YAML::Node& node, const ReadContext& ctx,
+                          const std::filesystem::path& scenario) {
+  if (const YAML::Node name = node["name"]) {
+    std::string text = io::internal::ReadString(name, ctx.Child("name"));
+    if (!IsPlainName(text)) {
+      Fail(name, ctx.Child("name"),
+           "'" + text + "' must be letters, digits, _ or - (it is part of metric names)");
+    }
+    return text;
+  }
+  std::string text = ScenarioName(scenario);
+  if (!IsPlainName(text)) {
+    Fail(node, ctx,
+         "the scenario's name '" + text + "' cannot name metrics; give the entry a name");
+  }
+  return text;
+}
+
+// The entry's `set`: key.path: value pairs, as --set overrides.
+std::vector<io::ConfigOverride> ReadEntrySet(const YAML::Node& set, const ReadContext& ctx) {
+  if (!set.IsMap()) Fail(set, ctx, "expected a mapping of key.path: value");
+  std::vector<io::ConfigOverride> overrides;
+  for (const auto& kv : set) {
+    const std::string key = kv.first.Scalar();
+    if (key.empty()) Fail(kv.first, ctx, "empty key");
+    overrides.push_back({key, YamlText(kv.second)});
+  }
+  return overrides;
+}
+
 SuiteEntry ReadEntry(const YAML::Node& node, const ReadContext& ctx,
                      const std::filesystem::path& dir) {
   if (!node.IsMap()) Fail(node, ctx, "expected a mapping with scenario, modes and seeds");
@@ -72,19 +103,7 @@ SuiteEntry ReadEntry(const YAML::Node& node, const ReadContext& ctx,
     Fail(scenario, ctx.Child("scenario"), "no scenario file " + entry.scenario.string());
   }
 
-  if (const YAML::Node name = node["name"]) {
-    entry.name = io::internal::ReadString(name, ctx.Child("name"));
-    if (!IsPlainName(entry.name)) {
-      Fail(name, ctx.Child("name"),
-           "'" + entry.name + "' must be letters, digits, _ or - (it is part of metric names)");
-    }
-  } else {
-    entry.name = ScenarioName(entry.scenario);
-    if (!IsPlainName(entry.name)) {
-      Fail(node, ctx,
-           "the scenario's name '" + entry.name + "' cannot name metrics; give the entry a name");
-    }
-  }
+  entry.name = ReadEntryName(node, ctx, entry.scenario);
 
   const YAML::Node modes = Required(node, ctx, "modes");
   io::internal::Read(modes, entry.modes, ctx.Child("modes"));
@@ -111,15 +130,7 @@ SuiteEntry ReadEntry(const YAML::Node& node, const ReadContext& ctx,
         static_cast<int>(io::internal::ReadInteger(repeats, ctx.Child("repeats"), 1, 1000));
   }
 
-  if (const YAML::Node set = node["set"]) {
-    const ReadContext set_ctx = ctx.Child("set");
-    if (!set.IsMap()) Fail(set, set_ctx, "expected a mapping of key.path: value");
-    for (const auto& kv : set) {
-      const std::string key = kv.first.Scalar();
-      if (key.empty()) Fail(kv.first, set_ctx, "empty key");
-      entry.overrides.push_back({key, YamlText(kv.second)});
-    }
-  }
+  if (const YAML::Node set = node["set"]) entry.overrides = ReadEntrySet(set, ctx.Child("set"));
   return entry;
 }
 
@@ -267,9 +278,9 @@ SuiteSpec SelectRuns(const SuiteSpec& spec, const std::vector<std::string>& sele
     if (entry == spec.entries.end()) {
       std::string names;
       for (const SuiteEntry& e : spec.entries) names += (names.empty() ? "" : ", ") + e.name;
-      throw core::ConfigError("", "--only " + selector + ": suite '" + spec.name +
-                                      "' has no entry '" + entry_name + "' (entries: " + names +
-                                      ")",
+      throw core::ConfigError("",
+                              "--only " + selector + ": suite '" + spec.name + "' has no entry '" +
+                                  entry_name + "' (entries: " + names + ")",
                               true);
     }
     std::set<MapMode>& modes = chosen[static_cast<std::size_t>(entry - spec.entries.begin())];
@@ -281,10 +292,12 @@ SuiteSpec SelectRuns(const SuiteSpec& spec, const std::vector<std::string>& sele
     const std::optional<MapMode> mode = core::ParseEnum<MapMode>(mode_name);
     if (!mode || std::find(entry->modes.begin(), entry->modes.end(), *mode) == entry->modes.end()) {
       std::string names;
-      for (MapMode m : entry->modes) names += (names.empty() ? "" : ", ") + std::string(core::EnumName(m));
-      throw core::ConfigError("", "--only " + selector + ": entry '" + entry->name +
-                                      "' does not run mode '" + mode_name + "' (its modes: " +
-                                      names + ")",
+      for (MapMode m : entry->modes)
+        names += (names.empty() ? "" : ", ") + std::string(core::EnumName(m));
+      throw core::ConfigError("",
+                              "--only " + selector + ": entry '" + entry->name +
+                                  "' does not run mode '" + mode_name + "' (its modes: " + names +
+                                  ")",
                               true);
     }
     modes.insert(*mode);
