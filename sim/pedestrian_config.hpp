@@ -12,15 +12,16 @@
 
 namespace retrace::sim {
 
-enum class PedestrianMode { kWander, kLoop };
+enum class PedestrianMode { kWander, kLoop, kStand };
 
 }  // namespace retrace::sim
 
 template <>
 struct retrace::core::EnumTraits<retrace::sim::PedestrianMode> {
-  static constexpr std::array<std::pair<retrace::sim::PedestrianMode, std::string_view>, 2> kNames{
+  static constexpr std::array<std::pair<retrace::sim::PedestrianMode, std::string_view>, 3> kNames{
       {{retrace::sim::PedestrianMode::kWander, "wander"},
-       {retrace::sim::PedestrianMode::kLoop, "loop"}}};
+       {retrace::sim::PedestrianMode::kLoop, "loop"},
+       {retrace::sim::PedestrianMode::kStand, "stand"}}};
 };
 
 namespace retrace::sim {
@@ -28,6 +29,8 @@ namespace retrace::sim {
 /// A group of pedestrians spawned at random free points of a region (W, m).
 /// `wander`: each walks between random free points of the region.
 /// `loop`: each follows the waypoint loop, starting at a random waypoint.
+/// `stand`: each stands still where it spawned (people waiting, talking): a pedestrian to the
+/// LiDAR and the collision metrics, an obstacle to the walkers; its speed is drawn but unused.
 struct PedestrianGroupConfig {
   int count = 1;
   core::Vec2 region_min{0.0, 0.0};

@@ -316,6 +316,10 @@ std::vector<int> Pedestrians::Commit(std::vector<Placement>&& placements, Physic
 void Pedestrians::StartWalking(std::size_t first, bool added, const PhysicsWorld& world) {
   for (std::size_t i = first; i < status_.size(); ++i) {
     const Vec2 p = world.PedestrianPosition(status_[i].id);
+    if (walkers_[i].mode == PedestrianMode::kStand) {
+      status_[i].goal = p;  // nowhere to go: no path, no progress window
+      continue;
+    }
     if (walkers_[i].mode == PedestrianMode::kLoop) {
       status_[i].goal = walkers_[i].loop[walkers_[i].loop_index];
       Replan(i, p);
@@ -497,6 +501,10 @@ void Pedestrians::Update(PhysicsWorld& world) {
     PedestrianStatus& s = status_[i];
     Walker& w = walkers_[i];
     const Vec2 p = agents_[i].position;
+    if (w.mode == PedestrianMode::kStand) {
+      new_velocities_[i] = Vec2::Zero();  // standing still, whatever pushed it
+      continue;
+    }
 
     // Waypoints and goals.
     if (w.idle_until >= 0.0) {

@@ -56,7 +56,8 @@ std::string CommandLine(const GenerateCampusOptions& options) {
   if (!options.config_file.empty()) cmd += " --config " + ShellWord(options.config_file.string());
   for (const auto& s : options.overrides) cmd += " --set " + ShellWord(s);
   if (options.pedestrians >= 0) cmd += " --pedestrians " + std::to_string(options.pedestrians);
-  return cmd;
+  if (!options.scenario.empty()) cmd += " --scenario " + ShellWord(options.scenario.string());
+  return cmd + ClutterArguments(options.clutter);
 }
 
 std::string Metres(double v) { return core::FormatNumber(std::round(v * 10.0) / 10.0) + " m"; }
@@ -104,6 +105,24 @@ void RequireDrivable(const sim::StaticGeometry& geometry, const std::vector<core
   }
 }
 
+// A scenario that drives the route in the world, both named relative to the scenario's folder.
+std::string ScenarioText(const GenerateCampusOptions& options, const std::string& clutter) {
+  const std::filesystem::path dir = std::filesystem::absolute(options.scenario).parent_path();
+  auto relative = [&](const std::filesystem::path& p) {
+    return std::filesystem::absolute(p).lexically_relative(dir).generic_string();
+  };
+  std::ostringstream out;
+  out << "# A scenario for the campus world written by `" << CommandLine(options) << "`.\n"
+      << "name: " << options.out.stem().string() << "\n"
+      << "world: " << relative(options.out) << "\n"
+      << "route:\n"
+      << "  file: " << relative(options.route_file) << "\n"
+      << "  switch_points: auto\n"
+      << "seed: " << options.seed << "\n"
+      << clutter;
+  return out.str();
+}
+
 }  // namespace
 
 void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options) {
@@ -124,6 +143,10 @@ void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options) {
          "--pedestrians", options->pedestrians,
          "Number of pedestrians, split into wander and loop groups (overrides the settings)")
       ->check(kNonNegative);
+  cmd->add_option("--scenario", options->scenario,
+                  "Also write a scenario (YAML) that drives the route in the world, with the "
+                  "clutter block of --clutter-density and --standing-density");
+  AddClutterOptions(cmd, &options->clutter);
 }
 
 std::string RunGenerateCampusCommand(const GenerateCampusOptions& options) {
@@ -133,7 +156,19 @@ std::string RunGenerateCampusCommand(const GenerateCampusOptions& options) {
     throw core::IoError(options.route_file.string() + ": a route needs at least 2 points, got " +
                         std::to_string(route.size()));
   }
-  return WriteCampusWorld(route, options, options.out);
+  const std::string clutter = ClutterBlock(options.clutter);
+  if (options.clutter.any() && options.scenario.empty()) {
+    throw core::ConfigError(
+        options.clutter.density != 0.0 ? "--clutter-density" : "--standing-density",
+        "writes the scenario's clutter block: give --scenario FILE too");
+  }
+  std::string summary = WriteCampusWorld(route, options, options.out);
+  if (!options.scenario.empty()) {
+    io::WriteFileAtomic(options.scenario, ScenarioText(options, clutter));
+    summary += "\n" + options.scenario.string() + ": a scenario driving the route" +
+               (clutter.empty() ? "" : ", " + clutter.substr(0, clutter.size() - 1));
+  }
+  return summary;
 }
 
 std::string WriteCampusWorld(const std::vector<core::Vec2>& route,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/cli/clutter_options.hpp"
 #include "core/pose2.hpp"
 
 namespace CLI {
@@ -22,16 +23,22 @@ struct GenerateCampusOptions {
   std::filesystem::path config_file;   ///< optional YAML with a CampusConfig
   std::vector<std::string> overrides;  ///< --set key=value on the CampusConfig
   int pedestrians = -1;                ///< overrides CampusConfig::pedestrians when >= 0
+  /// Optional: a scenario to write that drives the route in the world (with the clutter block).
+  std::filesystem::path scenario;
+  ClutterOptions clutter;  ///< needs `scenario`
 };
 
-/// Adds the positional route file and --out, --seed, --config, --set and --pedestrians to
-/// `cmd`, writing into `options` (which must outlive the parse).
+/// Adds the positional route file and --out, --seed, --config, --set, --pedestrians, --scenario,
+/// --clutter-density and --standing-density to `cmd`, writing into `options` (which must
+/// outlive the parse).
 void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options);
 
 /// Reads the route and the generator config, generates the campus, checks that the route is
 /// drivable in it, writes the world file atomically with a comment header that says how it
 /// was generated, loads it back and checks it again. Returns a one-line summary (objects by
-/// kind, route length). Throws core::IoError (missing or malformed route or config file,
+/// kind, route length). With options.scenario, also writes a scenario (route switch points
+/// `auto`, the clutter block of options.clutter) that names the world and route by paths
+/// relative to it. Throws core::IoError (missing or malformed route or config file,
 /// a route of fewer than 2 points), core::ConfigError (unknown or invalid config key) or
 /// core::WorldError; nothing is written then.
 std::string RunGenerateCampusCommand(const GenerateCampusOptions& options);

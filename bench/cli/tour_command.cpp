@@ -30,6 +30,7 @@ std::string CommandLine(const GenerateTourOptions& options) {
   for (const std::string& s : options.overrides) cmd += " --set " + s;
   if (options.pedestrians != GenerateTourOptions{}.pedestrians)
     cmd += " --pedestrians " + std::to_string(options.pedestrians);
+  cmd += ClutterArguments(options.clutter);
   return cmd + " --out " + options.out.string();
 }
 
@@ -46,7 +47,8 @@ std::string RouteText(const std::vector<core::Vec2>& route, const TourConfig& co
   return out.str();
 }
 
-std::string ScenarioText(const std::string& name, std::uint64_t seed, const std::string& command) {
+std::string ScenarioText(const std::string& name, std::uint64_t seed, const std::string& command,
+                         const std::string& clutter) {
   std::ostringstream out;
   out << "# A random looped tour written by `" << command << "`: the route in route.txt,\n"
       << "# a campus round it in world.yaml. Switch points come from the route's geometry; try\n"
@@ -66,7 +68,8 @@ std::string ScenarioText(const std::string& name, std::uint64_t seed, const std:
       << "sim:\n"
       << "  crowd: {planner: {cell_size: 0.25}}\n"
       << "nav:\n"
-      << "  follower: {max_speed: 1.0}\n";
+      << "  follower: {max_speed: 1.0}\n"
+      << clutter;
   return out.str();
 }
 
@@ -81,11 +84,13 @@ void AddGenerateTourOptions(CLI::App* cmd, GenerateTourOptions* options) {
                   "max_loop_blocks, max_transfer; repeatable)");
   cmd->add_option("--pedestrians", options->pedestrians, "Pedestrians in the world (default 20)")
       ->check(kNonNegative);
+  AddClutterOptions(cmd, &options->clutter);
 }
 
 std::string RunGenerateTourCommand(const GenerateTourOptions& options) {
   if (options.out.empty()) throw core::ConfigError("--out", "needs the folder to write");
   const TourConfig config = LoadTourConfig(options);
+  const std::string clutter = ClutterBlock(options.clutter);  // checked before anything is built
   const std::vector<core::Vec2> route = GenerateTour(config, options.seed);
 
   StagedFolder folder(options.out);
@@ -98,7 +103,8 @@ std::string RunGenerateTourCommand(const GenerateTourOptions& options) {
   campus.pedestrians = options.pedestrians;
   const std::string world = WriteCampusWorld(route, campus, folder.path() / "world.yaml");
   const std::string name = "tour-" + std::to_string(options.seed);
-  io::WriteFileAtomic(folder.path() / "scenario.yaml", ScenarioText(name, options.seed, command));
+  io::WriteFileAtomic(folder.path() / "scenario.yaml",
+                      ScenarioText(name, options.seed, command, clutter));
   folder.Commit();
   return options.out.string() + ": a " + std::to_string(std::lround(RouteLength(route))) +
          " m tour of " + std::to_string(route.size()) + " waypoints; " + world +

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/cli/clutter_options.hpp"
+
 namespace CLI {
 class App;
 }  // namespace CLI
@@ -19,13 +21,16 @@ struct GenerateTourOptions {
   std::uint64_t seed = 1;              ///< of the tour, the world and the scenario
   std::vector<std::string> overrides;  ///< --set key=value on the TourConfig
   int pedestrians = 20;
+  ClutterOptions clutter;  ///< the scenario's clutter block (none at 0)
 };
 
-/// Adds --out, --seed, --set and --pedestrians to `cmd`, writing into `options`.
+/// Adds --out, --seed, --set, --pedestrians, --clutter-density and --standing-density to `cmd`,
+/// writing into `options`.
 void AddGenerateTourOptions(CLI::App* cmd, GenerateTourOptions* options);
 
 /// Writes, atomically, the folder `out` with route.txt (the tour), world.yaml (a campus round it)
-/// and scenario.yaml (route.switch_points: auto, modes partial, scan_matched and consistent).
+/// and scenario.yaml (route.switch_points: auto, modes partial, scan_matched and consistent,
+/// the clutter block when a density is given).
 /// Returns a one-line summary. Throws core::ConfigError for an invalid tour setting.
 std::string RunGenerateTourCommand(const GenerateTourOptions& options);
 

@@ -8,6 +8,7 @@
 #include "bench/engine/switch_visibility.hpp"
 #include "core/angle.hpp"
 #include "core/errors.hpp"
+#include "core/rng.hpp"
 #include "io/config_yaml.hpp"
 #include "io/route_file.hpp"
 #include "sim/route_check.hpp"
@@ -150,6 +151,14 @@ void ScenarioConfig::Validate() const {
                                                           core::FormatNumber(sim.robot.max_speed) +
                                                           " m/s)");
   }
+  const double corridor = sim.robot.radius + clutter.clearance;
+  if (clutter.enabled() && !(clutter.band > corridor)) {
+    throw core::ConfigError("clutter.band",
+                            "must be wider than the corridor kept free along the route, "
+                            "sim.robot.radius + clutter.clearance = " +
+                                core::FormatNumber(corridor) + " m, got " +
+                                core::FormatNumber(clutter.band) + " m");
+  }
   if (teach.teacher.speed > sim.robot.max_speed) {
     throw core::ConfigError("teach.teacher.speed", "must not exceed sim.robot.max_speed (" +
                                                        core::FormatNumber(sim.robot.max_speed) +
@@ -225,6 +234,42 @@ void ResolveSwitchPoints(Scenario* scenario) {
     scenario->warnings.push_back(std::move(w));
 }
 
+// The clutter, drawn from the scenario seed, added to the playback world: its objects as
+// playback-only objects, its standing people as the first pedestrian groups (so that the
+// world's walkers spawn clear of them). The corridor keeps the route drivable; checked again.
+void AddClutter(const std::filesystem::path& file, Scenario* scenario) {
+  const ScenarioConfig& config = scenario->config;
+  if (!config.clutter.enabled()) return;
+  const double radius = config.sim.robot.radius;
+  // Standing people must spawn crowd.keep_clear_gap clear of the robot's start, which is
+  // drawn within a few start_offset_xy of the route's first point.
+  const ClutterSite site{&scenario->route, &scenario->playback_world.geometry, radius,
+                         radius + config.sim.crowd.keep_clear_gap + config.clutter.person_radius +
+                             5.0 * config.playback.start_offset_xy + 0.5};
+  try {
+    scenario->clutter =
+        GenerateClutter(config.clutter, site, core::Rng(config.seed).Split("clutter"));
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError("clutter." + e.key_path(),
+                            Where(file) + "clutter." + e.key_path() + ": " + e.detail(), true);
+  }
+  PhaseObjectsConfig objects;
+  objects.boxes = scenario->clutter.boxes;
+  objects.circles = scenario->clutter.circles;
+  scenario->playback_world = PhaseWorld(scenario->playback_world, objects);
+  const std::vector<sim::PedestrianGroupConfig> people =
+      StandingGroups(scenario->clutter, config.clutter.person_radius);
+  auto& groups = scenario->playback_world.config.pedestrians;
+  groups.insert(groups.begin(), people.begin(), people.end());
+  if (!scenario->playback_blocked.empty()) return;
+  try {
+    sim::CheckRouteIsDrivable(scenario->playback_world.geometry, scenario->route, radius);
+  } catch (const core::WorldError& e) {
+    throw core::WorldError(Where(file) + "the clutter blocks the route during playback: " +
+                           e.what());
+  }
+}
+
 // Every event placed along the route lies on it.
 void CheckEventsOnRoute(const Scenario& scenario) {
   for (std::size_t i = 0; i < scenario.config.events.size(); ++i) {
@@ -254,6 +299,7 @@ Scenario LoadScenario(const std::filesystem::path& file,
   scenario.teach_world = PhaseWorld(world, scenario.config.teach_only);
   scenario.playback_world = PhaseWorld(world, scenario.config.playback_only);
   LoadRoute(file, &scenario);
+  AddClutter(file, &scenario);
   try {
     ResolveSwitchPoints(&scenario);
     CheckEventsOnRoute(scenario);

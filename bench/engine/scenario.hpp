@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/engine/clutter.hpp"
 #include "bench/engine/metrics_config.hpp"
 #include "bench/engine/trace.hpp"
 #include "core/config.hpp"
@@ -265,6 +266,9 @@ struct ScenarioConfig {
   MetricsConfig metrics;
   PhaseObjectsConfig teach_only;
   PhaseObjectsConfig playback_only;
+  /// Unmapped clutter drawn beside the route for playback (bench/engine/clutter.hpp); off by
+  /// default.
+  ClutterConfig clutter;
   std::vector<EventConfig> events;
 
   template <class V>
@@ -282,6 +286,7 @@ struct ScenarioConfig {
     v("metrics", metrics);
     v("teach_only", teach_only);
     v("playback_only", playback_only);
+    v("clutter", clutter);
     v("events", events);
   }
   void Validate() const;
@@ -297,7 +302,8 @@ struct Scenario {
   double route_length = 0.0;
   core::Pose2 X_W_start;  ///< the teaching start: the first route point, facing the second
   sim::World teach_world;
-  sim::World playback_world;
+  sim::World playback_world;  ///< with the clutter's objects and standing people
+  Clutter clutter;            ///< drawn from config.clutter and the seed (empty when off)
   std::vector<std::string> warnings;
   std::string playback_blocked;  ///< why the route is not drivable in the playback world, if so
   /// route.switch_points was `auto`: config.route.switch_points now holds the points chosen.
@@ -313,7 +319,8 @@ nav::RobotGeometry RobotGeometryOf(const sim::SimConfig& sim);
 
 /// Loads and checks a scenario: strict keys (nav keys that would repeat the robot's geometry
 /// are refused naming the sim key that holds it), overrides (`--set`), the world and route files,
-/// the route drivable by the robot in both worlds, switch points inside the route (revisits
+/// the route drivable by the robot in both worlds, the clutter drawn (Rng(seed).Split("clutter"))
+/// and added to the playback world, switch points inside the route (revisits
 /// become warnings), the start free. Throws core::ConfigError / IoError / WorldError with one
 /// message naming the file.
 Scenario LoadScenario(const std::filesystem::path& file,

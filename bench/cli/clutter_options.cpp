@@ -1,0 +1,46 @@
+#include "bench/cli/clutter_options.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "bench/cli/cli_checks.hpp"
+#include "bench/engine/clutter.hpp"
+#include "core/errors.hpp"
+
+namespace retrace::bench {
+
+void AddClutterOptions(CLI::App* cmd, ClutterOptions* options) {
+  cmd->add_option("--clutter-density", options->density,
+                  "Unmapped static objects (chairs, bins, bikes, boxes) per m² of the band beside "
+                  "the route during playback: the scenario's clutter.density (default 0: none)")
+      ->check(kNonNegative);
+  cmd->add_option("--standing-density", options->standing_density,
+                  "People standing still per m² of the band during playback: the scenario's "
+                  "clutter.standing_density (default 0: none)")
+      ->check(kNonNegative);
+}
+
+std::string ClutterBlock(const ClutterOptions& options) {
+  if (!options.any()) return "";
+  ClutterConfig config;
+  config.density = options.density;
+  config.standing_density = options.standing_density;
+  try {
+    config.Validate();
+  } catch (const core::ConfigError& e) {
+    const char* option = e.key_path() == "density" ? "--clutter-density" : "--standing-density";
+    throw core::ConfigError(option, e.detail());
+  }
+  return "clutter: {density: " + core::FormatNumber(options.density) +
+         ", standing_density: " + core::FormatNumber(options.standing_density) + "}\n";
+}
+
+std::string ClutterArguments(const ClutterOptions& options) {
+  std::string out;
+  if (options.density != 0.0) out += " --clutter-density " + core::FormatNumber(options.density);
+  if (options.standing_density != 0.0) {
+    out += " --standing-density " + core::FormatNumber(options.standing_density);
+  }
+  return out;
+}
+
+}  // namespace retrace::bench
