@@ -44,7 +44,7 @@ struct Failure {
 // The scheduler's state, shared by its worker threads under one mutex.
 class EpisodeQueue {
  public:
-  EpisodeQueue(std::vector<EpisodeJob>& jobs, ProgressSink* progress,
+  EpisodeQueue(std::vector<EpisodeJob>& jobs, int threads, ProgressSink* progress,
                const EpisodeCallbacks& callbacks);
 
   // A worker thread's loop: takes ready tasks until none is left or one has failed. Does not
@@ -55,7 +55,8 @@ class EpisodeQueue {
   std::vector<TeachTiming> TakeTiming() { return std::move(timing_); }
 
  private:
-  void Drive(std::size_t position);  // the drive at this position of drives_, then its runs queued
+  // The drive at this position of drives_ on `threads` threads, then its runs queued.
+  void Drive(std::size_t position, int threads);
   void Play(const RunTask& task);
   void HandOverModesWithoutRuns(std::size_t job);
   void QueueRuns(std::size_t job);  // under mutex_
@@ -65,6 +66,7 @@ class EpisodeQueue {
   ProgressSink* progress_;
   const EpisodeCallbacks& callbacks_;
   std::vector<TeachTiming> timing_;
+  int threads_;
   std::vector<std::size_t> drives_;  // jobs to teach, longest route first (unknown routes last)
   std::vector<std::vector<int>> runs_left_;  // per job and mode
 
@@ -74,6 +76,7 @@ class EpisodeQueue {
   std::size_t drives_done_ = 0;
   std::set<RunTask> ready_;
   int in_flight_ = 0;
+  int busy_threads_ = 0;  // the threads the tasks in flight use (a drive may use several)
   int total_runs_ = 0;
   int runs_done_early_ = 0;  // runs done while drives still went on (before the playback phase)
   std::vector<Failure> failures_;
@@ -105,12 +108,13 @@ auto Named(const EpisodeJob& job, const Work& work) {
   }
 }
 
-EpisodeQueue::EpisodeQueue(std::vector<EpisodeJob>& jobs, ProgressSink* progress,
+EpisodeQueue::EpisodeQueue(std::vector<EpisodeJob>& jobs, int threads, ProgressSink* progress,
                            const EpisodeCallbacks& callbacks)
     : jobs_(jobs),
       progress_(progress),
       callbacks_(callbacks),
       timing_(jobs.size()),
+      threads_(std::max(threads, 1)),
       runs_left_(jobs.size()) {
   std::vector<std::size_t> teach;
   std::vector<double> cost;
@@ -142,11 +146,14 @@ void EpisodeQueue::Work() {
     RunTask run;
     std::size_t drive = 0;
     bool is_run = false;
+    int uses = 1;  // threads the task takes
     {
       std::unique_lock lock(mutex_);
+      // A task starts only on a free thread: a drive given several keeps the other workers
+      // waiting.
       changed_.wait(lock, [&] {
-        return !failures_.empty() || !ready_.empty() || next_drive_ < drives_.size() ||
-               in_flight_ == 0;
+        return !failures_.empty() || in_flight_ == 0 ||
+               (busy_threads_ < threads_ && (!ready_.empty() || next_drive_ < drives_.size()));
       });
       if (!failures_.empty()) return;
       if (!ready_.empty()) {
@@ -155,16 +162,23 @@ void EpisodeQueue::Work() {
         is_run = true;
       } else if (next_drive_ < drives_.size()) {
         drive = next_drive_++;
+        // The threads that would otherwise idle: those free now, less one for each drive still
+        // to start (no runs are ready here). A drive that is the only task gets them all.
+        uses = std::max(1, threads_ - busy_threads_ -
+                               static_cast<int>(drives_.size() - next_drive_));
+        // (no more than one per mode: a drive shares out its modes' recorders)
+        uses = std::min(uses, std::max(1, static_cast<int>(jobs_[drives_[drive]].modes.size())));
       } else {
         return;  // nothing ready and nothing running that could make work: all done
       }
       ++in_flight_;
+      busy_threads_ += uses;
     }
     try {
       if (is_run) {
         Play(run);
       } else {
-        Drive(drive);
+        Drive(drive, uses);
       }
     } catch (...) {
       Fail(is_run ? Failure{true, 0, run, std::current_exception()}
@@ -173,19 +187,20 @@ void EpisodeQueue::Work() {
     {
       std::lock_guard lock(mutex_);
       --in_flight_;
+      busy_threads_ -= uses;
     }
     changed_.notify_all();
   }
 }
 
-void EpisodeQueue::Drive(std::size_t position) {
+void EpisodeQueue::Drive(std::size_t position, int threads) {
   const std::size_t j = drives_[position];
   EpisodeJob& job = jobs_[j];
   Named(job, [&] {
     if (job.scenario == nullptr) job.scenario = job.load();
     std::unique_ptr<SensorTap> tap = callbacks_.tap ? callbacks_.tap(j, nullptr, -1) : nullptr;
     TeachResult teach =
-        RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress_), tap.get());
+        RunTeachDrive(*job.scenario, job.modes, SimTimeReporter(progress_), tap.get(), threads);
     job.taught = std::move(teach.modes);
     timing_[j] = {teach.duration_s, teach.cpu_time_s};
     HandOverModesWithoutRuns(j);
@@ -264,7 +279,7 @@ void EpisodeQueue::RethrowFirstFailure() const {
 
 std::vector<TeachTiming> RunEpisodes(std::vector<EpisodeJob> jobs, int threads,
                                      ProgressSink* progress, const EpisodeCallbacks& callbacks) {
-  EpisodeQueue queue(jobs, progress, callbacks);
+  EpisodeQueue queue(jobs, threads, progress, callbacks);
   RunOnThreads(static_cast<std::size_t>(std::max(threads, 1)), [&queue] { queue.Work(); });
   queue.RethrowFirstFailure();
   return queue.TakeTiming();

@@ -5,7 +5,10 @@
 // the drive is done. A free thread takes the runs of taught jobs before it starts another
 // teaching drive, so that a job's maps and traces are freed as early as possible and memory holds
 // about one job per thread; within each kind, the longest first, so that a long route does not
-// leave cores idle at the end. Each run is seeded by its own index (PlaybackRng), so the results
+// leave cores idle at the end. A teaching drive is given the threads that would otherwise idle
+// (those free when it starts, less one per drive still to start, at most one per mode) for its
+// modes' recorders (RunTeachDrive), and a task starts only on a free thread. Each run is seeded by
+// its own index (PlaybackRng), and a drive's bundles do not depend on its threads, so the results
 // do not depend on the number of threads or on which thread ran what.
 
 #include <cstddef>

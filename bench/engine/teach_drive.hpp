@@ -35,7 +35,7 @@ struct ModeTeach {
 
 struct TeachResult {
   double duration_s = 0.0;  ///< simulated
-  double cpu_time_s = 0.0;
+  double cpu_time_s = 0.0;  ///< the drive's thread and its recorders' helper threads
   std::vector<sim::CollisionEvent> collisions;
   std::vector<std::string> events;  ///< "time name" of each scripted event fired
   std::vector<ModeTeach> modes;     ///< in the order requested
@@ -71,11 +71,14 @@ std::vector<ModeTeach> FinishModeRecorders(std::vector<ModeRecorder>& recorders,
                                            const std::vector<core::Pose2>& X_WR);
 
 /// Drives the route with the teacher and builds the bundles of `modes`; `tap` (optional) gets
-/// a copy of the sensor stream. Throws like
+/// a copy of the sensor stream. With `threads` > 1, the recorders of the modes are shared out
+/// over up to `threads` threads (the drive's own and helpers), each recorder on one of them,
+/// while the drive's thread simulates on; the bundles do not depend on `threads`. Throws like
 /// RequireSwitchingModeIfOnline, and
 /// core::WorldError when the teacher does not finish the route within the teach timeout (a
 /// route it cannot drive), with where it got stuck.
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,
-                          const ProgressFn& progress = {}, SensorTap* tap = nullptr);
+                          const ProgressFn& progress = {}, SensorTap* tap = nullptr,
+                          int threads = 1);
 
 }  // namespace retrace::bench
