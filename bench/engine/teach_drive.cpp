@@ -115,8 +115,8 @@ core::WorldError TeacherStuck(const Scenario& scenario, double timeout, const co
 struct RecorderCall {
   enum class Kind { kPose, kScan, kSwitch };
   Kind kind = Kind::kPose;
-  core::Pose2 X_OR;     // kPose: the odometry pose
-  core::Pose2 X_M0R;    // kPose: ground truth from the start, the consistent map's pose source
+  core::Pose2 X_OR;   // kPose: the odometry pose
+  core::Pose2 X_M0R;  // kPose: ground truth from the start, the consistent map's pose source
   std::shared_ptr<const core::LaserScan> scan;  // kScan
 };
 
@@ -271,6 +271,28 @@ void FeedRecorders(const sim::SimStep& s, const sim::Simulator& simulator,
   }
 }
 
+// The operator's switch signals due at the teacher's progress, through the feed (none are listed
+// with online switching): as SignalSwitches, every recorder that switches maps gets the same.
+void SignalSwitchesThroughFeed(const std::vector<double>& switch_points, double progress,
+                               std::size_t* signalled, RecorderFeed& feed) {
+  while (*signalled < switch_points.size() && progress >= switch_points[*signalled]) {
+    RecorderCall call;
+    call.kind = RecorderCall::Kind::kSwitch;
+    feed.Call(call);
+    ++*signalled;
+  }
+}
+
+// The recorders of a simulated teaching drive, switching online when the scenario does.
+std::vector<ModeRecorder> DriveRecorders(const Scenario& scenario,
+                                         const std::vector<MapMode>& modes) {
+  RequireSwitchingModeIfOnline(scenario, modes);
+  const std::optional<nav::OnlineSwitchingConfig> online =
+      scenario.switching_online() ? std::optional(scenario.config.route.OnlineSwitching())
+                                  : std::nullopt;
+  return MakeModeRecorders(modes, scenario.config.nav, scenario.robot, online);
+}
+
 }  // namespace
 
 TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& modes,
@@ -285,11 +307,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   sim::Teacher teacher(scenario.route, config.teach.teacher, rng.Split("teacher"));
   ScriptedEvents events(config.events, EventPhase::kTeach);
 
-  RequireSwitchingModeIfOnline(scenario, modes);
-  const std::optional<nav::OnlineSwitchingConfig> online =
-      scenario.switching_online() ? std::optional(config.route.OnlineSwitching()) : std::nullopt;
-  std::vector<ModeRecorder> recorders =
-      MakeModeRecorders(modes, config.nav, scenario.robot, online);
+  std::vector<ModeRecorder> recorders = DriveRecorders(scenario, modes);
   // The odometry ticks, for the per-map traces.
   std::vector<double> tick_time;
   std::vector<core::Pose2> tick_X_WR;
@@ -314,17 +332,7 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
       if (teacher.Done()) break;
       if (simulator.time() > timeout) throw TeacherStuck(scenario, timeout, X_WR, teacher);
       command = teacher.Command(X_WR, stepper.control_dt());
-      // The operator's switch signal, given as the teacher's progress passes a switch point
-      // (none are listed with online switching).
-      // (As SignalSwitches, through the feed: every recorder that switches maps has had the
-      // same signals.)
-      while (switches_signalled < switch_points.size() &&
-             teacher.Progress() >= switch_points[switches_signalled]) {
-        RecorderCall call;
-        call.kind = RecorderCall::Kind::kSwitch;
-        feed.Call(call);
-        ++switches_signalled;
-      }
+      SignalSwitchesThroughFeed(switch_points, teacher.Progress(), &switches_signalled, feed);
       for (const std::string& name : events.Fire(simulator.time(), teacher.Progress(), simulator)) {
         result.events.push_back(core::FormatNumber(simulator.time()) + " " + name);
       }
