@@ -29,6 +29,9 @@ namespace retrace::io {
 inline constexpr double kRosMapOccupiedProbability = 0.95;
 /// Probability given to free cells of a map read from file (log-odds about -2.94).
 inline constexpr double kRosMapFreeProbability = 0.05;
+/// A cell is known free below map_saver's default free threshold (trinary maps store 0.05 for
+/// free, 0.5 for unknown and 0.95 for occupied cells).
+inline constexpr double kRosMapKnownFreeBelow = 0.196;
 
 /// How map_server interprets pixel values (the YAML's `mode`).
 enum class RosMapMode { kTrinary, kScale, kRaw };

@@ -1,5 +1,10 @@
 #include "sim/grid_edges.hpp"
 
+#include <cmath>
+#include <numbers>
+
+#include "io/ros_map.hpp"
+
 namespace retrace::sim {
 
 OccupancyMask OccupiedMask(const core::OccupancyGrid& grid, double occupied_threshold) {
@@ -15,6 +20,18 @@ OccupancyMask OccupiedMask(const core::OccupancyGrid& grid, double occupied_thre
     mask.occupied[i] = grid.log_odds()[i] >= threshold ? 1 : 0;
   }
   return mask;
+}
+
+void FillUnknownCells(const core::OccupancyGrid& grid, double occupied_threshold,
+                      double free_path, core::Rng rng, OccupancyMask* mask) {
+  const double p = -std::expm1(-std::numbers::pi * grid.resolution() / (4.0 * free_path));
+  const float occupied = static_cast<float>(core::Logit(occupied_threshold));
+  const float known_free = static_cast<float>(core::Logit(io::kRosMapKnownFreeBelow));
+  for (std::size_t i = 0; i < mask->occupied.size(); ++i) {
+    const float l = grid.log_odds()[i];
+    if (l < known_free || l >= occupied) continue;
+    if (rng.Bernoulli(p)) mask->occupied[i] = 1;
+  }
 }
 
 std::vector<Segment> MergedBoundaryEdges(const OccupancyMask& mask) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/occupancy_grid.hpp"
+#include "core/rng.hpp"
 #include "sim/static_geometry.hpp"
 
 namespace retrace::sim {
@@ -14,6 +15,13 @@ namespace retrace::sim {
 /// Cells whose occupancy probability is at least `occupied_threshold` become solid; unknown and
 /// free cells, and everything outside the grid, are open. Returns the mask of solid cells.
 OccupancyMask OccupiedMask(const core::OccupancyGrid& grid, double occupied_threshold);
+
+/// Makes each unknown cell of `grid` (below `occupied_threshold`, not known free) solid in
+/// *mask with probability 1 − exp(−π r / (4 free_path)), r the resolution: rays in uniformly
+/// random directions then travel `free_path` (m) through unknown cells on average before they
+/// meet a solid one. One draw per unknown cell, in row-major order, from `rng`.
+void FillUnknownCells(const core::OccupancyGrid& grid, double occupied_threshold,
+                      double free_path, core::Rng rng, OccupancyMask* mask);
 
 /// The merged boundary faces of the solid cells of `mask`, in W.
 std::vector<Segment> MergedBoundaryEdges(const OccupancyMask& mask);

@@ -89,6 +89,11 @@ void WallConfig::Validate() const {
 void MapImportConfig::Validate() const {
   if (file.empty()) throw core::ConfigError("file", "must name a ROS map YAML file");
   core::RequireInRange("occupied_threshold", occupied_threshold, 0.0, 1.0);
+  if (!(unknown_free_path >= 0.0) || !std::isfinite(unknown_free_path)) {
+    throw core::ConfigError("unknown_free_path",
+                            "must be 0 (unknown cells open) or a distance in m, not " +
+                                core::FormatNumber(unknown_free_path));
+  }
 }
 
 StaticGeometry BuildGeometry(const WorldConfig& config, const std::filesystem::path& base_dir) {
@@ -101,6 +106,10 @@ StaticGeometry BuildGeometry(const WorldConfig& config, const std::filesystem::p
     const std::filesystem::path file = base_dir / m.file;
     const core::OccupancyGrid grid = io::ReadRosMap(file);
     OccupancyMask mask = OccupiedMask(grid, m.occupied_threshold);
+    if (m.unknown_free_path > 0.0) {
+      FillUnknownCells(grid, m.occupied_threshold, m.unknown_free_path,
+                       core::Rng(m.unknown_seed).Split("unknown cells"), &mask);
+    }
     const std::vector<Segment> edges = MergedBoundaryEdges(mask);
     if (edges.empty()) {
       throw core::WorldError(file.string() + ": the map has no occupied cells (threshold " +

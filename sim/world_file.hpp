@@ -10,6 +10,7 @@
 //   maps:      [{file: floor.yaml, occupied_threshold: 0.65}]   # ROS map_server maps
 //   pedestrians: [{count: 5, region_min: [0, 0], region_max: [10, 8], mode: wander}]
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -81,10 +82,19 @@ struct WallConfig {
 struct MapImportConfig {
   std::string file;  ///< relative to the world file's folder
   double occupied_threshold = 0.65;
+  /// What the world holds in the map's unknown cells (neither occupied nor known free): 0
+  /// (default) leaves them open; otherwise the mean distance (m) a ray travels through unknown
+  /// cells before it meets something. Each unknown cell becomes solid with probability
+  /// 1 − exp(−π r / (4 ℓ)) for resolution r (a ray in a uniformly random direction crosses 4/(π r)
+  /// cells per metre), drawn from `unknown_seed` (docs/METHOD.md, "What the map does not hold").
+  double unknown_free_path = 0.0;
+  std::uint64_t unknown_seed = 1;
   template <class V>
   void Reflect(V& v) {
     v("file", file);
     v("occupied_threshold", occupied_threshold);
+    v("unknown_free_path", unknown_free_path);
+    v("unknown_seed", unknown_seed);
   }
   void Validate() const;
 };

@@ -52,6 +52,32 @@ std::string HalvesSpread(const LidarCalibration& c) {
          FixedText(100.0 * std::abs(a.hit_offset - b.hit_offset), 1) + " cm";
 }
 
+std::string UnmappedRow(const std::string& name, const UnmappedPart& part) {
+  const UnmappedFit& f = part.fit;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-12s %8.1f %8.1f %8zu %6.1f %% %8zu %9.0f %7.2f %7zu %8.0f %8.4f",
+                name.c_str(), part.from_s, part.to_s, f.beams,
+                f.beams > 0 ? 100.0 * static_cast<double>(f.short_readings) /
+                                  static_cast<double>(f.beams)
+                            : 0.0,
+                f.unknown_hits, f.unknown_exposure_m, f.unknown_free_path, f.band_hits,
+                f.band_exposure_m, f.density);
+  return line;
+}
+
+// What the map does not hold: one row per part.
+std::vector<std::string> UnmappedReport(const LidarCalibration& c) {
+  return {"what the map does not hold (readings short of the map by more than 3 sigma_hit less "
+          "the offset, where they end):",
+          "part         from (s)   to (s)    beams   short  unknown  exposure  free_path   band "
+          "exposure  density",
+          UnmappedRow("whole", c.unmapped_whole), UnmappedRow("first half", c.unmapped_first_half),
+          UnmappedRow("second half", c.unmapped_second_half),
+          "(exposure: m of the rays in unknown cells and in the clutter's band; free_path in m, "
+          "density in objects per m^2 of mean width " +
+              FixedText(c.unmapped_whole.fit.mean_width_m, 2) + " m)"};
+}
+
 // The fit report: what was used, then one row per part and the halves' spread.
 std::vector<std::string> FitReport(const LidarCalibration& c, const std::string& log_name,
                                    const std::filesystem::path& teach_dir) {
@@ -77,12 +103,14 @@ std::vector<std::string> FitReport(const LidarCalibration& c, const std::string&
           FixedText(c.whole.result.mixture.hit_offset, 3) +
           " m beyond the cast range z*, a property of the grid map (the cast stops at the face "
           "of the first occupied cell), not of the sensor: not part of sim.lidar.noise"};
+  for (const std::string& line : UnmappedReport(c)) lines.push_back(line);
   return lines;
 }
 
 // The YAML file: the fit report as comments, then the sim.lidar.noise block.
 std::string CalibrationYaml(const std::vector<std::string>& report,
-                            const sim::LidarNoiseConfig& noise, const std::string& command_line) {
+                            const sim::LidarNoiseConfig& noise, const UnmappedFit& unmapped,
+                            const ClutterConfig& clutter, const std::string& command_line) {
   std::string text = "# retrace calibrate-lidar: the simulated LiDAR's noise fitted to a log\n";
   text += "# " + command_line + "\n#\n";
   for (const std::string& line : report) text += "# " + line + "\n";
@@ -95,6 +123,14 @@ std::string CalibrationYaml(const std::vector<std::string>& report,
     text += "      " + std::string(key) + ": " + core::FormatNumber(value) + "\n";
   };
   copy.Reflect(write_key);
+  text += "  unknown_free_path: " + core::FormatNumber(unmapped.unknown_free_path) + "\n";
+  text += "clutter:\n  density: " + core::FormatNumber(unmapped.density) + "\n";
+  text += "  band: " + core::FormatNumber(clutter.band) + "\n";
+  text += "  clearance: " + core::FormatNumber(clutter.clearance) + "\n";
+  text += "  kinds: [";
+  for (std::size_t i = 0; i < clutter.kinds.size(); ++i)
+    text += (i > 0 ? ", " : "") + std::string(core::EnumName(clutter.kinds[i]));
+  text += "]\n";
   return text;
 }
 
@@ -128,12 +164,19 @@ void AddCalibrateLidarOptions(CLI::App* cmd, CalibrateLidarOptions* options) {
                   "Beams with an expected range the map knows needed in each half of the "
                   "window (default 1000)")
       ->check(CLI::Range(1, 1000000000));
+  cmd->add_option("--config", options->config,
+                  "Settings file (YAML), as for log-simulate: the clutter block's band, clearance "
+                  "and kinds define where and what the density is measured as");
+  cmd->add_option("--set", options->overrides, "Override a setting, e.g. clutter.band=2 (repeatable)");
   AddStreamOptions(cmd, &options->streams);
 }
 
 int RunCalibrateLidarCommand(const CalibrateLidarOptions& options,
                              const std::string& command_line) {
   RequireWindow(options.window);
+  std::vector<io::ConfigOverride> overrides;
+  for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
+  const ClutterConfig clutter = LoadLogConfig(options.config, overrides).clutter;
   const ModeTeach teach = ReadTeachFolder(options.teach_dir, MapMode::kConsistent);
   RequireWorldMap(teach, options.teach_dir, TeachFolderMode(options.teach_dir));
   const logs::LogIndex index = logs::IndexLog(options.log, options.streams);
@@ -144,12 +187,13 @@ int RunCalibrateLidarCommand(const CalibrateLidarOptions& options,
   calibration_options.min_beams_per_half = options.min_beams;
   calibration_options.fit.max_iterations = options.max_iterations;
   const LidarCalibration calibration =
-      FitLidarCalibration(CollectCalibrationBeams(index, streams, teach, options.window),
-                          index.name, calibration_options);
+      FitLidarCalibration(CollectCalibrationBeams(index, streams, teach, options.window, clutter),
+                          index.name, calibration_options, clutter);
 
   const std::vector<std::string> report = FitReport(calibration, index.name, options.teach_dir);
   const sim::LidarNoiseConfig noise = NoiseOfMixture(calibration.whole.result.mixture);
-  io::WriteFileAtomic(options.out, CalibrationYaml(report, noise, command_line));
+  io::WriteFileAtomic(options.out, CalibrationYaml(report, noise, calibration.unmapped_whole.fit,
+                                                    clutter, command_line));
   for (const std::string& line : report) std::cout << line << "\n";
   std::cout << "sim.lidar.noise: " << options.out.string() << "\n";
   if (options.figures) {

@@ -30,6 +30,10 @@ struct CalibrateLidarOptions {
   std::optional<std::filesystem::path> reference;
   int max_iterations = 1000;
   std::size_t min_beams = 1000;  ///< per half of the window
+  /// Settings as for log-simulate: its `clutter` block's band, corridor and kinds define the
+  /// band the density is measured in.
+  std::optional<std::filesystem::path> config;
+  std::vector<std::string> overrides;
 };
 
 void AddCalibrateLidarOptions(CLI::App* cmd, CalibrateLidarOptions* options);

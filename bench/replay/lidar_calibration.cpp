@@ -16,9 +16,6 @@ namespace retrace::bench {
 
 namespace {
 
-// A cell is known free below map_saver's free threshold (trinary maps hold 0.05, 0.5, 0.95).
-constexpr double kFreeBelow = 0.196;
-
 // The map with every cell that is neither occupied nor known free made occupied: a ray cast in
 // it stops at the first unknown cell as well.
 core::OccupancyGrid UnknownAsOccupied(const core::OccupancyGrid& grid, double occupied_threshold) {
@@ -26,7 +23,7 @@ core::OccupancyGrid UnknownAsOccupied(const core::OccupancyGrid& grid, double oc
   for (int y = 0; y < grid.height(); ++y) {
     for (int x = 0; x < grid.width(); ++x) {
       const double p = grid.Probability({x, y});
-      if (p >= kFreeBelow && p < occupied_threshold)
+      if (p >= io::kRosMapKnownFreeBelow && p < occupied_threshold)
         blocked.SetProbability({x, y}, io::kRosMapOccupiedProbability);
     }
   }
@@ -45,11 +42,14 @@ class KnownRangeCaster {
         blocked_caster_(blocked_),
         range_max_(range_max) {}
 
-  // z* (m) from origin (M) along the unit direction, or NaN when the map does not know it.
-  double Cast(const core::Vec2& origin, const core::Vec2& dir) const {
+  struct Ranges {
+    double map = 0.0;    ///< m, the first occupied cell (unknown cells open); range_max if none
+    double known = 0.0;  ///< m, z* where the map knows it, NaN where not
+  };
+  Ranges Cast(const core::Vec2& origin, const core::Vec2& dir) const {
     const double z = map_caster_.Cast(origin, dir, range_max_);
-    if (z == nav::kNoHit) return std::nan("");
-    return blocked_caster_.Cast(origin, dir, range_max_) == z ? z : std::nan("");
+    if (z == nav::kNoHit) return {range_max_, std::nan("")};
+    return {z, blocked_caster_.Cast(origin, dir, range_max_) == z ? z : std::nan("")};
   }
 
  private:
@@ -60,22 +60,27 @@ class KnownRangeCaster {
 
 // The beams of one scan from the LiDAR pose X_ML into *beams.
 void AddScanBeams(const core::LaserScan& scan, double log_time_s, const core::Pose2& X_ML,
-                  const KnownRangeCaster& caster, CalibrationBeams* beams) {
+                  const KnownRangeCaster& caster, const UnmappedMap& unmapped,
+                  CalibrationBeams* beams) {
   const core::Vec2 origin = X_ML.translation();
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
     ++beams->beams;
     const double a = X_ML.theta + scan.Angle(i);
-    const double z_star = caster.Cast(origin, {std::cos(a), std::sin(a)});
+    const core::Vec2 dir(std::cos(a), std::sin(a));
+    const KnownRangeCaster::Ranges cast = caster.Cast(origin, dir);
+    const double r = scan.ranges[i];
+    const bool valid = r >= beams->range_min;
+    const double z = r >= beams->range_max ? std::numeric_limits<double>::infinity() : r;
+    if (valid) beams->unmapped.push_back(unmapped.Walk(log_time_s, origin, dir, z, cast.map));
+    const double z_star = cast.known;
     if (!(z_star > beams->range_min)) {  // NaN: unknown
       ++beams->unknown;
       continue;
     }
-    const double r = scan.ranges[i];
-    if (!(r >= beams->range_min)) {
+    if (!valid) {
       ++beams->invalid;
       continue;
     }
-    const double z = r >= beams->range_max ? std::numeric_limits<double>::infinity() : r;
     beams->samples.push_back({z, z_star});
     beams->times.push_back(log_time_s);
   }
@@ -133,7 +138,8 @@ void RequireWorldMap(const ModeTeach& teach, const std::filesystem::path& teach_
 }
 
 CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogStreams& streams,
-                                         const ModeTeach& world_teach, const LogWindow& window) {
+                                         const ModeTeach& world_teach, const LogWindow& window,
+                                         const ClutterConfig& clutter) {
   if (streams.reference.empty()) {
     throw core::IoError(index.name +
                         ": no reference trajectory; calibration compares each beam with the "
@@ -144,9 +150,15 @@ CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogS
   CalibrationBeams beams;
   beams.range_min = index.scan.range_min;
   beams.range_max = index.scan.range_max;
-  const KnownRangeCaster caster(world_teach.bundle.maps.front().grid, beams.range_max);
+  const core::OccupancyGrid& grid = world_teach.bundle.maps.front().grid;
+  const KnownRangeCaster caster(grid, beams.range_max);
   const TeachMapTrace& trace = world_teach.trace.maps.front();
   const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
+  const double origin_s = 1e-9 * static_cast<double>(index.origin_ns);
+  const std::vector<core::Vec2> route =
+      RouteInMap(streams.reference, X_MW, origin_s + window.from_s, origin_s + window.to_s);
+  const UnmappedMap unmapped(grid, nav::LikelihoodFieldConfig{}.occupied_threshold, route,
+                             clutter, ClutterSite{}.robot_radius);
   logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double t) {
     const std::optional<core::Pose2> X_WR = logs::PoseAt(streams.reference, m.scan.stamp);
     if (!X_WR) {
@@ -156,13 +168,14 @@ CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogS
     if (beams.scans == 0) beams.first_s = t;
     beams.last_s = t;
     ++beams.scans;
-    AddScanBeams(m.scan, t, X_MW * *X_WR * streams.robot.X_RL, caster, &beams);
+    AddScanBeams(m.scan, t, X_MW * *X_WR * streams.robot.X_RL, caster, unmapped, &beams);
   });
   return beams;
 }
 
 LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& log_name,
-                                     const LidarCalibrationOptions& options) {
+                                     const LidarCalibrationOptions& options,
+                                     const ClutterConfig& clutter) {
   const double middle = 0.5 * (beams.first_s + beams.last_s);
   const std::size_t split = static_cast<std::size_t>(
       std::lower_bound(beams.times.begin(), beams.times.end(), middle) - beams.times.begin());
@@ -173,6 +186,21 @@ LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& 
   out.second_half = FitPart(beams, split, n, "second half of the window", log_name, options,
                             options.min_beams_per_half);
   out.whole = FitPart(beams, 0, n, "whole window", log_name, options, 0);
+  const nav::BeamMixture& m = out.whole.result.mixture;
+  const double margin = 3.0 * m.sigma_hit - m.hit_offset;
+  const double far_margin = 3.0 * m.sigma_hit + m.hit_offset;
+  const double width = MeanClutterWidth(clutter);
+  const auto part = [&](double from_s, double to_s) {
+    const auto lo = std::lower_bound(beams.unmapped.begin(), beams.unmapped.end(), from_s,
+                                     [](const UnmappedBeam& b, double t) { return b.t < t; });
+    const auto hi = std::lower_bound(lo, beams.unmapped.end(), to_s,
+                                     [](const UnmappedBeam& b, double t) { return b.t < t; });
+    return UnmappedPart{FitUnmapped({lo, hi}, margin, far_margin, width), from_s, to_s};
+  };
+  out.unmapped_whole = part(beams.first_s, 1e300);
+  out.unmapped_first_half = part(beams.first_s, middle);
+  out.unmapped_second_half = part(middle, 1e300);
+  out.unmapped_whole.to_s = out.unmapped_second_half.to_s = beams.last_s;
   out.beams = std::move(beams);
   return out;
 }

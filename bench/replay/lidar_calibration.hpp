@@ -16,6 +16,7 @@
 #include "bench/engine/teach_drive.hpp"
 #include "bench/replay/log_streams.hpp"
 #include "bench/replay/log_teach.hpp"
+#include "bench/replay/unmapped_calibration.hpp"
 #include "logs/sensor_log.hpp"
 #include "nav/beam_mixture_fit.hpp"
 #include "sim/lidar.hpp"
@@ -41,6 +42,8 @@ struct CalibrationBeams {
   double last_s = 0.0;     ///< ... and of the last
   double range_min = 0.0;  ///< m, the log's LiDAR (its first scan)
   double range_max = 0.0;
+  /// Every beam with a reading, walked through the map (bench/replay/unmapped_calibration.hpp).
+  std::vector<UnmappedBeam> unmapped;
 };
 
 /// One fit and the part of the window it covers.
@@ -50,9 +53,17 @@ struct LidarFit {
   double to_s = 0.0;
 };
 
+/// What the map does not hold, over one part of the window.
+struct UnmappedPart {
+  UnmappedFit fit;
+  double from_s = 0.0;
+  double to_s = 0.0;
+};
+
 struct LidarCalibration {
   CalibrationBeams beams;
   LidarFit whole, first_half, second_half;
+  UnmappedPart unmapped_whole, unmapped_first_half, unmapped_second_half;
 };
 
 /// Refuses a teach folder whose map is not the world: `mode` must be consistent (from the folder's
@@ -61,16 +72,21 @@ struct LidarCalibration {
 void RequireWorldMap(const ModeTeach& teach, const std::filesystem::path& teach_dir,
                      std::optional<MapMode> mode);
 
-/// The beams of `index` in `window`, each with its expected range in the map of `world_teach`.
-/// Throws core::IoError for a log without a reference.
+/// The beams of `index` in `window`, each with its expected range in the map of `world_teach`,
+/// and walked through it for what the map does not hold (the band is `clutter`'s around the
+/// window's reference). Throws core::IoError for a log without a reference.
 CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogStreams& streams,
-                                         const ModeTeach& world_teach, const LogWindow& window);
+                                         const ModeTeach& world_teach, const LogWindow& window,
+                                         const ClutterConfig& clutter);
 
-/// Fits the whole window and its halves. Throws core::IoError when a half has fewer than
+/// Fits the whole window and its halves: the mixture, then what the map does not hold (a
+/// reading is short when it ends before the map's range minus 3 σ_hit, less the hit offset, of
+/// the whole window's mixture). Throws core::IoError when a half has fewer than
 /// options.min_beams_per_half beams with a known expected range, core::ConfigError
 /// ("--max-iterations") when a fit does not converge.
 LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& log_name,
-                                     const LidarCalibrationOptions& options);
+                                     const LidarCalibrationOptions& options,
+                                     const ClutterConfig& clutter);
 
 /// The simulated LiDAR's noise that draws the fitted mixture: sigma0 = σ_hit, sigma1 = 0,
 /// dropout_probability = z_max, short_probability = z_short, short_lambda = λ_short,

@@ -2,8 +2,15 @@
 
 #include "core/errors.hpp"
 #include "io/config_yaml.hpp"
+#include "sim/world_file.hpp"
 
 namespace retrace::bench {
+
+void LogSimConfig::Validate() const {
+  odometry.Validate();
+  sim::MapImportConfig map{"map", 0.65, unknown_free_path};
+  map.Validate();
+}
 
 LogConfig::LogConfig() { route.switch_points.word = SwitchPlanning::kOnline; }
 

@@ -11,6 +11,8 @@
 //                        online_drift as in a scenario; route.file and route.points do not apply
 //   sim.odometry         the odometry error model of --synthetic-odometry
 //   sim.lidar.noise      log-simulate: the simulated LiDAR's noise (the geometry is the log's)
+//   sim.unknown_free_path  log-simulate: what the map's unknown cells hold (a world's maps entry)
+//   clutter              log-simulate: unmapped clutter beside the log's reference (a scenario's)
 //   nav                  the navigation stack (mapper, scan_matcher, localizer, follower ...)
 //   playback             initial_sigma_xy, initial_sigma_yaw_deg: the localizer's start
 //   metrics              the local-truth matching of the localization error
@@ -45,13 +47,17 @@ struct LogLidarConfig {
 struct LogSimConfig {
   sim::OdometryConfig odometry;
   LogLidarConfig lidar;
+  /// log-simulate: what the world holds in the map's unknown cells, as a world file's maps
+  /// entry (sim/world_file.hpp): 0 open, else the mean free path (m) of a ray through them.
+  double unknown_free_path = 0.0;
 
   template <class V>
   void Reflect(V& v) {
     v("odometry", odometry);
     v("lidar", lidar);
+    v("unknown_free_path", unknown_free_path);
   }
-  void Validate() const { odometry.Validate(); }
+  void Validate() const;
 };
 
 struct LogConfig {
@@ -62,6 +68,8 @@ struct LogConfig {
   NavConfig nav;
   PlaybackConfig playback;
   MetricsConfig metrics;
+  /// log-simulate: unmapped clutter beside the log's reference, as a scenario's.
+  ClutterConfig clutter;
 
   LogConfig();
 
@@ -74,6 +82,7 @@ struct LogConfig {
     v("nav", nav);
     v("playback", playback);
     v("metrics", metrics);
+    v("clutter", clutter);
   }
   /// Throws core::ConfigError for a key that does not apply to logs (route.file, route.points,
   /// playback.repeats and the start offsets), a mode listed twice.

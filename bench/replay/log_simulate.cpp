@@ -6,9 +6,11 @@
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "io/ros_map.hpp"
 #include "logs/mcap_writer.hpp"
 #include "logs/raw_message.hpp"
 #include "logs/ros_messages.hpp"
+#include "bench/replay/unmapped_calibration.hpp"
 #include "sim/lidar.hpp"
 #include "sim/world_file.hpp"
 
@@ -53,6 +55,40 @@ sim::LidarConfig LoggedLidar(const logs::ScanGeometry& g, const LogStreams& stre
   lidar.noise = config.sim.lidar.noise;
   lidar.mount = streams.robot.X_RL * core::Pose2(0.0, 0.0, g.angle_min + 0.5 * fov);
   return lidar;
+}
+
+// The world: the taught map in its frame M, its unknown cells filled at the configured free
+// path, and the clutter drawn beside the window's reference (standing people as discs: the
+// scans are all that is simulated).
+sim::StaticGeometry SimulatedWorld(const logs::LogIndex& index, const LogStreams& streams,
+                                   const core::Pose2& X_MW,
+                                   const std::filesystem::path& world_teach_dir,
+                                   const LogConfig& config, const LogWindow& window) {
+  const core::Rng rng = core::Rng(config.seed).Split("log-simulate world");
+  sim::WorldConfig world;
+  world.name = "log-simulate";
+  world.maps.push_back(
+      {"maps/ogm_0.yaml", 0.65, config.sim.unknown_free_path, rng.Split("unknown").seed()});
+  if (!config.clutter.enabled()) return sim::BuildGeometry(world, world_teach_dir);
+  // The clutter stands in the map's known free space, where calibrate-lidar measured it: placed
+  // in the map with every cell that is not known free solid.
+  sim::WorldConfig known_free;
+  known_free.maps.push_back({"maps/ogm_0.yaml", io::kRosMapKnownFreeBelow});
+  const sim::StaticGeometry map = sim::BuildGeometry(known_free, world_teach_dir);
+  const double origin_s = 1e-9 * static_cast<double>(index.origin_ns);
+  const std::vector<core::Vec2> route =
+      RouteInMap(streams.reference, X_MW, origin_s + window.from_s, origin_s + window.to_s);
+  if (route.size() < 2) {
+    throw core::IoError(index.name + ": the reference does not move in the window: no route to "
+                                     "place the clutter beside");
+  }
+  const Clutter clutter =
+      GenerateClutter(config.clutter, ClutterSite{&route, &map}, rng.Split("clutter"));
+  world.boxes = clutter.boxes;
+  world.circles = clutter.circles;
+  for (const core::Vec2& p : clutter.standing)
+    world.circles.push_back({p, config.clutter.person_radius});
+  return sim::BuildGeometry(world, world_teach_dir);
 }
 
 // The simulated log being written: the log's odometry and reference, from the first simulated
@@ -119,13 +155,10 @@ LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams
                           const std::filesystem::path& world_teach_dir, const LogConfig& config,
                           const LogWindow& window, const std::filesystem::path& out) {
   RequireSimulatableLog(index, streams, world_teach, world_teach_dir);
-  // The world: the taught map, in its frame M; the reference placed in it by the teach trace.
-  sim::WorldConfig world;
-  world.name = "log-simulate";
-  world.maps.push_back({"maps/ogm_0.yaml", 0.65});
-  const sim::StaticGeometry geometry = sim::BuildGeometry(world, world_teach_dir);
   const TeachMapTrace& trace = world_teach.trace.maps.front();
   const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
+  const sim::StaticGeometry geometry =
+      SimulatedWorld(index, streams, X_MW, world_teach_dir, config, window);
   const logs::ScanGeometry& g = index.scan;
   const sim::Lidar sensor(LoggedLidar(g, streams, config), geometry);
   core::Rng rng = core::Rng(config.seed).Split("log-simulate");

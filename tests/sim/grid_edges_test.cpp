@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/rng.hpp"
+#include "sim/ray_caster.hpp"
 
 namespace retrace::sim {
 namespace {
@@ -73,3 +74,58 @@ TEST(GridEdges, EdgesSeparateSolidFromFreeEverywhere) {
 
 }  // namespace
 }  // namespace retrace::sim
+
+namespace retrace::sim::unknown_fill_test {
+
+// An all-unknown map filled at free path l: rays from its centre in uniformly random directions
+// travel l on average before they meet a solid cell (the fill's probability per cell is derived
+// for exactly that), and known free and occupied cells are left as they are.
+TEST(UnknownFill, RaysTravelTheFreePathOnAverage) {
+  constexpr double kFreePath = 1.5;
+  const core::OccupancyGrid grid(1000, 1000, 0.05, Vec2(-25.0, -25.0));  // all unknown
+  OccupancyMask mask = OccupiedMask(grid, 0.65);
+  FillUnknownCells(grid, 0.65, kFreePath, core::Rng(4), &mask);
+  StaticGeometry geometry;
+  geometry.AddEdges(MergedBoundaryEdges(mask), mask);
+  const RayCaster caster(geometry);
+  core::Rng rng(5);
+  double sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec2 origin(rng.Uniform(-2.0, 2.0), rng.Uniform(-2.0, 2.0));
+    if (geometry.IsInside(origin)) continue;
+    const double a = rng.Uniform(0.0, 2.0 * M_PI);
+    const double t = caster.Cast(origin, Vec2(std::cos(a), std::sin(a)), 22.0);
+    ASSERT_LT(t, 22.0);
+    sum += t;
+    ++n;
+  }
+  // The distance from a uniform point to the first solid cell's face, exponential with mean l
+  // measured from the start of the cell the point is in: half a cell less on average.
+  EXPECT_NEAR(sum / n, kFreePath - 0.5 * 0.05, 0.06);
+}
+
+TEST(UnknownFill, KnownCellsStayAsTheyAre) {
+  core::OccupancyGrid grid(40, 40, 0.1, Vec2(0.0, 0.0));
+  for (int x = 0; x < 40; ++x) {
+    grid.SetProbability({x, 10}, 0.05);  // known free
+    grid.SetProbability({x, 20}, 0.95);  // occupied
+  }
+  OccupancyMask mask = OccupiedMask(grid, 0.65);
+  FillUnknownCells(grid, 0.65, 1e-4, core::Rng(1), &mask);  // every unknown cell solid
+  int unknown_solid = 0;
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      const bool solid = mask.occupied[static_cast<std::size_t>(y * 40 + x)] != 0;
+      if (y == 10) {
+        EXPECT_FALSE(solid);
+      } else if (y == 20) {
+        EXPECT_TRUE(solid);
+      }
+      if (y != 10 && y != 20 && solid) ++unknown_solid;
+    }
+  }
+  EXPECT_EQ(unknown_solid, 38 * 40);
+}
+
+}  // namespace retrace::sim::unknown_fill_test

@@ -1,0 +1,129 @@
+#include "bench/replay/unmapped_calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/nearest_grid.hpp"
+#include "io/ros_map.hpp"
+
+namespace retrace::bench {
+
+UnmappedMap::UnmappedMap(const core::OccupancyGrid& grid, double occupied_threshold,
+                         std::span<const core::Vec2> route, const ClutterConfig& clutter,
+                         double robot_radius)
+    : grid_(grid), kinds_(grid.log_odds().size(), kOpen) {
+  const float occupied = static_cast<float>(core::Logit(occupied_threshold));
+  const float known_free = static_cast<float>(core::Logit(io::kRosMapKnownFreeBelow));
+  const core::PolylineDistance to_route(std::vector<core::Vec2>(route.begin(), route.end()));
+  const double corridor = robot_radius + clutter.clearance;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const std::size_t i = grid.Index({x, y});
+      const float l = grid.log_odds()[i];
+      if (l >= occupied) continue;
+      if (l >= known_free) {
+        kinds_[i] = kUnknownCell;
+        continue;
+      }
+      const double d = to_route(grid.CellToWorld({x, y}));
+      if (d > corridor && d <= clutter.band) kinds_[i] = kBandCell;
+    }
+  }
+}
+
+UnmappedMap::Kind UnmappedMap::KindAt(core::CellIndex c) const {
+  return grid_.Contains(c) ? static_cast<Kind>(kinds_[grid_.Index(c)]) : kOpen;
+}
+
+UnmappedBeam UnmappedMap::Walk(double t, const core::Vec2& origin, const core::Vec2& dir,
+                               double reading, double map_range) const {
+  UnmappedBeam beam{t, reading, map_range};
+  const double length = std::min(reading, map_range);
+  // Amanatides & Woo's traversal: the ray's parameter at each cell's exit, adding the length
+  // inside each cell to its kind.
+  const double r = grid_.resolution();
+  const core::Vec2 p = (origin - grid_.origin()) / r;
+  int x = static_cast<int>(std::floor(p.x()));
+  int y = static_cast<int>(std::floor(p.y()));
+  const int step_x = dir.x() >= 0.0 ? 1 : -1;
+  const int step_y = dir.y() >= 0.0 ? 1 : -1;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double delta_x = dir.x() != 0.0 ? r / std::abs(dir.x()) : kInf;
+  const double delta_y = dir.y() != 0.0 ? r / std::abs(dir.y()) : kInf;
+  double next_x = dir.x() != 0.0 ? (step_x > 0 ? x + 1 - p.x() : p.x() - x) * delta_x : kInf;
+  double next_y = dir.y() != 0.0 ? (step_y > 0 ? y + 1 - p.y() : p.y() - y) * delta_y : kInf;
+  double entered = 0.0;
+  while (entered < length) {
+    const double exit = std::min({next_x, next_y, length});
+    const Kind kind = KindAt({x, y});
+    if (kind == kUnknownCell) beam.unknown_m += static_cast<float>(exit - entered);
+    if (kind == kBandCell) beam.band_m += static_cast<float>(exit - entered);
+    entered = exit;
+    if (next_x < next_y) {
+      x += step_x;
+      next_x += delta_x;
+    } else {
+      y += step_y;
+      next_y += delta_y;
+    }
+  }
+  if (reading < map_range) {
+    const core::Vec2 end = origin + reading * dir;
+    const Kind kind = KindAt(grid_.WorldToCell(end));
+    beam.end = kind == kUnknownCell ? BeamEnd::kUnknown
+               : kind == kBandCell  ? BeamEnd::kBand
+                                    : BeamEnd::kOther;
+  }
+  return beam;
+}
+
+std::vector<core::Vec2> RouteInMap(const std::vector<io::StampedPose>& reference,
+                                   const core::Pose2& X_MW, double from_stamp, double to_stamp) {
+  constexpr double kSpacing = 0.1;  // m
+  std::vector<core::Vec2> route;
+  for (const io::StampedPose& p : reference) {
+    if (p.t < from_stamp || p.t > to_stamp) continue;
+    const core::Vec2 q = (X_MW * p.pose).translation();
+    if (route.empty() || (q - route.back()).norm() >= kSpacing) route.push_back(q);
+  }
+  return route;
+}
+
+double MeanClutterWidth(const ClutterConfig& clutter) {
+  double sum = 0.0;
+  for (const ClutterKind kind : clutter.kinds) {
+    const ClutterFootprint f = FootprintOf(kind);
+    sum += f.radius > 0.0 ? 2.0 * f.radius : 2.0 * (f.size.x() + f.size.y()) / std::numbers::pi;
+  }
+  return clutter.kinds.empty() ? 0.0 : sum / static_cast<double>(clutter.kinds.size());
+}
+
+UnmappedFit FitUnmapped(std::span<const UnmappedBeam> beams, double margin, double far_margin,
+                        double mean_width) {
+  UnmappedFit fit;
+  fit.mean_width_m = mean_width;
+  for (const UnmappedBeam& b : beams) {
+    ++fit.beams;
+    // No return, or a return from beyond the map's first wall: random readings and dropouts,
+    // which say nothing about what the ray passed.
+    if (!(b.reading <= b.map_range + far_margin)) {
+      ++fit.unexplained;
+      continue;
+    }
+    fit.unknown_exposure_m += b.unknown_m;
+    fit.band_exposure_m += b.band_m;
+    if (!(b.reading < b.map_range - margin)) continue;
+    ++fit.short_readings;
+    if (b.end == BeamEnd::kUnknown) ++fit.unknown_hits;
+    if (b.end == BeamEnd::kBand) ++fit.band_hits;
+  }
+  if (fit.unknown_hits > 0)
+    fit.unknown_free_path = fit.unknown_exposure_m / static_cast<double>(fit.unknown_hits);
+  if (fit.band_exposure_m > 0.0 && mean_width > 0.0)
+    fit.density = static_cast<double>(fit.band_hits) / (fit.band_exposure_m * mean_width);
+  return fit;
+}
+
+}  // namespace retrace::bench

@@ -1,0 +1,96 @@
+#pragma once
+// What a log's map does not hold, measured on its real scans (docs/METHOD.md, "What the map does
+// not hold"): how far rays travel through the map's unknown cells before they meet something
+// (a world file's `unknown_free_path`), and how many unmapped objects stand in the mapped free
+// space beside the route (the `clutter.density` of chairs, bins, bikes and boxes). Both are
+// maximum-likelihood rates of a Poisson process along the rays: hits divided by exposure.
+//
+// Each beam is walked through the map from the LiDAR to where it ends (its reading, or the
+// first occupied cell when it reads farther or nothing), adding up its length in unknown cells
+// and in the clutter's band (known free cells within clutter.band of the route, outside the
+// corridor of robot radius + clutter.clearance). A reading short of the map's range by more
+// than the margin is a hit where it ends (beams without a return or reading beyond the map's
+// range are left out: the sensor's random readings and dropouts): in an unknown cell it counts for the free path, in a
+// band cell for the clutter. An object of the clutter's kinds at a uniform yaw blocks a ray
+// that passes within its mean width (Cauchy: perimeter / π) of its centre, so the density is
+// the band's hits over the band's exposure times that width.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "bench/engine/clutter.hpp"
+#include "core/occupancy_grid.hpp"
+#include "core/pose2.hpp"
+#include "io/tum.hpp"
+
+namespace retrace::bench {
+
+/// Where a short reading ends.
+enum class BeamEnd : std::uint8_t { kBand, kUnknown, kOther };
+
+/// One beam walked through the map.
+struct UnmappedBeam {
+  double t = 0.0;          ///< log time of its scan (s, as --from/--to)
+  double reading = 0.0;    ///< m; +inf for no return
+  double map_range = 0.0;  ///< m: first occupied cell (unknown cells open), range_max if none
+  float unknown_m = 0.0F;  ///< m of the ray in unknown cells, up to where it ends
+  float band_m = 0.0F;     ///< m of the ray in the band's known free cells, up to where it ends
+  BeamEnd end = BeamEnd::kOther;  ///< the cell of the reading's end, when short of map_range
+};
+
+/// The map's cells sorted out for the walk: unknown, and known free within the band.
+class UnmappedMap {
+ public:
+  /// `route` (the map's frame M) is the driven path; the band and corridor are the clutter's.
+  UnmappedMap(const core::OccupancyGrid& grid, double occupied_threshold,
+              std::span<const core::Vec2> route, const ClutterConfig& clutter,
+              double robot_radius);
+
+  /// The beam from `origin` along the unit `dir` that read `reading` (m, +inf for none), with
+  /// the map's range `map_range` (m).
+  UnmappedBeam Walk(double t, const core::Vec2& origin, const core::Vec2& dir, double reading,
+                    double map_range) const;
+
+ private:
+  enum Kind : std::uint8_t { kOpen = 0, kUnknownCell = 1, kBandCell = 2 };
+  Kind KindAt(core::CellIndex c) const;
+
+  const core::OccupancyGrid& grid_;
+  std::vector<std::uint8_t> kinds_;  // per cell: Kind, occupied cells kOpen
+};
+
+/// The rates fitted to a set of beams.
+struct UnmappedFit {
+  std::size_t beams = 0;           ///< beams with a reading
+  std::size_t unexplained = 0;     ///< of those: no return, or beyond the map's range (left out)
+  std::size_t short_readings = 0;  ///< readings short of the map's range by more than the margin
+  std::size_t unknown_hits = 0;
+  double unknown_exposure_m = 0.0;
+  /// m, unknown_exposure_m / unknown_hits; 0 when nothing was hit there.
+  double unknown_free_path = 0.0;
+  std::size_t band_hits = 0;
+  double band_exposure_m = 0.0;
+  double mean_width_m = 0.0;  ///< the clutter kinds' mean width at a uniform yaw
+  /// objects per m², band_hits / (band_exposure_m × mean_width_m); 0 without exposure.
+  double density = 0.0;
+};
+
+/// The log's reference in the window (log times from_s to to_s, compared with the poses'
+/// stamps), in the map's frame M (X_MW), one point per 0.1 m driven: the route whose band the
+/// clutter lies in.
+std::vector<core::Vec2> RouteInMap(const std::vector<io::StampedPose>& reference,
+                                   const core::Pose2& X_MW, double from_stamp, double to_stamp);
+
+/// The clutter kinds' mean width (m) at a uniform yaw: perimeter / π, averaged over the kinds.
+double MeanClutterWidth(const ClutterConfig& clutter);
+
+/// Fits the beams: a reading is short when below map_range − margin (m). Beams without a
+/// return or reading beyond map_range + far_margin (m) are left out: a sensor's random readings
+/// and dropouts (the mixture's z_rand and z_max) would otherwise count as rays that passed
+/// everything.
+UnmappedFit FitUnmapped(std::span<const UnmappedBeam> beams, double margin, double far_margin,
+                        double mean_width);
+
+}  // namespace retrace::bench
