@@ -248,6 +248,7 @@ std::vector<Pedestrians::Placement> Pedestrians::PlaceGroup(
     PedestrianStatus status;
     status.group = group_index;
     status.radius = group.radius;
+    status.standing = group.mode == PedestrianMode::kStand;
     status.desired_speed = DrawDesiredSpeed(group, walker.rng);
 
     const std::optional<Vec2> spawn =

@@ -65,7 +65,8 @@ struct PedestrianStatus {
   int id = 0;                  ///< pedestrian id in the PhysicsWorld (DynamicCircle id)
   int group = 0;               ///< index into the groups: the world's, then added ones in order
   double radius = 0.3;         ///< m
-  double desired_speed = 0.0;  ///< m/s
+  double desired_speed = 0.0;  ///< m/s (drawn, but unused when `standing`)
+  bool standing = false;       ///< of a group of mode `stand`: stands still by design
   Vec2 goal{0.0, 0.0};         ///< current goal (W, m): wander target or loop waypoint
   std::vector<Vec2> path;      ///< remaining waypoints to the goal (W, m), goal last
   int goals_reached = 0;       ///< wander goals or loop waypoints reached

@@ -20,7 +20,7 @@ double PedestrianGap(const std::vector<sim::DynamicCircle>& people, const core::
 }
 
 // The pedestrians whose edge lies within NearbyPedestrian::kNearbyRange of the robot's, with
-// their velocities and desired speeds, as of sample `sample`.
+// their velocities, desired speeds and whether they stand by design, as of sample `sample`.
 void RecordNearby(const sim::Simulator& simulator, const std::vector<sim::DynamicCircle>& people,
                   const core::Vec2& p_W, double radius, int sample,
                   std::vector<NearbyPedestrian>* out) {
@@ -36,6 +36,7 @@ void RecordNearby(const sim::Simulator& simulator, const std::vector<sim::Dynami
     const auto it = std::find_if(status.begin(), status.end(),
                                  [&](const sim::PedestrianStatus& st) { return st.id == c.id; });
     n.desired_speed = it != status.end() ? it->desired_speed : 0.0;
+    n.standing = it != status.end() && it->standing;
     out->push_back(n);
   }
 }

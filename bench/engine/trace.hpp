@@ -72,6 +72,7 @@ struct NearbyPedestrian {
   core::Vec2 velocity{0, 0};                   ///< W, m/s
   double radius = 0.0;                         ///< m
   double desired_speed = 0.0;                  ///< m/s, the speed it walks at when free
+  bool standing = false;  ///< stands still by design (pedestrian mode `stand`), never walks
 };
 
 /// One localizer measurement update that ran, with the dynamic-point test scored against the

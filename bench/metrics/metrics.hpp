@@ -101,8 +101,10 @@
 //   robot's and ends when it is farther than personal_zone + 0.3 m (or out of the 5 m record, or
 //   the run ends). Over it, the pedestrian is blocked if it stood (speed < 0.2 m/s) for 0.5 s or
 //   more in total, yielded if not but walked slower than 0.7 of its desired speed for 0.5 s or
-//   more, and passed otherwise; wait_time_s sums the standing time of all encounters, max_wait_s
-//   is the longest. Aggregate: means over runs (zone times, jerk statistics), min (ttc), means
+//   more, and passed otherwise; a person who stands still by design (pedestrian mode `stand`,
+//   NearbyPedestrian::standing) is none of those but `standing`: its speed says nothing about
+//   the robot. wait_time_s sums the standing time of the walkers' encounters, max_wait_s is the
+//   longest. Aggregate: means over runs (zone times, jerk statistics), min (ttc), means
 //   over successful runs (efficiencies), sums (crowd counts and wait) and max (max wait).
 //
 // Aggregate (AggregateMetrics): success rate and counts per outcome; for each per-run Summary
@@ -202,14 +204,16 @@ inline constexpr double kYieldSpeedFraction = 0.7;   ///< of its desired speed: 
 inline constexpr double kReactionTime = 0.5;         ///< s of standing or slowing that count
 inline constexpr double kEncounterHysteresis = 0.3;  ///< m beyond personal_zone ends it
 
-/// How the pedestrians that came into the robot's personal zone reacted (encounters).
+/// How the pedestrians that came into the robot's personal zone reacted (encounters):
+/// encounters = passed + yielded + blocked + standing.
 struct CrowdReaction {
   int encounters = 0;
   int passed = 0;            ///< kept at least kYieldSpeedFraction of their desired speed
   int yielded = 0;           ///< slowed below that for kReactionTime, without stopping that long
   int blocked = 0;           ///< stood (below kStopSpeed) for kReactionTime or more: waited
-  double wait_time_s = 0.0;  ///< total time the pedestrians stood during encounters
-  double max_wait_s = 0.0;   ///< the longest one encounter stood
+  int standing = 0;          ///< stood still by design (pedestrian mode `stand`): not a reaction
+  double wait_time_s = 0.0;  ///< total time the walkers stood during encounters
+  double max_wait_s = 0.0;   ///< the longest one walker's encounter stood
 };
 
 /// Social navigation metrics (definitions at the top of this file).

@@ -52,6 +52,7 @@ nlohmann::json ToJson(const SocialStats& s) {
             {"passed", c.passed},
             {"yielded", c.yielded},
             {"blocked", c.blocked},
+            {"standing", c.standing},
             {"wait_time_s", io::JsonNumber(c.wait_time_s)},
             {"max_wait_s", io::JsonNumber(c.max_wait_s)}}}};
 }

@@ -52,14 +52,20 @@ std::vector<double> Jerk(const std::vector<PlaybackSample>& samples) {
   return out;
 }
 
-// An encounter in progress: how long the pedestrian has stood and walked slowly in it.
+// An encounter in progress: how long the pedestrian has stood and walked slowly in it, and
+// whether it stands by design (then its speed is no reaction to the robot).
 struct Encounter {
   double stood_s = 0.0;
   double slow_s = 0.0;
+  bool standing = false;
 };
 
 void Close(const Encounter& e, CrowdReaction* crowd) {
   ++crowd->encounters;
+  if (e.standing) {
+    ++crowd->standing;
+    return;
+  }
   if (e.stood_s >= kReactionTime) {
     ++crowd->blocked;
   } else if (e.slow_s >= kReactionTime) {
@@ -115,8 +121,10 @@ SocialStats Social(const RunTrace& run, double taught_length_m, double taught_ti
 
       const double gap = (n.position - p).norm() - n.radius - run.robot_radius;
       auto it = open.find(n.id);
-      if (it == open.end() && gap < config.personal_zone)
+      if (it == open.end() && gap < config.personal_zone) {
         it = open.emplace(n.id, Encounter{}).first;
+        it->second.standing = n.standing;
+      }
       if (it == open.end()) continue;
       if (gap > config.personal_zone + kEncounterHysteresis) {
         Close(it->second, &out.crowd);
@@ -166,6 +174,7 @@ SocialStats AggregateSocial(const std::vector<RunMetrics>& runs) {
     a.crowd.passed += s.crowd.passed;
     a.crowd.yielded += s.crowd.yielded;
     a.crowd.blocked += s.crowd.blocked;
+    a.crowd.standing += s.crowd.standing;
     a.crowd.wait_time_s += s.crowd.wait_time_s;
     a.crowd.max_wait_s = std::max(a.crowd.max_wait_s, s.crowd.max_wait_s);
   }

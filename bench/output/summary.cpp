@@ -85,7 +85,9 @@ std::string SocialLines(const std::vector<ModeSummary>& modes) {
     text += " m/s3; " + std::to_string(c.encounters) + " encounters: ";
     text += std::to_string(c.passed) + " passed, " + std::to_string(c.yielded) + " yielded, ";
     text += std::to_string(c.blocked) + " blocked (waited " + Cell(c.wait_time_s, "%.1f");
-    text += " s)\n";
+    text += " s)";
+    if (c.standing > 0) text += ", " + std::to_string(c.standing) + " standing still by design";
+    text += "\n";
   }
   return text;
 }

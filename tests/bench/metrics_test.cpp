@@ -607,8 +607,8 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
                  "cpu"});
   ExpectKeys(a["social"], {"intimate_time_s", "personal_time_s", "min_ttc_s", "path_efficiency",
                            "time_efficiency", "jerk_m_s3", "crowd"});
-  ExpectKeys(a["social"]["crowd"],
-             {"encounters", "passed", "yielded", "blocked", "wait_time_s", "max_wait_s"});
+  ExpectKeys(a["social"]["crowd"], {"encounters", "passed", "yielded", "blocked", "standing",
+                                    "wait_time_s", "max_wait_s"});
   ExpectKeys(a["switching"], {"minimum_maps", "revisiting_maps", "switch_travel_m", "reasons",
                               "switches_by_reason"});
   ExpectKeys(a["outcomes"], {"success", "timeout", "collision", "lost"});

@@ -137,6 +137,30 @@ TEST(SocialMetrics, PedestriansInThePersonalZonePassYieldOrWait) {
   EXPECT_NEAR(c.max_wait_s, 1.5, 1e-9);
 }
 
+TEST(SocialMetrics, PeopleStandingStillByDesignAreNeitherBlockedNorWaiting) {
+  // Before the fix a person of pedestrian mode `stand` the robot drove past counted as blocked
+  // (about 11 per campus run with clutter): its speed is 0 whatever the robot does.
+  RunTrace run = StandingRun(40);
+  for (int i = 0; i < 30; ++i) {
+    AddPedestrian(run, i, 5, {0.9, 0.5}, {0, 0});
+    run.nearby.back().standing = true;
+  }
+  // A walker standing as long in the same spot still counts as blocked.
+  for (int i = 0; i < 30; ++i) AddPedestrian(run, i, 6, {-0.9, 0.5}, {0, 0});
+  std::stable_sort(
+      run.nearby.begin(), run.nearby.end(),
+      [](const NearbyPedestrian& a, const NearbyPedestrian& b) { return a.sample < b.sample; });
+  const SocialStats s = SocialOf(run);
+  EXPECT_EQ(s.crowd.encounters, 2);
+  EXPECT_EQ(s.crowd.standing, 1);
+  EXPECT_EQ(s.crowd.blocked, 1);
+  EXPECT_EQ(s.crowd.passed + s.crowd.yielded, 0);
+  EXPECT_NEAR(s.crowd.wait_time_s, 3.0, 1e-9);  // the walker's 3 s only
+  EXPECT_NEAR(s.crowd.max_wait_s, 3.0, 1e-9);
+  // The zones still count time beside the standing person.
+  EXPECT_NEAR(s.personal_time_s, 3.0, 1e-9);
+}
+
 TEST(SocialMetrics, AggregateAveragesZonesAndEfficienciesAndSumsTheCrowd) {
   RunMetrics a, b, c;
   a.social.intimate_time_s = 1.0;
@@ -155,6 +179,7 @@ TEST(SocialMetrics, AggregateAveragesZonesAndEfficienciesAndSumsTheCrowd) {
   b.social.time_efficiency = 0.6;
   b.social.crowd.encounters = 1;
   b.social.crowd.passed = 1;
+  b.social.crowd.standing = 2;
   c.social.min_ttc_s = 10.0;  // a failed run: no efficiencies
   const SocialStats s = internal::AggregateSocial({a, b, c});
   EXPECT_NEAR(s.intimate_time_s, 4.0 / 3.0, 1e-12);
@@ -165,6 +190,7 @@ TEST(SocialMetrics, AggregateAveragesZonesAndEfficienciesAndSumsTheCrowd) {
   EXPECT_EQ(s.crowd.encounters, 3);
   EXPECT_EQ(s.crowd.blocked, 1);
   EXPECT_EQ(s.crowd.passed, 1);
+  EXPECT_EQ(s.crowd.standing, 2);
   EXPECT_EQ(s.crowd.max_wait_s, 2.0);
 }
 
@@ -175,6 +201,7 @@ TEST(SocialMetrics, AreInTheRunsJson) {
   ASSERT_TRUE(j.contains("social"));
   EXPECT_EQ(j["social"]["min_ttc_s"], 2.5);
   EXPECT_TRUE(j["social"]["crowd"].contains("blocked"));
+  EXPECT_TRUE(j["social"]["crowd"].contains("standing"));
   EXPECT_TRUE(j["social"]["path_efficiency"].is_null());
 }
 

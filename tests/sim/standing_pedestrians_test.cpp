@@ -30,6 +30,9 @@ TEST(StandingPedestrians, StayPutWhileOthersWalkAndTheLidarSeesPeople) {
       Group(6, {0.5, 0.5}, {19.5, 5.5})};
   Pedestrians crowd(groups, CrowdConfig{}, g, core::Rng(3), {}, world);
   ASSERT_EQ(crowd.size(), 8);
+  for (int i = 0; i < 8; ++i) {  // what the social metrics tell them from walkers by
+    EXPECT_EQ(crowd.status()[static_cast<std::size_t>(i)].standing, i < 2) << "person " << i;
+  }
   const std::vector<DynamicCircle> start = world.PedestrianCircles();
   for (int step = 0; step < 3000; ++step) {  // 30 s
     crowd.Update(world);
