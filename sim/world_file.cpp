@@ -96,6 +96,21 @@ void MapImportConfig::Validate() const {
   }
 }
 
+void AddMapGeometry(const core::OccupancyGrid& grid, const MapImportConfig& map,
+                    StaticGeometry* geometry) {
+  OccupancyMask mask = OccupiedMask(grid, map.occupied_threshold);
+  if (map.unknown_free_path > 0.0) {
+    FillUnknownCells(grid, map.occupied_threshold, map.unknown_free_path,
+                     core::Rng(map.unknown_seed).Split("unknown cells"), &mask);
+  }
+  const std::vector<Segment> edges = MergedBoundaryEdges(mask);
+  if (edges.empty()) {
+    throw core::WorldError(map.file + ": the map has no occupied cells (threshold " +
+                           core::FormatNumber(map.occupied_threshold) + ")");
+  }
+  geometry->AddEdges(edges, std::move(mask));
+}
+
 StaticGeometry BuildGeometry(const WorldConfig& config, const std::filesystem::path& base_dir) {
   StaticGeometry geometry;
   for (const auto& b : config.boxes) geometry.AddPolygon(BoxRing(b));
@@ -103,19 +118,9 @@ StaticGeometry BuildGeometry(const WorldConfig& config, const std::filesystem::p
   for (const auto& p : config.polygons) geometry.AddPolygon(p.points);
   for (const auto& w : config.walls) AddWall(w, &geometry);
   for (const auto& m : config.maps) {
-    const std::filesystem::path file = base_dir / m.file;
-    const core::OccupancyGrid grid = io::ReadRosMap(file);
-    OccupancyMask mask = OccupiedMask(grid, m.occupied_threshold);
-    if (m.unknown_free_path > 0.0) {
-      FillUnknownCells(grid, m.occupied_threshold, m.unknown_free_path,
-                       core::Rng(m.unknown_seed).Split("unknown cells"), &mask);
-    }
-    const std::vector<Segment> edges = MergedBoundaryEdges(mask);
-    if (edges.empty()) {
-      throw core::WorldError(file.string() + ": the map has no occupied cells (threshold " +
-                             core::FormatNumber(m.occupied_threshold) + ")");
-    }
-    geometry.AddEdges(edges, std::move(mask));
+    MapImportConfig named = m;
+    named.file = (base_dir / m.file).string();
+    AddMapGeometry(io::ReadRosMap(named.file), named, &geometry);
   }
   if (geometry.empty()) {
     throw core::WorldError(

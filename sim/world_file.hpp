@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
 #include "io/config_override.hpp"
 #include "sim/pedestrian_config.hpp"
@@ -129,6 +130,12 @@ struct World {
 /// Builds the static geometry. Map files are resolved relative to `base_dir`.
 /// Throws core::WorldError if the world has no geometry, core::IoError/ConfigError on a bad map.
 StaticGeometry BuildGeometry(const WorldConfig& config, const std::filesystem::path& base_dir);
+
+/// Adds an occupancy grid's solid cells (at `map`'s threshold, its unknown cells filled as
+/// `map` says; `map.file` only names it in errors) to *geometry. Throws core::WorldError for a
+/// grid without solid cells.
+void AddMapGeometry(const core::OccupancyGrid& grid, const MapImportConfig& map,
+                    StaticGeometry* geometry);
 
 /// Loads a world file strictly (unknown keys, NaN, negative sizes are ConfigErrors naming file,
 /// line and key), applies overrides and builds its geometry.

@@ -52,16 +52,19 @@ std::string HalvesSpread(const LidarCalibration& c) {
          FixedText(100.0 * std::abs(a.hit_offset - b.hit_offset), 1) + " cm";
 }
 
+double Share(std::size_t part, std::size_t whole) {
+  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
 std::string UnmappedRow(const std::string& name, const UnmappedPart& part) {
   const UnmappedFit& f = part.fit;
   char line[256];
-  std::snprintf(line, sizeof line, "%-12s %8.1f %8.1f %8zu %6.1f %% %8zu %9.0f %7.2f %7zu %8.0f %8.4f",
+  std::snprintf(line, sizeof line,
+                "%-12s %8.1f %8.1f %8zu %6.1f %% %8zu %9.0f %7.2f %7zu %7zu %8.0f %8.4f",
                 name.c_str(), part.from_s, part.to_s, f.beams,
-                f.beams > 0 ? 100.0 * static_cast<double>(f.short_readings) /
-                                  static_cast<double>(f.beams)
-                            : 0.0,
-                f.unknown_hits, f.unknown_exposure_m, f.unknown_free_path, f.band_hits,
-                f.band_exposure_m, f.density);
+                100.0 * Share(f.short_readings, f.beams), f.unknown_hits, f.unknown_exposure_m,
+                f.unknown_free_path, f.band_hits, f.static_band_hits, f.band_exposure_m,
+                f.density);
   return line;
 }
 
@@ -70,12 +73,27 @@ std::vector<std::string> UnmappedReport(const LidarCalibration& c) {
   return {"what the map does not hold (readings short of the map by more than 3 sigma_hit less "
           "the offset, where they end):",
           "part         from (s)   to (s)    beams   short  unknown  exposure  free_path   band "
-          "exposure  density",
+          " static exposure  density",
           UnmappedRow("whole", c.unmapped_whole), UnmappedRow("first half", c.unmapped_first_half),
           UnmappedRow("second half", c.unmapped_second_half),
-          "(exposure: m of the rays in unknown cells and in the clutter's band; free_path in m, "
-          "density in objects per m^2 of mean width " +
+          "(exposure: m of the rays in unknown cells and in the clutter's band; band: readings "
+          "ending short in it, static: of those on something that stays; free_path in m, "
+          "density of static objects per m^2, of mean width " +
               FixedText(c.unmapped_whole.fit.mean_width_m, 2) + " m)"};
+}
+
+// The simulated world that reproduces the real estimates, and how close its scans came.
+std::string WorldLine(const UnmappedFit& real, const WorldInference& inference) {
+  const UnmappedFit& sim = inference.simulated;
+  return "simulated world: unknown cells filled at a free path of " +
+         FixedText(inference.free_path, 2) + " m, static clutter " +
+         FixedText(inference.density, 4) + " per m^2 (" + std::to_string(inference.simulations) +
+         " simulations" + (inference.converged ? "" : ", not within 5 % and 10 %") +
+         "); its scans estimate a free path of " + FixedText(sim.unknown_free_path, 2) +
+         " m and " + FixedText(sim.density, 4) + " per m^2 (real " +
+         FixedText(real.unknown_free_path, 2) + " m, " + FixedText(real.density, 4) +
+         "), short readings " + FixedText(100.0 * Share(sim.short_readings, sim.beams), 1) +
+         " % (real " + FixedText(100.0 * Share(real.short_readings, real.beams), 1) + " %)";
 }
 
 // The fit report: what was used, then one row per part and the halves' spread.
@@ -109,7 +127,7 @@ std::vector<std::string> FitReport(const LidarCalibration& c, const std::string&
 
 // The YAML file: the fit report as comments, then the sim.lidar.noise block.
 std::string CalibrationYaml(const std::vector<std::string>& report,
-                            const sim::LidarNoiseConfig& noise, const UnmappedFit& unmapped,
+                            const sim::LidarNoiseConfig& noise, const WorldInference& world,
                             const ClutterConfig& clutter, const std::string& command_line) {
   std::string text = "# retrace calibrate-lidar: the simulated LiDAR's noise fitted to a log\n";
   text += "# " + command_line + "\n#\n";
@@ -123,8 +141,8 @@ std::string CalibrationYaml(const std::vector<std::string>& report,
     text += "      " + std::string(key) + ": " + core::FormatNumber(value) + "\n";
   };
   copy.Reflect(write_key);
-  text += "  unknown_free_path: " + core::FormatNumber(unmapped.unknown_free_path) + "\n";
-  text += "clutter:\n  density: " + core::FormatNumber(unmapped.density) + "\n";
+  text += "  unknown_free_path: " + core::FormatNumber(world.free_path) + "\n";
+  text += "clutter:\n  density: " + core::FormatNumber(world.density) + "\n";
   text += "  band: " + core::FormatNumber(clutter.band) + "\n";
   text += "  clearance: " + core::FormatNumber(clutter.clearance) + "\n";
   text += "  kinds: [";
@@ -190,10 +208,12 @@ int RunCalibrateLidarCommand(const CalibrateLidarOptions& options,
       FitLidarCalibration(CollectCalibrationBeams(index, streams, teach, options.window, clutter),
                           index.name, calibration_options, clutter);
 
-  const std::vector<std::string> report = FitReport(calibration, index.name, options.teach_dir);
+  const WorldInference world = InferSimulatedWorld(index, streams, teach, options.teach_dir,
+                                                   options.window, calibration, clutter);
+  std::vector<std::string> report = FitReport(calibration, index.name, options.teach_dir);
+  report.push_back(WorldLine(calibration.unmapped_whole.fit, world));
   const sim::LidarNoiseConfig noise = NoiseOfMixture(calibration.whole.result.mixture);
-  io::WriteFileAtomic(options.out, CalibrationYaml(report, noise, calibration.unmapped_whole.fit,
-                                                    clutter, command_line));
+  io::WriteFileAtomic(options.out, CalibrationYaml(report, noise, world, clutter, command_line));
   for (const std::string& line : report) std::cout << line << "\n";
   std::cout << "sim.lidar.noise: " << options.out.string() << "\n";
   if (options.figures) {

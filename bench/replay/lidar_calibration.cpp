@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "bench/replay/log_simulate.hpp"
 #include "io/ros_map.hpp"
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
@@ -61,7 +62,7 @@ class KnownRangeCaster {
 // The beams of one scan from the LiDAR pose X_ML into *beams.
 void AddScanBeams(const core::LaserScan& scan, double log_time_s, const core::Pose2& X_ML,
                   const KnownRangeCaster& caster, const UnmappedMap& unmapped,
-                  CalibrationBeams* beams) {
+                  BandObservations* observations, CalibrationBeams* beams) {
   const core::Vec2 origin = X_ML.translation();
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
     ++beams->beams;
@@ -71,7 +72,10 @@ void AddScanBeams(const core::LaserScan& scan, double log_time_s, const core::Po
     const double r = scan.ranges[i];
     const bool valid = r >= beams->range_min;
     const double z = r >= beams->range_max ? std::numeric_limits<double>::infinity() : r;
-    if (valid) beams->unmapped.push_back(unmapped.Walk(log_time_s, origin, dir, z, cast.map));
+    if (valid) {
+      beams->unmapped.push_back(
+          unmapped.Walk(log_time_s, origin, dir, z, cast.map, observations));
+    }
     const double z_star = cast.known;
     if (!(z_star > beams->range_min)) {  // NaN: unknown
       ++beams->unknown;
@@ -137,6 +141,106 @@ void RequireWorldMap(const ModeTeach& teach, const std::filesystem::path& teach_
   }
 }
 
+namespace {
+
+// The walk's map for a window: the map's cells sorted out around the window's reference.
+UnmappedMap WindowUnmappedMap(const logs::LogIndex& index, const LogStreams& streams,
+                              const ModeTeach& world_teach, const LogWindow& window,
+                              const ClutterConfig& clutter) {
+  const TeachMapTrace& trace = world_teach.trace.maps.front();
+  const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
+  const double origin_s = 1e-9 * static_cast<double>(index.origin_ns);
+  const std::vector<core::Vec2> route =
+      RouteInMap(streams.reference, X_MW, origin_s + window.from_s, origin_s + window.to_s);
+  return UnmappedMap(ClearedAlongRoute(world_teach.bundle.maps.front().grid, route, clutter),
+                     nav::LikelihoodFieldConfig{}.occupied_threshold, route, clutter,
+                     ClutterSite{}.robot_radius);
+}
+
+// The simulated scans of the window in `config`'s world, walked through the map and fitted.
+UnmappedFit SimulatedUnmappedFit(const logs::LogIndex& index, const LogStreams& streams,
+                                 const ModeTeach& world_teach,
+                                 const std::filesystem::path& world_teach_dir,
+                                 const LogWindow& window, const LogConfig& config,
+                                 const UnmappedMap& unmapped, double sigma_hit, double mean_width) {
+  const double range_min = index.scan.range_min;
+  const double range_max = index.scan.range_max;
+  const KnownRangeCaster caster(world_teach.bundle.maps.front().grid, range_max);
+  std::vector<UnmappedBeam> beams;
+  BandObservations observations = unmapped.NewObservations();
+  try {
+    SimulateScans(index, streams, world_teach, world_teach_dir, config, window,
+                  [&](double stamp, const core::Pose2& X_MR, const core::LaserScan& scan) {
+                    const core::Pose2 X_ML = X_MR * streams.robot.X_RL;
+                    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+                      const double r = scan.ranges[i];
+                      if (!(r >= range_min)) continue;
+                      const double a = X_ML.theta + scan.Angle(i);
+                      const core::Vec2 dir(std::cos(a), std::sin(a));
+                      const double z =
+                          r >= range_max ? std::numeric_limits<double>::infinity() : r;
+                      beams.push_back(unmapped.Walk(stamp, X_ML.translation(), dir, z,
+                                                    caster.Cast(X_ML.translation(), dir).map,
+                                                    &observations));
+                    }
+                  });
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError("clutter", "the clutter of density " +
+                                           core::FormatNumber(config.clutter.density) +
+                                           " does not fit beside the route in the simulator (" +
+                                           e.detail() +
+                                           "): narrow clutter.kinds or clutter.clearance");
+  }
+  unmapped.MarkStaticHits(observations, beams);
+  // The simulated readings end on the world's faces: no hit offset.
+  return FitUnmapped(beams, 3.0 * sigma_hit, 3.0 * sigma_hit, mean_width);
+}
+
+// real / simulated, or 1 when either is 0 (nothing to scale).
+double Ratio(double real, double simulated) {
+  return real > 0.0 && simulated > 0.0 ? real / simulated : 1.0;
+}
+
+}  // namespace
+
+WorldInference InferSimulatedWorld(const logs::LogIndex& index, const LogStreams& streams,
+                                   const ModeTeach& world_teach,
+                                   const std::filesystem::path& world_teach_dir,
+                                   const LogWindow& window, const LidarCalibration& calibration,
+                                   const ClutterConfig& clutter) {
+  constexpr int kMaxSimulations = 8;
+  constexpr double kFreePathTolerance = 0.05;
+  // The density's estimate counts objects' hits: it moves in steps as objects come and go.
+  constexpr double kDensityTolerance = 0.1;
+  const UnmappedFit& real = calibration.unmapped_whole.fit;
+  const nav::BeamMixture& mixture = calibration.whole.result.mixture;
+  LogConfig config;
+  config.sim.lidar.noise = NoiseOfMixture(mixture);
+  config.clutter = clutter;
+  const UnmappedMap unmapped = WindowUnmappedMap(index, streams, world_teach, window, clutter);
+  WorldInference out;
+  out.free_path = real.unknown_free_path;
+  out.density = real.density;
+  while (out.simulations < kMaxSimulations) {
+    config.sim.unknown_free_path = out.free_path;
+    config.clutter.density = out.density;
+    out.simulated = SimulatedUnmappedFit(index, streams, world_teach, world_teach_dir, window,
+                                         config, unmapped, mixture.sigma_hit, real.mean_width_m);
+    ++out.simulations;
+    const double free_path_ratio = Ratio(real.unknown_free_path, out.simulated.unknown_free_path);
+    const double density_ratio = Ratio(real.density, out.simulated.density);
+    if (std::abs(free_path_ratio - 1.0) <= kFreePathTolerance &&
+        std::abs(density_ratio - 1.0) <= kDensityTolerance) {
+      out.converged = true;
+      break;
+    }
+    if (out.simulations == kMaxSimulations) break;
+    out.free_path *= free_path_ratio;
+    out.density *= density_ratio;
+  }
+  return out;
+}
+
 CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogStreams& streams,
                                          const ModeTeach& world_teach, const LogWindow& window,
                                          const ClutterConfig& clutter) {
@@ -150,15 +254,11 @@ CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogS
   CalibrationBeams beams;
   beams.range_min = index.scan.range_min;
   beams.range_max = index.scan.range_max;
-  const core::OccupancyGrid& grid = world_teach.bundle.maps.front().grid;
-  const KnownRangeCaster caster(grid, beams.range_max);
+  const KnownRangeCaster caster(world_teach.bundle.maps.front().grid, beams.range_max);
   const TeachMapTrace& trace = world_teach.trace.maps.front();
   const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
-  const double origin_s = 1e-9 * static_cast<double>(index.origin_ns);
-  const std::vector<core::Vec2> route =
-      RouteInMap(streams.reference, X_MW, origin_s + window.from_s, origin_s + window.to_s);
-  const UnmappedMap unmapped(grid, nav::LikelihoodFieldConfig{}.occupied_threshold, route,
-                             clutter, ClutterSite{}.robot_radius);
+  const UnmappedMap unmapped = WindowUnmappedMap(index, streams, world_teach, window, clutter);
+  BandObservations observations = unmapped.NewObservations();
   logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double t) {
     const std::optional<core::Pose2> X_WR = logs::PoseAt(streams.reference, m.scan.stamp);
     if (!X_WR) {
@@ -168,8 +268,10 @@ CalibrationBeams CollectCalibrationBeams(const logs::LogIndex& index, const LogS
     if (beams.scans == 0) beams.first_s = t;
     beams.last_s = t;
     ++beams.scans;
-    AddScanBeams(m.scan, t, X_MW * *X_WR * streams.robot.X_RL, caster, unmapped, &beams);
+    AddScanBeams(m.scan, t, X_MW * *X_WR * streams.robot.X_RL, caster, unmapped, &observations,
+                 &beams);
   });
+  unmapped.MarkStaticHits(observations, beams.unmapped);
   return beams;
 }
 

@@ -12,7 +12,12 @@ void LogSimConfig::Validate() const {
   map.Validate();
 }
 
-LogConfig::LogConfig() { route.switch_points.word = SwitchPlanning::kOnline; }
+LogConfig::LogConfig() {
+  route.switch_points.word = SwitchPlanning::kOnline;
+  // Indoors: no bikes, and a recorded drive passes things closely.
+  clutter.kinds = {ClutterKind::kChair, ClutterKind::kBin, ClutterKind::kBox};
+  clutter.clearance = 0.1;
+}
 
 void LogConfig::Validate() const {
   if (!route.file.empty() || !route.points.empty()) {

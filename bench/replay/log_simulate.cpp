@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "core/angle.hpp"
 #include "core/errors.hpp"
@@ -57,38 +59,42 @@ sim::LidarConfig LoggedLidar(const logs::ScanGeometry& g, const LogStreams& stre
   return lidar;
 }
 
-// The world: the taught map in its frame M, its unknown cells filled at the configured free
-// path, and the clutter drawn beside the window's reference (standing people as discs: the
-// scans are all that is simulated).
+// The world: the taught map in its frame M, its unknown cells filled at the configured free path
+// except along the window's reference, and the clutter drawn beside that reference (standing
+// people as discs: the scans are all that is simulated).
 sim::StaticGeometry SimulatedWorld(const logs::LogIndex& index, const LogStreams& streams,
-                                   const core::Pose2& X_MW,
-                                   const std::filesystem::path& world_teach_dir,
+                                   const core::Pose2& X_MW, const ModeTeach& world_teach,
                                    const LogConfig& config, const LogWindow& window) {
   const core::Rng rng = core::Rng(config.seed).Split("log-simulate world");
-  sim::WorldConfig world;
-  world.name = "log-simulate";
-  world.maps.push_back(
-      {"maps/ogm_0.yaml", 0.65, config.sim.unknown_free_path, rng.Split("unknown").seed()});
-  if (!config.clutter.enabled()) return sim::BuildGeometry(world, world_teach_dir);
-  // The clutter stands in the map's known free space, where calibrate-lidar measured it: placed
-  // in the map with every cell that is not known free solid.
-  sim::WorldConfig known_free;
-  known_free.maps.push_back({"maps/ogm_0.yaml", io::kRosMapKnownFreeBelow});
-  const sim::StaticGeometry map = sim::BuildGeometry(known_free, world_teach_dir);
   const double origin_s = 1e-9 * static_cast<double>(index.origin_ns);
   const std::vector<core::Vec2> route =
       RouteInMap(streams.reference, X_MW, origin_s + window.from_s, origin_s + window.to_s);
-  if (route.size() < 2) {
-    throw core::IoError(index.name + ": the reference does not move in the window: no route to "
-                                     "place the clutter beside");
+  const core::OccupancyGrid grid =
+      ClearedAlongRoute(world_teach.bundle.maps.front().grid, route, config.clutter);
+  const std::string name = "the teach folder's map";
+  sim::StaticGeometry geometry;
+  if (config.clutter.enabled()) {
+    if (route.size() < 2) {
+      throw core::IoError(index.name + ": the reference does not move in the window: no route "
+                                       "to place the clutter beside");
+    }
+    // The clutter stands in the map's known free space, where calibrate-lidar measured it:
+    // placed in the map with every cell that is not known free solid.
+    sim::StaticGeometry known_free;
+    sim::AddMapGeometry(grid, {name, io::kRosMapKnownFreeBelow}, &known_free);
+    const Clutter clutter =
+        GenerateClutter(config.clutter, ClutterSite{&route, &known_free}, rng.Split("clutter"));
+    sim::WorldConfig objects;
+    objects.boxes = clutter.boxes;
+    objects.circles = clutter.circles;
+    for (const core::Vec2& p : clutter.standing)
+      objects.circles.push_back({p, config.clutter.person_radius});
+    if (!objects.boxes.empty() || !objects.circles.empty())
+      geometry = sim::BuildGeometry(objects, {});
   }
-  const Clutter clutter =
-      GenerateClutter(config.clutter, ClutterSite{&route, &map}, rng.Split("clutter"));
-  world.boxes = clutter.boxes;
-  world.circles = clutter.circles;
-  for (const core::Vec2& p : clutter.standing)
-    world.circles.push_back({p, config.clutter.person_radius});
-  return sim::BuildGeometry(world, world_teach_dir);
+  sim::AddMapGeometry(
+      grid, {name, 0.65, config.sim.unknown_free_path, rng.Split("unknown").seed()}, &geometry);
+  return geometry;
 }
 
 // The simulated log being written: the log's odometry and reference, from the first simulated
@@ -150,34 +156,29 @@ class SimulatedLogWriter {
 
 }  // namespace
 
-LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams,
-                          const ModeTeach& world_teach,
-                          const std::filesystem::path& world_teach_dir, const LogConfig& config,
-                          const LogWindow& window, const std::filesystem::path& out) {
+LogSimulation SimulateScans(const logs::LogIndex& index, const LogStreams& streams,
+                            const ModeTeach& world_teach,
+                            const std::filesystem::path& world_teach_dir, const LogConfig& config,
+                            const LogWindow& window, const SimulatedScanSink& sink) {
   RequireSimulatableLog(index, streams, world_teach, world_teach_dir);
   const TeachMapTrace& trace = world_teach.trace.maps.front();
   const core::Pose2 X_MW = trace.X_MR.front() * trace.X_WR.front().Inverse();
   const sim::StaticGeometry geometry =
-      SimulatedWorld(index, streams, X_MW, world_teach_dir, config, window);
+      SimulatedWorld(index, streams, X_MW, world_teach, config, window);
   const logs::ScanGeometry& g = index.scan;
   const sim::Lidar sensor(LoggedLidar(g, streams, config), geometry);
   core::Rng rng = core::Rng(config.seed).Split("log-simulate");
-
-  SimulatedLogWriter writer(out, streams);
   LogSimulation result;
   logs::ReadScans(index, window.from_s, window.to_s, [&](const logs::ScanMessage& m, double) {
     const double stamp = m.scan.stamp;
     const std::optional<core::Pose2> X_WR = logs::PoseAt(streams.reference, stamp);
     if (!X_WR || !logs::PoseAt(streams.odometry, stamp)) return;
-    if (result.scans == 0) {
-      result.first_stamp = stamp;
-      writer.Start(stamp);
-    }
-    writer.WritePosesUpTo(stamp);
-    sim::LidarReading reading = sensor.Scan(X_MW * *X_WR, {}, stamp, rng);
+    if (result.scans == 0) result.first_stamp = stamp;
+    const core::Pose2 X_MR = X_MW * *X_WR;
+    sim::LidarReading reading = sensor.Scan(X_MR, {}, stamp, rng);
     reading.scan.angle_min = g.angle_min;
     reading.scan.angle_increment = g.angle_increment;
-    writer.WriteScan(stamp, reading.scan);
+    sink(stamp, X_MR, reading.scan);
     result.last_stamp = stamp;
     ++result.scans;
   });
@@ -186,6 +187,24 @@ LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams
                         core::FormatNumber(window.from_s) + " and " +
                         core::FormatNumber(window.to_s) + " s of the log");
   }
+  return result;
+}
+
+LogSimulation SimulateLog(const logs::LogIndex& index, const LogStreams& streams,
+                          const ModeTeach& world_teach,
+                          const std::filesystem::path& world_teach_dir, const LogConfig& config,
+                          const LogWindow& window, const std::filesystem::path& out) {
+  RequireSimulatableLog(index, streams, world_teach, world_teach_dir);
+  SimulatedLogWriter writer(out, streams);
+  bool started = false;
+  const LogSimulation result =
+      SimulateScans(index, streams, world_teach, world_teach_dir, config, window,
+                    [&](double stamp, const core::Pose2&, const core::LaserScan& scan) {
+                      if (!started) writer.Start(stamp);
+                      started = true;
+                      writer.WritePosesUpTo(stamp);
+                      writer.WriteScan(stamp, scan);
+                    });
   // The poses up to a little past the last scan, so that its odometry interpolates.
   writer.WritePosesUpTo(result.last_stamp + 1.0);
   writer.Close();

@@ -8,6 +8,7 @@
 // simulator's scans leave out.
 
 #include <filesystem>
+#include <functional>
 
 #include "bench/engine/teach_drive.hpp"
 #include "bench/replay/log_config.hpp"
@@ -22,6 +23,18 @@ struct LogSimulation {
   double first_stamp = 0.0;
   double last_stamp = 0.0;
 };
+
+/// Called per simulated scan: its stamp, the reference pose X_MR in the map's frame, the scan
+/// (labelled with the log's angles).
+using SimulatedScanSink =
+    std::function<void(double stamp, const core::Pose2& X_MR, const core::LaserScan& scan)>;
+
+/// Simulates the scans of `index` in `window` at the reference's poses in the world of
+/// `world_teach` (as SimulateLog, without writing them); returns how many, and when.
+LogSimulation SimulateScans(const logs::LogIndex& index, const LogStreams& streams,
+                            const ModeTeach& world_teach,
+                            const std::filesystem::path& world_teach_dir, const LogConfig& config,
+                            const LogWindow& window, const SimulatedScanSink& sink);
 
 /// Writes `out` (an MCAP file: /scan simulated, /odom the log's odometry, /ground_truth the
 /// reference, /tf_static the mount) for the scans of `index` in `window`. `world_teach` is a

@@ -10,6 +10,20 @@
 
 namespace retrace::bench {
 
+namespace {
+
+// True when every cell within `cells` (a square) of c is known free.
+bool ClearOfWalls(const core::OccupancyGrid& grid, float known_free, core::CellIndex c, int cells) {
+  for (int y = c.y - cells; y <= c.y + cells; ++y) {
+    for (int x = c.x - cells; x <= c.x + cells; ++x) {
+      if (!grid.Contains({x, y}) || grid.LogOdds({x, y}) >= known_free) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 UnmappedMap::UnmappedMap(const core::OccupancyGrid& grid, double occupied_threshold,
                          std::span<const core::Vec2> route, const ClutterConfig& clutter,
                          double robot_radius)
@@ -18,6 +32,9 @@ UnmappedMap::UnmappedMap(const core::OccupancyGrid& grid, double occupied_thresh
   const float known_free = static_cast<float>(core::Logit(io::kRosMapKnownFreeBelow));
   const core::PolylineDistance to_route(std::vector<core::Vec2>(route.begin(), route.end()));
   const double corridor = robot_radius + clutter.clearance;
+  // Objects keep clutter.gap from walls and unknown cells; readings ending nearer them are
+  // mostly the map's walls a cell off, not objects.
+  const int wall_cells = static_cast<int>(std::ceil(clutter.gap / grid.resolution() - 1e-9));
   for (int y = 0; y < grid.height(); ++y) {
     for (int x = 0; x < grid.width(); ++x) {
       const std::size_t i = grid.Index({x, y});
@@ -28,7 +45,8 @@ UnmappedMap::UnmappedMap(const core::OccupancyGrid& grid, double occupied_thresh
         continue;
       }
       const double d = to_route(grid.CellToWorld({x, y}));
-      if (d > corridor && d <= clutter.band) kinds_[i] = kBandCell;
+      if (d > corridor && d <= clutter.band && ClearOfWalls(grid, known_free, {x, y}, wall_cells))
+        kinds_[i] = kBandCell;
     }
   }
 }
@@ -37,8 +55,30 @@ UnmappedMap::Kind UnmappedMap::KindAt(core::CellIndex c) const {
   return grid_.Contains(c) ? static_cast<Kind>(kinds_[grid_.Index(c)]) : kOpen;
 }
 
+BandObservations UnmappedMap::NewObservations() const {
+  return {std::vector<std::uint32_t>(kinds_.size(), 0), std::vector<std::uint32_t>(kinds_.size(), 0)};
+}
+
+void UnmappedMap::MarkStaticHits(const BandObservations& observations,
+                                 std::span<UnmappedBeam> beams) const {
+  const auto stays = [&](int x, int y) {
+    if (!grid_.Contains({x, y})) return false;
+    const std::size_t i = grid_.Index({x, y});
+    const std::uint32_t hits = observations.hits[i];
+    return hits >= 2 && hits >= observations.passes[i];
+  };
+  for (UnmappedBeam& b : beams) {
+    if (b.end != BeamEnd::kBand) continue;
+    const int x0 = static_cast<int>(b.end_cell % static_cast<std::uint32_t>(grid_.width()));
+    const int y0 = static_cast<int>(b.end_cell / static_cast<std::uint32_t>(grid_.width()));
+    for (int y = y0 - 1; y <= y0 + 1 && !b.end_static; ++y)
+      for (int x = x0 - 1; x <= x0 + 1 && !b.end_static; ++x) b.end_static = stays(x, y);
+  }
+}
+
 UnmappedBeam UnmappedMap::Walk(double t, const core::Vec2& origin, const core::Vec2& dir,
-                               double reading, double map_range) const {
+                               double reading, double map_range,
+                               BandObservations* observations) const {
   UnmappedBeam beam{t, reading, map_range};
   const double length = std::min(reading, map_range);
   // Amanatides & Woo's traversal: the ray's parameter at each cell's exit, adding the length
@@ -59,7 +99,10 @@ UnmappedBeam UnmappedMap::Walk(double t, const core::Vec2& origin, const core::V
     const double exit = std::min({next_x, next_y, length});
     const Kind kind = KindAt({x, y});
     if (kind == kUnknownCell) beam.unknown_m += static_cast<float>(exit - entered);
-    if (kind == kBandCell) beam.band_m += static_cast<float>(exit - entered);
+    if (kind == kBandCell) {
+      beam.band_m += static_cast<float>(exit - entered);
+      if (exit < length) ++observations->passes[grid_.Index({x, y})];
+    }
     entered = exit;
     if (next_x < next_y) {
       x += step_x;
@@ -70,11 +113,15 @@ UnmappedBeam UnmappedMap::Walk(double t, const core::Vec2& origin, const core::V
     }
   }
   if (reading < map_range) {
-    const core::Vec2 end = origin + reading * dir;
-    const Kind kind = KindAt(grid_.WorldToCell(end));
+    const core::CellIndex end = grid_.WorldToCell(origin + reading * dir);
+    const Kind kind = KindAt(end);
     beam.end = kind == kUnknownCell ? BeamEnd::kUnknown
                : kind == kBandCell  ? BeamEnd::kBand
                                     : BeamEnd::kOther;
+    if (kind == kBandCell) {
+      beam.end_cell = static_cast<std::uint32_t>(grid_.Index(end));
+      ++observations->hits[beam.end_cell];
+    }
   }
   return beam;
 }
@@ -89,6 +136,33 @@ std::vector<core::Vec2> RouteInMap(const std::vector<io::StampedPose>& reference
     if (route.empty() || (q - route.back()).norm() >= kSpacing) route.push_back(q);
   }
   return route;
+}
+
+core::OccupancyGrid ClearedAlongRoute(core::OccupancyGrid grid,
+                                      const std::vector<core::Vec2>& route,
+                                      const ClutterConfig& clutter) {
+  const double radius = ClutterSite{}.robot_radius + clutter.clearance;
+  const float known_free = static_cast<float>(core::Logit(io::kRosMapKnownFreeBelow));
+  const float unknown_below = static_cast<float>(core::Logit(0.5));
+  const core::PolylineDistance to_route(route);
+  const int reach = static_cast<int>(std::ceil(radius / grid.resolution()));
+  // Only cells near a route point can be within the radius of the route.
+  std::vector<std::uint8_t> near(grid.log_odds().size(), 0);
+  for (const core::Vec2& p : route) {
+    const core::CellIndex c = grid.WorldToCell(p);
+    for (int y = c.y - reach; y <= c.y + reach; ++y)
+      for (int x = c.x - reach; x <= c.x + reach; ++x)
+        if (grid.Contains({x, y})) near[grid.Index({x, y})] = 1;
+  }
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const float l = grid.LogOdds({x, y});
+      if (!near[grid.Index({x, y})] || l < known_free || l > unknown_below) continue;
+      if (to_route(grid.CellToWorld({x, y})) <= radius)
+        grid.SetProbability({x, y}, io::kRosMapFreeProbability);
+    }
+  }
+  return grid;
 }
 
 double MeanClutterWidth(const ClutterConfig& clutter) {
@@ -118,11 +192,12 @@ UnmappedFit FitUnmapped(std::span<const UnmappedBeam> beams, double margin, doub
     ++fit.short_readings;
     if (b.end == BeamEnd::kUnknown) ++fit.unknown_hits;
     if (b.end == BeamEnd::kBand) ++fit.band_hits;
+    if (b.end == BeamEnd::kBand && b.end_static) ++fit.static_band_hits;
   }
   if (fit.unknown_hits > 0)
     fit.unknown_free_path = fit.unknown_exposure_m / static_cast<double>(fit.unknown_hits);
   if (fit.band_exposure_m > 0.0 && mean_width > 0.0)
-    fit.density = static_cast<double>(fit.band_hits) / (fit.band_exposure_m * mean_width);
+    fit.density = static_cast<double>(fit.static_band_hits) / (fit.band_exposure_m * mean_width);
   return fit;
 }
 

@@ -8,10 +8,12 @@
 // Each beam is walked through the map from the LiDAR to where it ends (its reading, or the
 // first occupied cell when it reads farther or nothing), adding up its length in unknown cells
 // and in the clutter's band (known free cells within clutter.band of the route, outside the
-// corridor of robot radius + clutter.clearance). A reading short of the map's range by more
+// corridor of robot radius + clutter.clearance, clutter.gap clear of every cell that is not
+// known free: readings that end nearer a wall are mostly the map's walls a cell off). A reading short of the map's range by more
 // than the margin is a hit where it ends (beams without a return or reading beyond the map's
 // range are left out: the sensor's random readings and dropouts): in an unknown cell it counts for the free path, in a
-// band cell for the clutter. An object of the clutter's kinds at a uniform yaw blocks a ray
+// band cell for the clutter when it stays (hit again by later rays, not passed through: the
+// window's own occupancy of that cell; MarkStaticHits). An object of the clutter's kinds at a uniform yaw blocks a ray
 // that passes within its mean width (Cauchy: perimeter / π) of its centre, so the density is
 // the band's hits over the band's exposure times that width.
 
@@ -38,6 +40,16 @@ struct UnmappedBeam {
   float unknown_m = 0.0F;  ///< m of the ray in unknown cells, up to where it ends
   float band_m = 0.0F;     ///< m of the ray in the band's known free cells, up to where it ends
   BeamEnd end = BeamEnd::kOther;  ///< the cell of the reading's end, when short of map_range
+  /// The band cell the reading ends in (end == kBand), and whether what it hit stays there
+  /// (MarkStaticHits).
+  std::uint32_t end_cell = 0;
+  bool end_static = false;
+};
+
+/// How often the window's rays ended in each band cell and how often they went through it: an
+/// occupancy grid of the window's own readings over the band.
+struct BandObservations {
+  std::vector<std::uint32_t> hits, passes;  ///< per map cell
 };
 
 /// The map's cells sorted out for the walk: unknown, and known free within the band.
@@ -51,13 +63,21 @@ class UnmappedMap {
   /// The beam from `origin` along the unit `dir` that read `reading` (m, +inf for none), with
   /// the map's range `map_range` (m).
   UnmappedBeam Walk(double t, const core::Vec2& origin, const core::Vec2& dir, double reading,
-                    double map_range) const;
+                    double map_range, BandObservations* observations) const;
+
+  /// Marks the beams whose reading ends short in the band on something that stays: a cell
+  /// within one cell of the end that was hit at least twice and at least as often as rays went
+  /// through it. People walk on and leave their cells mostly passed through; a chair does not.
+  void MarkStaticHits(const BandObservations& observations,
+                      std::span<UnmappedBeam> beams) const;
+
+  BandObservations NewObservations() const;
 
  private:
   enum Kind : std::uint8_t { kOpen = 0, kUnknownCell = 1, kBandCell = 2 };
   Kind KindAt(core::CellIndex c) const;
 
-  const core::OccupancyGrid& grid_;
+  core::OccupancyGrid grid_;
   std::vector<std::uint8_t> kinds_;  // per cell: Kind, occupied cells kOpen
 };
 
@@ -71,9 +91,11 @@ struct UnmappedFit {
   /// m, unknown_exposure_m / unknown_hits; 0 when nothing was hit there.
   double unknown_free_path = 0.0;
   std::size_t band_hits = 0;
+  std::size_t static_band_hits = 0;  ///< of band_hits: on something that stays
   double band_exposure_m = 0.0;
   double mean_width_m = 0.0;  ///< the clutter kinds' mean width at a uniform yaw
-  /// objects per m², band_hits / (band_exposure_m × mean_width_m); 0 without exposure.
+  /// static objects per m², static_band_hits / (band_exposure_m × mean_width_m); 0 without
+  /// exposure. The other band hits are people passing (the crowd's, not the clutter's).
   double density = 0.0;
 };
 
@@ -82,6 +104,13 @@ struct UnmappedFit {
 /// clutter lies in.
 std::vector<core::Vec2> RouteInMap(const std::vector<io::StampedPose>& reference,
                                    const core::Pose2& X_MW, double from_stamp, double to_stamp);
+
+/// The map with its unknown cells within the clutter's corridor of the route (robot radius +
+/// clutter.clearance) made known free: the robot drove there, so whatever the map does not
+/// know, that much was empty. The simulated world and the calibration's walk both use it.
+core::OccupancyGrid ClearedAlongRoute(core::OccupancyGrid grid,
+                                      const std::vector<core::Vec2>& route,
+                                      const ClutterConfig& clutter);
 
 /// The clutter kinds' mean width (m) at a uniform yaw: perimeter / π, averaged over the kinds.
 double MeanClutterWidth(const ClutterConfig& clutter);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# `retrace calibrate-lidar` on a recorded simulated drive: it writes a sim.lidar.noise block that
-# log-simulate's --config takes as it is, with the figure beside it; and each bad input (a partial
+# `retrace calibrate-lidar` on a recorded simulated drive: it writes a sim.lidar.noise block, the
+# unknown cells' free path and the clutter's density, which log-simulate's --config takes as they
+# are, with the figure beside them; and each bad input (a partial
 # teach folder, a log the map does not cover, a fit that does not converge, no reference) prints
 # exactly one line on stderr, exits with code 2 and writes neither the YAML nor the figure.
 # Usage: calibrate_lidar_test.sh <retrace binary> <source dir>
@@ -39,6 +40,8 @@ consistent="$tmp/sim/consistent/teach"
 # The good case: the block loads as log-simulate's --config.
 if "$retrace" calibrate-lidar "$mcap" --teach "$consistent" --out "$tmp/noise.yaml" >"$tmp/stdout" 2>&1 &&
   grep -q '^      random_probability: ' "$tmp/noise.yaml" && [ -s "$tmp/noise.png" ] &&
+  grep -q '^  unknown_free_path: ' "$tmp/noise.yaml" && grep -q '^  density: ' "$tmp/noise.yaml" &&
+  grep -q '^simulated world: ' "$tmp/stdout" &&
   "$retrace" log-simulate "$mcap" --teach "$consistent" --config "$tmp/noise.yaml" \
     --out "$tmp/simulated.mcap" >/dev/null 2>&1; then
   pass=$((pass + 1))
