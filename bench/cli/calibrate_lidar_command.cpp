@@ -85,10 +85,14 @@ std::vector<std::string> UnmappedReport(const LidarCalibration& c) {
 // The simulated world that reproduces the real estimates, and how close its scans came.
 std::string WorldLine(const UnmappedFit& real, const WorldInference& inference) {
   const UnmappedFit& sim = inference.simulated;
-  return "simulated world: unknown cells filled at a free path of " +
-         FixedText(inference.free_path, 2) + " m, static clutter " +
+  const std::string unknown =
+      inference.unknown_hits_enough
+          ? "unknown cells filled at a free path of " + FixedText(inference.free_path, 2) + " m"
+          : "unknown cells left open (fewer than " + std::to_string(kMinUnknownHitsPerHalf) +
+                " readings end in them in a half of the window)";
+  return "simulated world: " + unknown + ", static clutter " +
          FixedText(inference.density, 4) + " per m^2 (" + std::to_string(inference.simulations) +
-         " simulations" + (inference.converged ? "" : ", not within 5 % and 10 %") +
+         (inference.simulations == 1 ? " simulation" : " simulations") + (inference.converged ? "" : ", not within 5 % and 10 %") +
          "); its scans estimate a free path of " + FixedText(sim.unknown_free_path, 2) +
          " m and " + FixedText(sim.density, 4) + " per m^2 (real " +
          FixedText(real.unknown_free_path, 2) + " m, " + FixedText(real.density, 4) +

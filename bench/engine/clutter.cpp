@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -184,6 +185,19 @@ ClutterFootprint FootprintOf(ClutterKind kind) {
       return {{0.6, 0.6}, 0.0};
   }
   return {{0.5, 0.5}, 0.0};
+}
+
+double MeanClutterWidth(const ClutterConfig& config) {
+  double sum = 0.0;
+  for (const ClutterKind kind : config.kinds) {
+    const ClutterFootprint f = FootprintOf(kind);
+    sum += f.radius > 0.0 ? 2.0 * f.radius : 2.0 * (f.size.x() + f.size.y()) / std::numbers::pi;
+  }
+  return config.kinds.empty() ? 0.0 : sum / static_cast<double>(config.kinds.size());
+}
+
+double CalibratedClutterDensity(const ClutterConfig& config) {
+  return kCalibratedBlockingRate / MeanClutterWidth(config);
 }
 
 Clutter GenerateClutter(const ClutterConfig& config, const ClutterSite& site,

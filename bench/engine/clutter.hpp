@@ -81,6 +81,21 @@ struct ClutterFootprint {
 };
 ClutterFootprint FootprintOf(ClutterKind kind);
 
+/// The kinds' mean width (m) at a uniform yaw, averaged over `config.kinds`: perimeter / π for
+/// each (Cauchy's formula for a convex footprint). Density × mean width is the clutter's
+/// blocking rate: how often per metre a ray through the band meets an object.
+double MeanClutterWidth(const ClutterConfig& config);
+
+/// The blocking rate (1/m) of static unmapped clutter that `retrace calibrate-lidar` infers for
+/// the Intel Research Lab log (docs/METHOD.md, "What the map does not hold": 0.046 objects per
+/// m² of 0.60 m mean width), the one indoor log at hand. CalibratedClutterDensity converts it
+/// to a scenario's kinds (the campus kinds: 0.034 per m²); scenarios stay without clutter unless
+/// they ask for it.
+inline constexpr double kCalibratedBlockingRate = 0.028;
+
+/// kCalibratedBlockingRate / MeanClutterWidth(config): objects per m² of `config`'s kinds.
+double CalibratedClutterDensity(const ClutterConfig& config);
+
 /// Where the clutter may go: the route (W), the playback world's static geometry, the robot's
 /// radius and a disc around the route's start kept free (so that the robot starts clear and
 /// the crowd's keep-clear rule for its start holds).

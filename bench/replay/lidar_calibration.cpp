@@ -219,7 +219,10 @@ WorldInference InferSimulatedWorld(const logs::LogIndex& index, const LogStreams
   config.clutter = clutter;
   const UnmappedMap unmapped = WindowUnmappedMap(index, streams, world_teach, window, clutter);
   WorldInference out;
-  out.free_path = real.unknown_free_path;
+  out.unknown_hits_enough =
+      std::min(calibration.unmapped_first_half.fit.unknown_hits,
+               calibration.unmapped_second_half.fit.unknown_hits) >= kMinUnknownHitsPerHalf;
+  out.free_path = out.unknown_hits_enough ? real.unknown_free_path : 0.0;
   out.density = real.density;
   while (out.simulations < kMaxSimulations) {
     config.sim.unknown_free_path = out.free_path;
@@ -227,7 +230,8 @@ WorldInference InferSimulatedWorld(const logs::LogIndex& index, const LogStreams
     out.simulated = SimulatedUnmappedFit(index, streams, world_teach, world_teach_dir, window,
                                          config, unmapped, mixture.sigma_hit, real.mean_width_m);
     ++out.simulations;
-    const double free_path_ratio = Ratio(real.unknown_free_path, out.simulated.unknown_free_path);
+    const double free_path_ratio =
+        out.free_path > 0.0 ? Ratio(real.unknown_free_path, out.simulated.unknown_free_path) : 1.0;
     const double density_ratio = Ratio(real.density, out.simulated.density);
     if (std::abs(free_path_ratio - 1.0) <= kFreePathTolerance &&
         std::abs(density_ratio - 1.0) <= kDensityTolerance) {

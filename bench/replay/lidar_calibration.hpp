@@ -94,8 +94,13 @@ LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& 
 /// rays), so the log is simulated with the fitted sensor, its scans estimated the same way,
 /// and the unknown cells' free path and the clutter's density are each scaled by real /
 /// simulated estimate until they agree within 5 % and 10 % (at most 8 simulations, one seed).
+/// Readings that end in unknown cells needed in each half of the window to estimate their free
+/// path; with fewer the unknown cells stay open.
+inline constexpr std::size_t kMinUnknownHitsPerHalf = 100;
+
 struct WorldInference {
-  double free_path = 0.0;  ///< m, for sim.unknown_free_path (0: nothing hit in unknown cells)
+  double free_path = 0.0;  ///< m, for sim.unknown_free_path (0: left open)
+  bool unknown_hits_enough = false;  ///< kMinUnknownHitsPerHalf in each half
   double density = 0.0;    ///< static objects per m², for clutter.density
   UnmappedFit simulated;   ///< the last simulation's whole fit
   int simulations = 0;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "core/nearest_grid.hpp"
 #include "io/ros_map.hpp"
@@ -163,15 +162,6 @@ core::OccupancyGrid ClearedAlongRoute(core::OccupancyGrid grid,
     }
   }
   return grid;
-}
-
-double MeanClutterWidth(const ClutterConfig& clutter) {
-  double sum = 0.0;
-  for (const ClutterKind kind : clutter.kinds) {
-    const ClutterFootprint f = FootprintOf(kind);
-    sum += f.radius > 0.0 ? 2.0 * f.radius : 2.0 * (f.size.x() + f.size.y()) / std::numbers::pi;
-  }
-  return clutter.kinds.empty() ? 0.0 : sum / static_cast<double>(clutter.kinds.size());
 }
 
 UnmappedFit FitUnmapped(std::span<const UnmappedBeam> beams, double margin, double far_margin,

@@ -112,9 +112,6 @@ core::OccupancyGrid ClearedAlongRoute(core::OccupancyGrid grid,
                                       const std::vector<core::Vec2>& route,
                                       const ClutterConfig& clutter);
 
-/// The clutter kinds' mean width (m) at a uniform yaw: perimeter / π, averaged over the kinds.
-double MeanClutterWidth(const ClutterConfig& clutter);
-
 /// Fits the beams: a reading is short when below map_range − margin (m). Beams without a
 /// return or reading beyond map_range + far_margin (m) are left out: a sensor's random readings
 /// and dropouts (the mixture's z_rand and z_max) would otherwise count as rays that passed
