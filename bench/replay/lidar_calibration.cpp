@@ -185,11 +185,13 @@ UnmappedFit SimulatedUnmappedFit(const logs::LogIndex& index, const LogStreams& 
                     }
                   });
   } catch (const core::ConfigError& e) {
-    throw core::ConfigError("clutter", "the clutter of density " +
-                                           core::FormatNumber(config.clutter.density) +
-                                           " does not fit beside the route in the simulator (" +
-                                           e.detail() +
-                                           "): narrow clutter.kinds or clutter.clearance");
+    // The placement's own advice (lower the density) does not apply to a measured density.
+    const std::string what = e.detail().substr(0, e.detail().find("): "));
+    throw core::ConfigError("clutter.kinds",
+                            "the measured clutter (" + core::FormatNumber(config.clutter.density) +
+                                " objects per m²) does not fit beside the log's route in the "
+                                "simulator (" + what + ")): choose smaller kinds or a smaller "
+                                "clutter.clearance");
   }
   unmapped.MarkStaticHits(observations, beams);
   // The simulated readings end on the world's faces: no hit offset.

@@ -106,7 +106,7 @@ struct WorldInference {
   int simulations = 0;
   bool converged = false;
 };
-/// Throws core::ConfigError("clutter", ...) when the clutter does not fit beside the route.
+/// Throws core::ConfigError("clutter.kinds", ...) when the clutter does not fit beside the route.
 WorldInference InferSimulatedWorld(const logs::LogIndex& index, const LogStreams& streams,
                                    const ModeTeach& world_teach,
                                    const std::filesystem::path& world_teach_dir,

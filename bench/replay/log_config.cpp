@@ -24,6 +24,14 @@ void LogConfig::Validate() const {
     throw core::ConfigError(route.file.empty() ? "route.points" : "route.file",
                             "does not apply to a log: its route is the path it drove");
   }
+  const double corridor = ClutterSite{}.robot_radius + clutter.clearance;
+  if (!(clutter.band > corridor)) {
+    throw core::ConfigError("clutter.band",
+                            "must be wider than the corridor kept free along the route, 0.3 m "
+                            "(a robot's radius) + clutter.clearance = " +
+                                core::FormatNumber(corridor) + " m, not " +
+                                core::FormatNumber(clutter.band) + " m");
+  }
   const PlaybackConfig defaults;
   if (playback.repeats != defaults.repeats ||
       playback.start_offset_xy != defaults.start_offset_xy ||

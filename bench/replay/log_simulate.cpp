@@ -82,8 +82,13 @@ sim::StaticGeometry SimulatedWorld(const logs::LogIndex& index, const LogStreams
     // placed in the map with every cell that is not known free solid.
     sim::StaticGeometry known_free;
     sim::AddMapGeometry(grid, {name, io::kRosMapKnownFreeBelow}, &known_free);
-    const Clutter clutter =
-        GenerateClutter(config.clutter, ClutterSite{&route, &known_free}, rng.Split("clutter"));
+    Clutter clutter;
+    try {
+      clutter =
+          GenerateClutter(config.clutter, ClutterSite{&route, &known_free}, rng.Split("clutter"));
+    } catch (const core::ConfigError& e) {
+      throw core::ConfigError("clutter." + e.key_path(), e.detail());
+    }
     sim::WorldConfig objects;
     objects.boxes = clutter.boxes;
     objects.circles = clutter.circles;

@@ -62,6 +62,8 @@ expect_bad no_convergence "did not converge in 2 iterations" "$mcap" --teach "$c
   --max-iterations 2
 expect_bad no_reference "no reference trajectory" "$tmp/no_reference.log" --teach "$consistent"
 expect_bad window "--to: must be later than --from" "$mcap" --teach "$consistent" --from 5 --to 2
+expect_bad band "clutter.band: must be wider than the corridor" "$mcap" --teach "$consistent" \
+  --set clutter.band=0.2
 
 echo "calibrate-lidar: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
