@@ -22,8 +22,8 @@ OccupancyMask OccupiedMask(const core::OccupancyGrid& grid, double occupied_thre
   return mask;
 }
 
-void FillUnknownCells(const core::OccupancyGrid& grid, double occupied_threshold,
-                      double free_path, core::Rng rng, OccupancyMask* mask) {
+void FillUnknownCells(const core::OccupancyGrid& grid, double occupied_threshold, double free_path,
+                      core::Rng rng, OccupancyMask* mask) {
   const double p = -std::expm1(-std::numbers::pi * grid.resolution() / (4.0 * free_path));
   const float occupied = static_cast<float>(core::Logit(occupied_threshold));
   const float known_free = static_cast<float>(core::Logit(io::kRosMapKnownFreeBelow));

@@ -20,8 +20,8 @@ OccupancyMask OccupiedMask(const core::OccupancyGrid& grid, double occupied_thre
 /// *mask with probability 1 − exp(−π r / (4 free_path)), r the resolution: rays in uniformly
 /// random directions then travel `free_path` (m) through unknown cells on average before they
 /// meet a solid one. One draw per unknown cell, in row-major order, from `rng`.
-void FillUnknownCells(const core::OccupancyGrid& grid, double occupied_threshold,
-                      double free_path, core::Rng rng, OccupancyMask* mask);
+void FillUnknownCells(const core::OccupancyGrid& grid, double occupied_threshold, double free_path,
+                      core::Rng rng, OccupancyMask* mask);
 
 /// The merged boundary faces of the solid cells of `mask`, in W.
 std::vector<Segment> MergedBoundaryEdges(const OccupancyMask& mask);

@@ -63,23 +63,24 @@ std::string UnmappedRow(const std::string& name, const UnmappedPart& part) {
                 "%-12s %8.1f %8.1f %8zu %6.1f %% %8zu %9.0f %7.2f %7zu %7zu %8.0f %8.4f",
                 name.c_str(), part.from_s, part.to_s, f.beams,
                 100.0 * Share(f.short_readings, f.beams), f.unknown_hits, f.unknown_exposure_m,
-                f.unknown_free_path, f.band_hits, f.static_band_hits, f.band_exposure_m,
-                f.density);
+                f.unknown_free_path, f.band_hits, f.static_band_hits, f.band_exposure_m, f.density);
   return line;
 }
 
 // What the map does not hold: one row per part.
 std::vector<std::string> UnmappedReport(const LidarCalibration& c) {
-  return {"what the map does not hold (readings short of the map by more than 3 sigma_hit less "
-          "the offset, where they end):",
-          "part         from (s)   to (s)    beams   short  unknown  exposure  free_path   band "
-          " static exposure  density",
-          UnmappedRow("whole", c.unmapped_whole), UnmappedRow("first half", c.unmapped_first_half),
-          UnmappedRow("second half", c.unmapped_second_half),
-          "(exposure: m of the rays in unknown cells and in the clutter's band; band: readings "
-          "ending short in it, static: of those on something that stays; free_path in m, "
-          "density of static objects per m^2, of mean width " +
-              FixedText(c.unmapped_whole.fit.mean_width_m, 2) + " m)"};
+  return {
+      "what the map does not hold (readings short of the map by more than 3 sigma_hit less "
+      "the offset, where they end):",
+      "part         from (s)   to (s)    beams   short  unknown  exposure  free_path   band "
+      " static exposure  density",
+      UnmappedRow("whole", c.unmapped_whole),
+      UnmappedRow("first half", c.unmapped_first_half),
+      UnmappedRow("second half", c.unmapped_second_half),
+      "(exposure: m of the rays in unknown cells and in the clutter's band; band: readings "
+      "ending short in it, static: of those on something that stays; free_path in m, "
+      "density of static objects per m^2, of mean width " +
+          FixedText(c.unmapped_whole.fit.mean_width_m, 2) + " m)"};
 }
 
 // The simulated world that reproduces the real estimates, and how close its scans came.
@@ -90,14 +91,15 @@ std::string WorldLine(const UnmappedFit& real, const WorldInference& inference) 
           ? "unknown cells filled at a free path of " + FixedText(inference.free_path, 2) + " m"
           : "unknown cells left open (fewer than " + std::to_string(kMinUnknownHitsPerHalf) +
                 " readings end in them in a half of the window)";
-  return "simulated world: " + unknown + ", static clutter " +
-         FixedText(inference.density, 4) + " per m^2 (" + std::to_string(inference.simulations) +
-         (inference.simulations == 1 ? " simulation" : " simulations") + (inference.converged ? "" : ", not within 5 % and 10 %") +
-         "); its scans estimate a free path of " + FixedText(sim.unknown_free_path, 2) +
-         " m and " + FixedText(sim.density, 4) + " per m^2 (real " +
-         FixedText(real.unknown_free_path, 2) + " m, " + FixedText(real.density, 4) +
-         "), short readings " + FixedText(100.0 * Share(sim.short_readings, sim.beams), 1) +
-         " % (real " + FixedText(100.0 * Share(real.short_readings, real.beams), 1) + " %)";
+  return "simulated world: " + unknown + ", static clutter " + FixedText(inference.density, 4) +
+         " per m^2 (" + std::to_string(inference.simulations) +
+         (inference.simulations == 1 ? " simulation" : " simulations") +
+         (inference.converged ? "" : ", not within 5 % and 10 %") +
+         "); its scans estimate a free path of " + FixedText(sim.unknown_free_path, 2) + " m and " +
+         FixedText(sim.density, 4) + " per m^2 (real " + FixedText(real.unknown_free_path, 2) +
+         " m, " + FixedText(real.density, 4) + "), short readings " +
+         FixedText(100.0 * Share(sim.short_readings, sim.beams), 1) + " % (real " +
+         FixedText(100.0 * Share(real.short_readings, real.beams), 1) + " %)";
 }
 
 // The fit report: what was used, then one row per part and the halves' spread.
@@ -189,7 +191,8 @@ void AddCalibrateLidarOptions(CLI::App* cmd, CalibrateLidarOptions* options) {
   cmd->add_option("--config", options->config,
                   "Settings file (YAML), as for log-simulate: the clutter block's band, clearance "
                   "and kinds define where and what the density is measured as");
-  cmd->add_option("--set", options->overrides, "Override a setting, e.g. clutter.band=2 (repeatable)");
+  cmd->add_option("--set", options->overrides,
+                  "Override a setting, e.g. clutter.band=2 (repeatable)");
   AddStreamOptions(cmd, &options->streams);
 }
 

@@ -13,7 +13,8 @@ void AddClutterOptions(CLI::App* cmd, ClutterOptions* options) {
   cmd->add_option("--clutter-density", options->density,
                   "Unmapped static objects (chairs, bins, bikes, boxes) per m² of the band beside "
                   "the route during playback: the scenario's clutter.density (default 0: none; " +
-                      core::FormatNumber(std::round(1000.0 * CalibratedClutterDensity(ClutterConfig{})) / 1000.0) +
+                      core::FormatNumber(
+                          std::round(1000.0 * CalibratedClutterDensity(ClutterConfig{})) / 1000.0) +
                       " is the density calibrated on a real log)")
       ->check(kNonNegative);
   cmd->add_option("--standing-density", options->standing_density,

@@ -7,8 +7,8 @@
 #include <span>
 #include <string>
 
-#include "core/errors.hpp"
 #include "bench/replay/log_simulate.hpp"
+#include "core/errors.hpp"
 #include "io/ros_map.hpp"
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
@@ -73,8 +73,7 @@ void AddScanBeams(const core::LaserScan& scan, double log_time_s, const core::Po
     const bool valid = r >= beams->range_min;
     const double z = r >= beams->range_max ? std::numeric_limits<double>::infinity() : r;
     if (valid) {
-      beams->unmapped.push_back(
-          unmapped.Walk(log_time_s, origin, dir, z, cast.map, observations));
+      beams->unmapped.push_back(unmapped.Walk(log_time_s, origin, dir, z, cast.map, observations));
     }
     const double z_star = cast.known;
     if (!(z_star > beams->range_min)) {  // NaN: unknown
@@ -169,28 +168,29 @@ UnmappedFit SimulatedUnmappedFit(const logs::LogIndex& index, const LogStreams& 
   std::vector<UnmappedBeam> beams;
   BandObservations observations = unmapped.NewObservations();
   try {
-    SimulateScans(index, streams, world_teach, world_teach_dir, config, window,
-                  [&](double stamp, const core::Pose2& X_MR, const core::LaserScan& scan) {
-                    const core::Pose2 X_ML = X_MR * streams.robot.X_RL;
-                    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-                      const double r = scan.ranges[i];
-                      if (!(r >= range_min)) continue;
-                      const double a = X_ML.theta + scan.Angle(i);
-                      const core::Vec2 dir(std::cos(a), std::sin(a));
-                      const double z =
-                          r >= range_max ? std::numeric_limits<double>::infinity() : r;
-                      beams.push_back(unmapped.Walk(stamp, X_ML.translation(), dir, z,
-                                                    caster.Cast(X_ML.translation(), dir).map,
-                                                    &observations));
-                    }
-                  });
+    SimulateScans(
+        index, streams, world_teach, world_teach_dir, config, window,
+        [&](double stamp, const core::Pose2& X_MR, const core::LaserScan& scan) {
+          const core::Pose2 X_ML = X_MR * streams.robot.X_RL;
+          for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+            const double r = scan.ranges[i];
+            if (!(r >= range_min)) continue;
+            const double a = X_ML.theta + scan.Angle(i);
+            const core::Vec2 dir(std::cos(a), std::sin(a));
+            const double z = r >= range_max ? std::numeric_limits<double>::infinity() : r;
+            beams.push_back(unmapped.Walk(stamp, X_ML.translation(), dir, z,
+                                          caster.Cast(X_ML.translation(), dir).map, &observations));
+          }
+        });
   } catch (const core::ConfigError& e) {
     // The placement's own advice (lower the density) does not apply to a measured density.
     const std::string what = e.detail().substr(0, e.detail().find("): "));
     throw core::ConfigError("clutter.kinds",
                             "the measured clutter (" + core::FormatNumber(config.clutter.density) +
                                 " objects per m²) does not fit beside the log's route in the "
-                                "simulator (" + what + ")): choose smaller kinds or a smaller "
+                                "simulator (" +
+                                what +
+                                ")): choose smaller kinds or a smaller "
                                 "clutter.clearance");
   }
   unmapped.MarkStaticHits(observations, beams);

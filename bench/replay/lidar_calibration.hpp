@@ -99,10 +99,10 @@ LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& 
 inline constexpr std::size_t kMinUnknownHitsPerHalf = 100;
 
 struct WorldInference {
-  double free_path = 0.0;  ///< m, for sim.unknown_free_path (0: left open)
+  double free_path = 0.0;            ///< m, for sim.unknown_free_path (0: left open)
   bool unknown_hits_enough = false;  ///< kMinUnknownHitsPerHalf in each half
-  double density = 0.0;    ///< static objects per m², for clutter.density
-  UnmappedFit simulated;   ///< the last simulation's whole fit
+  double density = 0.0;              ///< static objects per m², for clutter.density
+  UnmappedFit simulated;             ///< the last simulation's whole fit
   int simulations = 0;
   bool converged = false;
 };

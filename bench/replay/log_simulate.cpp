@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/replay/unmapped_calibration.hpp"
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
@@ -12,7 +13,6 @@
 #include "logs/mcap_writer.hpp"
 #include "logs/raw_message.hpp"
 #include "logs/ros_messages.hpp"
-#include "bench/replay/unmapped_calibration.hpp"
 #include "sim/lidar.hpp"
 #include "sim/world_file.hpp"
 
@@ -75,8 +75,9 @@ sim::StaticGeometry SimulatedWorld(const logs::LogIndex& index, const LogStreams
   sim::StaticGeometry geometry;
   if (config.clutter.enabled()) {
     if (route.size() < 2) {
-      throw core::IoError(index.name + ": the reference does not move in the window: no route "
-                                       "to place the clutter beside");
+      throw core::IoError(index.name +
+                          ": the reference does not move in the window: no route "
+                          "to place the clutter beside");
     }
     // The clutter stands in the map's known free space, where calibrate-lidar measured it:
     // placed in the map with every cell that is not known free solid.
@@ -97,8 +98,8 @@ sim::StaticGeometry SimulatedWorld(const logs::LogIndex& index, const LogStreams
     if (!objects.boxes.empty() || !objects.circles.empty())
       geometry = sim::BuildGeometry(objects, {});
   }
-  sim::AddMapGeometry(
-      grid, {name, 0.65, config.sim.unknown_free_path, rng.Split("unknown").seed()}, &geometry);
+  sim::AddMapGeometry(grid, {name, 0.65, config.sim.unknown_free_path, rng.Split("unknown").seed()},
+                      &geometry);
   return geometry;
 }
 

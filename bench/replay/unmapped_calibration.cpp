@@ -55,7 +55,8 @@ UnmappedMap::Kind UnmappedMap::KindAt(core::CellIndex c) const {
 }
 
 BandObservations UnmappedMap::NewObservations() const {
-  return {std::vector<std::uint32_t>(kinds_.size(), 0), std::vector<std::uint32_t>(kinds_.size(), 0)};
+  return {std::vector<std::uint32_t>(kinds_.size(), 0),
+          std::vector<std::uint32_t>(kinds_.size(), 0)};
 }
 
 void UnmappedMap::MarkStaticHits(const BandObservations& observations,

@@ -9,13 +9,14 @@
 // first occupied cell when it reads farther or nothing), adding up its length in unknown cells
 // and in the clutter's band (known free cells within clutter.band of the route, outside the
 // corridor of robot radius + clutter.clearance, clutter.gap clear of every cell that is not
-// known free: readings that end nearer a wall are mostly the map's walls a cell off). A reading short of the map's range by more
-// than the margin is a hit where it ends (beams without a return or reading beyond the map's
-// range are left out: the sensor's random readings and dropouts): in an unknown cell it counts for the free path, in a
-// band cell for the clutter when it stays (hit again by later rays, not passed through: the
-// window's own occupancy of that cell; MarkStaticHits). An object of the clutter's kinds at a uniform yaw blocks a ray
-// that passes within its mean width (Cauchy: perimeter / π) of its centre, so the density is
-// the band's hits over the band's exposure times that width.
+// known free: readings that end nearer a wall are mostly the map's walls a cell off). A reading
+// short of the map's range by more than the margin is a hit where it ends (beams without a return
+// or reading beyond the map's range are left out: the sensor's random readings and dropouts): in an
+// unknown cell it counts for the free path, in a band cell for the clutter when it stays (hit again
+// by later rays, not passed through: the window's own occupancy of that cell; MarkStaticHits). An
+// object of the clutter's kinds at a uniform yaw blocks a ray that passes within its mean width
+// (Cauchy: perimeter / π) of its centre, so the density is the band's hits over the band's exposure
+// times that width.
 
 #include <cstddef>
 #include <cstdint>
@@ -57,8 +58,7 @@ class UnmappedMap {
  public:
   /// `route` (the map's frame M) is the driven path; the band and corridor are the clutter's.
   UnmappedMap(const core::OccupancyGrid& grid, double occupied_threshold,
-              std::span<const core::Vec2> route, const ClutterConfig& clutter,
-              double robot_radius);
+              std::span<const core::Vec2> route, const ClutterConfig& clutter, double robot_radius);
 
   /// The beam from `origin` along the unit `dir` that read `reading` (m, +inf for none), with
   /// the map's range `map_range` (m).
@@ -68,8 +68,7 @@ class UnmappedMap {
   /// Marks the beams whose reading ends short in the band on something that stays: a cell
   /// within one cell of the end that was hit at least twice and at least as often as rays went
   /// through it. People walk on and leave their cells mostly passed through; a chair does not.
-  void MarkStaticHits(const BandObservations& observations,
-                      std::span<UnmappedBeam> beams) const;
+  void MarkStaticHits(const BandObservations& observations, std::span<UnmappedBeam> beams) const;
 
   BandObservations NewObservations() const;
 

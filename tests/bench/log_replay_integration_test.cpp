@@ -204,10 +204,11 @@ void ReplayingTheRunLogTickByTickGivesTheLiveEstimates() {
     if (d >= 1e-9 && first_apart < 0.0) first_apart = s.time;
     max_difference = std::max(max_difference, d);
   }
-  std::printf("[ report ] replay tick by tick: %zu of %zu scans at a live control tick, %zu "
-              "identical estimates, %zu within 1e-9 m (first apart at %.2f s), largest "
-              "difference %.3g m\n",
-              matched, run.samples.size(), identical, to_rounding, first_apart, max_difference);
+  std::printf(
+      "[ report ] replay tick by tick: %zu of %zu scans at a live control tick, %zu "
+      "identical estimates, %zu within 1e-9 m (first apart at %.2f s), largest "
+      "difference %.3g m\n",
+      matched, run.samples.size(), identical, to_rounding, first_apart, max_difference);
   EXPECT_GT(matched, run.samples.size() * 9 / 10);
   EXPECT_EQ(run.switches.size(), trace.switches.size());
   // Identical to rounding at first; once a draw or a resampling comb falls on the other side of

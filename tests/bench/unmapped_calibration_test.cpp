@@ -1,7 +1,6 @@
 // What the map does not hold (bench/replay/unmapped_calibration.hpp): the walk's lengths through
 // unknown and band cells, the Poisson rates recovered from beams drawn with known ones, and the
 // static test that tells a chair from a passer-by.
-#include "bench/engine/clutter.hpp"
 #include "bench/replay/unmapped_calibration.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "bench/engine/clutter.hpp"
 #include "core/rng.hpp"
 #include "io/ros_map.hpp"
 
@@ -94,7 +94,8 @@ TEST(UnmappedCalibration, HitsThatStayAreStaticPassersByAreNot) {
   for (int i = 0; i < 5; ++i) beams.push_back(map.Walk(i, {4.05, 5.0}, {0.0, 1.0}, 2.0, 4.5, &obs));
   // A passer-by 2 m up at x = 8 m, seen once; the other rays there go through to 4 m.
   beams.push_back(map.Walk(10.0, {8.05, 5.0}, {0.0, 1.0}, 2.0, 4.5, &obs));
-  for (int i = 0; i < 5; ++i) beams.push_back(map.Walk(11 + i, {8.05, 5.0}, {0.0, 1.0}, 4.0, 4.5, &obs));
+  for (int i = 0; i < 5; ++i)
+    beams.push_back(map.Walk(11 + i, {8.05, 5.0}, {0.0, 1.0}, 4.0, 4.5, &obs));
   map.MarkStaticHits(obs, beams);
   for (int i = 0; i < 5; ++i) EXPECT_TRUE(beams[i].end_static) << i;
   EXPECT_EQ(beams[5].end, BeamEnd::kBand);

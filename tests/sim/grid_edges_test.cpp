@@ -48,7 +48,8 @@ TEST(GridEdges, EdgesSeparateSolidFromFreeEverywhere) {
   // A random map: every boundary edge has a solid cell on exactly one side at its midpoint.
   core::Rng rng(3);
   std::vector<std::string> rows(40, std::string(60, '.'));
-  for (auto& r : rows) for (auto& c : r) c = rng.Bernoulli(0.3) ? '#' : '.';
+  for (auto& r : rows)
+    for (auto& c : r) c = rng.Bernoulli(0.3) ? '#' : '.';
   const OccupancyMask mask = MaskFrom(rows);
   const auto edges = MergedBoundaryEdges(mask);
   std::size_t faces = 0;
