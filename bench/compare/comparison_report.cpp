@@ -110,6 +110,8 @@ const std::vector<ComparedMetric>& ComparedMetrics() {
        "fraction", false, false},
       {"lost_fraction.pooled", "lost_fraction.pooled", "", "lost fraction", "fraction", false,
        false},
+      {"dynamic_points.rejected_fraction", "dynamic_points.rejected_fraction", "",
+       "beams rejected as dynamic", "fraction", false, false},
       {"progress_fraction", "mean_progress_m", "taught_path_length_m", "progress",
        "fraction of route", false, false},
       {"collisions.pedestrian_incidents_per_run", "collisions.pedestrian_incidents", "runs",
