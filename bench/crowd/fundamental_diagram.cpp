@@ -139,14 +139,17 @@ LaneBand LaneBandOf(const FundamentalDiagramConfig& config) {
   return {config.inner_radius + inset, config.outer_radius() - inset};
 }
 
-// Directions (+1 counter-clockwise, -1 clockwise): a random half of the sites walks clockwise.
-std::vector<int> RandomDirections(std::size_t sites, core::Rng& layout) {
+// Directions (+1 counter-clockwise, -1 clockwise): a random floor(fraction x sites) of the sites
+// walks clockwise.
+std::vector<int> RandomDirections(std::size_t sites, double clockwise_fraction, core::Rng& layout) {
   std::vector<int> direction(sites, 1);
   std::vector<std::size_t> order(sites);
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   for (std::size_t i = order.size(); i > 1; --i)
     std::swap(order[i - 1], order[layout.UniformIndex(i)]);
-  for (std::size_t k = 0; k < order.size() / 2; ++k) direction[order[k]] = -1;
+  const auto clockwise =
+      static_cast<std::size_t>(std::floor(clockwise_fraction * static_cast<double>(sites) + 1e-9));
+  for (std::size_t k = 0; k < clockwise; ++k) direction[order[k]] = -1;
   return direction;
 }
 
@@ -285,6 +288,7 @@ void FundamentalDiagramConfig::Validate() const {
   }
   core::RequirePositive("speed_mean", speed_mean);
   core::RequireNonNegative("speed_std", speed_std);
+  core::RequireInRange("clockwise_fraction", clockwise_fraction, 0.0, 1.0);
   core::RequireNonNegative("warmup", warmup);
   core::RequirePositive("duration", duration);
   core::RequirePositive("sample_period", sample_period);
@@ -349,7 +353,8 @@ FundamentalDiagramRow RunDensity(const FundamentalDiagramConfig& config, double 
   // enough that two boxes never hold points closer than `needed`.
   const double jitter =
       std::clamp(0.5 * (lattice.spacing - needed) / std::sqrt(2.0), 1e-3, kMaxJitter);
-  const std::vector<int> direction = RandomDirections(lattice.sites.size(), layout);
+  const std::vector<int> direction =
+      RandomDirections(lattice.sites.size(), config.clockwise_fraction, layout);
   const core::Rng crowd_rng = rng.Split("pedestrians");
   const RingGroups ring = RingWalkers(config, lattice, direction, jitter, lanes, layout, crowd_rng);
 

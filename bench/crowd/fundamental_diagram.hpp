@@ -43,6 +43,9 @@ struct FundamentalDiagramConfig {
   double pedestrian_radius = 0.2;
   double speed_mean = 1.34;    ///< desired speed (m/s), Weidmann's v0 (drawn per person)
   double speed_std = 0.26;     ///< m/s
+  /// Share of the people walking clockwise (the rest counter-clockwise): 0.5 is the two-way
+  /// corridor, 0 one-way flow.
+  double clockwise_fraction = 0.5;
   double warmup = 20.0;        ///< s before the measurement starts
   double duration = 40.0;      ///< s of measurement
   double sample_period = 0.2;  ///< s between speed samples
@@ -62,6 +65,7 @@ struct FundamentalDiagramConfig {
     v("pedestrian_radius", pedestrian_radius);
     v("speed_mean", speed_mean);
     v("speed_std", speed_std);
+    v("clockwise_fraction", clockwise_fraction);
     v("warmup", warmup);
     v("duration", duration);
     v("sample_period", sample_period);

@@ -78,6 +78,22 @@ TEST(CrowdCheck, AlmostAloneEveryoneWalksNearTheDesiredSpeed) {
   EXPECT_NEAR(sum / 4.0, 1.34, 0.134);
 }
 
+TEST(CrowdCheck, OneWayFlowIsFasterThanTwoWayFlow) {
+  // clockwise_fraction 0: everyone walks counter-clockwise, nobody meets anyone head-on (METHOD:
+  // without counterflow the crowd keeps its speed up to 1 /m²).
+  FundamentalDiagramConfig two_way = SmallRing();
+  two_way.duration = 2.0;
+  FundamentalDiagramConfig one_way = two_way;
+  one_way.clockwise_fraction = 0.0;
+  double two = 0.0, one = 0.0;
+  for (std::uint64_t seed : {1, 2}) {
+    two += RunDensity(two_way, 1.0, seed, 0).mean_speed;
+    one += RunDensity(one_way, 1.0, seed, 0).mean_speed;
+  }
+  EXPECT_GT(one, two);
+  EXPECT_THROW(ReadFundamentalDiagramConfig({"clockwise_fraction=1.5"}), core::ConfigError);
+}
+
 TEST(CrowdCheck, DeterministicPerSeed) {
   FundamentalDiagramConfig config = SmallRing();
   config.warmup = 1.0;
