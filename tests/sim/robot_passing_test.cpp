@@ -70,7 +70,8 @@ TEST(RobotPassing, PeopleKeepOutOfItsIntimateZoneAndGiveWayWithoutStopping) {
   // (Vassallo et al. 2017). Robot standing, or driving towards them at 0.8 m/s; walking lines
   // 0.15 to 0.9 m beside its centre (exactly on it, the model's symmetric head-on case, they
   // nearly stop before stepping aside). Robot strength 4 m²/s² at range 0.2 m puts them
-  // 0.28-0.58 m from it, 8 at 0.7 m 1.0-1.35 m (docs/METHOD.md, "The robot's repulsion").
+  // 0.41-0.67 m from it, 8 at 0.7 m 1.02-1.49 m, mean 1.23 m; the defaults 0.90-1.28 m, mean
+  // 1.06 m (docs/METHOD.md, "The robot's repulsion").
   CrowdConfig config;
   config.loop_spread = 0.0;  // walk the line given
   double sum = 0.0;
