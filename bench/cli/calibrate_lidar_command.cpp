@@ -87,8 +87,10 @@ std::vector<std::string> UnmappedReport(const LidarCalibration& c) {
 std::string WorldLine(const UnmappedFit& real, const WorldInference& inference) {
   const UnmappedFit& sim = inference.simulated;
   const std::string unknown =
-      inference.unknown_hits_enough
+      inference.free_path > 0.0
           ? "unknown cells filled at a free path of " + FixedText(inference.free_path, 2) + " m"
+      : inference.unknown_hits_enough
+          ? std::string("unknown cells left open (rays cross them farther than the LiDAR reaches)")
           : "unknown cells left open (fewer than " + std::to_string(kMinUnknownHitsPerHalf) +
                 " readings end in them in a half of the window)";
   return "simulated world: " + unknown + ", static clutter " + FixedText(inference.density, 4) +
@@ -139,7 +141,9 @@ std::string CalibrationYaml(const std::vector<std::string>& report,
   text += "# " + command_line + "\n#\n";
   for (const std::string& line : report) text += "# " + line + "\n";
   text +=
-      "#\n# The block below is the whole fit's mixture in sim.lidar.noise keys (docs/METHOD.md):\n"
+      "#\n# The block below is the whole fit's mixture in sim.lidar.noise keys (docs/METHOD.md)\n"
+      "# without its short returns (short_probability 0: the world's unknown cells and clutter\n"
+      "# make them; without those, set it to the fit's z_short), then the world's settings.\n"
       "# --config takes this file as it is; the lines above are comments.\n";
   text += "sim:\n  lidar:\n    noise:\n";
   sim::LidarNoiseConfig copy = noise;
@@ -219,7 +223,7 @@ int RunCalibrateLidarCommand(const CalibrateLidarOptions& options,
                                                    options.window, calibration, clutter);
   std::vector<std::string> report = FitReport(calibration, index.name, options.teach_dir);
   report.push_back(WorldLine(calibration.unmapped_whole.fit, world));
-  const sim::LidarNoiseConfig noise = NoiseOfMixture(calibration.whole.result.mixture);
+  const sim::LidarNoiseConfig noise = WorldNoise(calibration.whole.result.mixture);
   io::WriteFileAtomic(options.out, CalibrationYaml(report, noise, world, clutter, command_line));
   for (const std::string& line : report) std::cout << line << "\n";
   std::cout << "sim.lidar.noise: " << options.out.string() << "\n";

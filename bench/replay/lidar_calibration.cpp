@@ -217,14 +217,17 @@ WorldInference InferSimulatedWorld(const logs::LogIndex& index, const LogStreams
   const UnmappedFit& real = calibration.unmapped_whole.fit;
   const nav::BeamMixture& mixture = calibration.whole.result.mixture;
   LogConfig config;
-  config.sim.lidar.noise = NoiseOfMixture(mixture);
+  config.sim.lidar.noise = WorldNoise(mixture);
   config.clutter = clutter;
   const UnmappedMap unmapped = WindowUnmappedMap(index, streams, world_teach, window, clutter);
   WorldInference out;
   out.unknown_hits_enough =
       std::min(calibration.unmapped_first_half.fit.unknown_hits,
                calibration.unmapped_second_half.fit.unknown_hits) >= kMinUnknownHitsPerHalf;
-  out.free_path = out.unknown_hits_enough ? real.unknown_free_path : 0.0;
+  // Rays that cross unknown cells farther than the LiDAR reaches meet nothing there: open.
+  const double range_max = calibration.beams.range_max;
+  out.free_path =
+      out.unknown_hits_enough && real.unknown_free_path < range_max ? real.unknown_free_path : 0.0;
   out.density = real.density;
   while (out.simulations < kMaxSimulations) {
     config.sim.unknown_free_path = out.free_path;
@@ -242,6 +245,7 @@ WorldInference InferSimulatedWorld(const logs::LogIndex& index, const LogStreams
     }
     if (out.simulations == kMaxSimulations) break;
     out.free_path *= free_path_ratio;
+    if (out.free_path >= range_max) out.free_path = 0.0;  // as open as a fill can make it
     out.density *= density_ratio;
   }
   return out;
@@ -311,6 +315,12 @@ LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& 
   out.unmapped_whole.to_s = out.unmapped_second_half.to_s = beams.last_s;
   out.beams = std::move(beams);
   return out;
+}
+
+sim::LidarNoiseConfig WorldNoise(const nav::BeamMixture& mixture) {
+  sim::LidarNoiseConfig noise = NoiseOfMixture(mixture);
+  noise.short_probability = 0.0;
+  return noise;
 }
 
 sim::LidarNoiseConfig NoiseOfMixture(const nav::BeamMixture& mixture) {

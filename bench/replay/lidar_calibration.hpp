@@ -99,19 +99,28 @@ LidarCalibration FitLidarCalibration(CalibrationBeams beams, const std::string& 
 inline constexpr std::size_t kMinUnknownHitsPerHalf = 100;
 
 struct WorldInference {
-  double free_path = 0.0;            ///< m, for sim.unknown_free_path (0: left open)
+  /// m, for sim.unknown_free_path; 0 (left open) with too few hits in unknown cells, or when
+  /// rays cross them farther than the LiDAR's range_max.
+  double free_path = 0.0;
   bool unknown_hits_enough = false;  ///< kMinUnknownHitsPerHalf in each half
   double density = 0.0;              ///< static objects per m², for clutter.density
   UnmappedFit simulated;             ///< the last simulation's whole fit
   int simulations = 0;
   bool converged = false;
 };
-/// Throws core::ConfigError("clutter.kinds", ...) when the clutter does not fit beside the route.
+/// The simulated sensor is WorldNoise. Throws core::ConfigError("clutter.kinds", ...) when the
+/// clutter does not fit beside the route.
 WorldInference InferSimulatedWorld(const logs::LogIndex& index, const LogStreams& streams,
                                    const ModeTeach& world_teach,
                                    const std::filesystem::path& world_teach_dir,
                                    const LogWindow& window, const LidarCalibration& calibration,
                                    const ClutterConfig& clutter);
+
+/// The noise of a simulated world that holds what the map does not (unknown cells, clutter):
+/// NoiseOfMixture without short returns, which the world's things now make; the mixture's
+/// z_short, fitted on real scans, is mostly those things (on the campus drive with clutter,
+/// 0.09), and drawing it too would cut the rays short twice.
+sim::LidarNoiseConfig WorldNoise(const nav::BeamMixture& mixture);
 
 /// The simulated LiDAR's noise that draws the fitted mixture: sigma0 = σ_hit, sigma1 = 0,
 /// dropout_probability = z_max, short_probability = z_short, short_lambda = λ_short,

@@ -171,9 +171,11 @@ UnmappedFit FitUnmapped(std::span<const UnmappedBeam> beams, double margin, doub
   fit.mean_width_m = mean_width;
   for (const UnmappedBeam& b : beams) {
     ++fit.beams;
-    // No return, or a return from beyond the map's first wall: random readings and dropouts,
-    // which say nothing about what the ray passed.
-    if (!(b.reading <= b.map_range + far_margin)) {
+    // A return from beyond the map's first wall: a random reading, or the map wrong there (a
+    // door open, glass); it says nothing about what the ray passed. No return counts: the ray
+    // passed everything up to the map's range (outdoors, open sky), or the sensor dropped it,
+    // which the simulated sensor does as often (indirect inference).
+    if (std::isfinite(b.reading) && b.reading > b.map_range + far_margin) {
       ++fit.unexplained;
       continue;
     }

@@ -83,7 +83,7 @@ class UnmappedMap {
 /// The rates fitted to a set of beams.
 struct UnmappedFit {
   std::size_t beams = 0;           ///< beams with a reading
-  std::size_t unexplained = 0;     ///< of those: no return, or beyond the map's range (left out)
+  std::size_t unexplained = 0;     ///< of those: beyond the map's range (left out)
   std::size_t short_readings = 0;  ///< readings short of the map's range by more than the margin
   std::size_t unknown_hits = 0;
   double unknown_exposure_m = 0.0;
@@ -111,10 +111,9 @@ core::OccupancyGrid ClearedAlongRoute(core::OccupancyGrid grid,
                                       const std::vector<core::Vec2>& route,
                                       const ClutterConfig& clutter);
 
-/// Fits the beams: a reading is short when below map_range − margin (m). Beams without a
-/// return or reading beyond map_range + far_margin (m) are left out: a sensor's random readings
-/// and dropouts (the mixture's z_rand and z_max) would otherwise count as rays that passed
-/// everything.
+/// Fits the beams: a reading is short when below map_range − margin (m). Readings beyond
+/// map_range + far_margin (m) are left out (random readings, the map wrong there); beams without
+/// a return count as rays that passed everything up to map_range.
 UnmappedFit FitUnmapped(std::span<const UnmappedBeam> beams, double margin, double far_margin,
                         double mean_width);
 

@@ -71,14 +71,14 @@ TEST(UnmappedCalibration, RatesOfDrawnBeamsAreRecovered) {
       b.unknown_m = static_cast<float>(in_unknown);
       b.end = BeamEnd::kUnknown;
     } else {
-      b.reading = 8.0;  // the map's wall
+      b.reading = i % 2 ? 8.0 : kInf;  // the map's wall, or no return: passed everything
       b.band_m = 3.0F;
       b.unknown_m = 5.0F;
     }
     beams.push_back(b);
   }
-  // Plus dropouts and readings beyond the wall: left out, they change nothing.
-  for (int i = 0; i < 3000; ++i) beams.push_back({0.0, i % 2 ? kInf : 20.0, 8.0, 5.0F, 3.0F});
+  // Plus readings beyond the wall: left out, they change nothing.
+  for (int i = 0; i < 3000; ++i) beams.push_back({0.0, 20.0, 8.0, 5.0F, 3.0F});
   const UnmappedFit fit = FitUnmapped(beams, 0.2, 0.2, kWidth);
   EXPECT_EQ(fit.unexplained, 3000U);
   EXPECT_NEAR(fit.unknown_free_path, kFreePath, 0.04 * kFreePath);
