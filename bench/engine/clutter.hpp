@@ -87,11 +87,11 @@ ClutterFootprint FootprintOf(ClutterKind kind);
 double MeanClutterWidth(const ClutterConfig& config);
 
 /// The blocking rate (1/m) of static unmapped clutter that `retrace calibrate-lidar` infers for
-/// the Intel Research Lab log (docs/METHOD.md, "What the map does not hold": 0.046 objects per
+/// the Intel Research Lab log (docs/METHOD.md, "What the map does not hold": 0.041 objects per
 /// m² of 0.60 m mean width), the one indoor log at hand. CalibratedClutterDensity converts it
-/// to a scenario's kinds (the campus kinds: 0.034 per m²); scenarios stay without clutter unless
+/// to a scenario's kinds (the campus kinds: 0.030 per m²); scenarios stay without clutter unless
 /// they ask for it.
-inline constexpr double kCalibratedBlockingRate = 0.028;
+inline constexpr double kCalibratedBlockingRate = 0.025;
 
 /// kCalibratedBlockingRate / MeanClutterWidth(config): objects per m² of `config`'s kinds.
 double CalibratedClutterDensity(const ClutterConfig& config);
