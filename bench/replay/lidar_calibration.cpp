@@ -198,9 +198,11 @@ UnmappedFit SimulatedUnmappedFit(const logs::LogIndex& index, const LogStreams& 
   return FitUnmapped(beams, 3.0 * sigma_hit, 3.0 * sigma_hit, mean_width);
 }
 
-// real / simulated, or 1 when either is 0 (nothing to scale).
+// The factor to scale a simulator value by: real / simulated; 2 when the simulation shows none
+// of what the real scans show; 1 when the real scans show none (the value is 0 and stays 0).
 double Ratio(double real, double simulated) {
-  return real > 0.0 && simulated > 0.0 ? real / simulated : 1.0;
+  if (!(real > 0.0)) return 1.0;
+  return simulated > 0.0 ? real / simulated : 2.0;
 }
 
 }  // namespace
