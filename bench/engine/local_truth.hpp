@@ -11,12 +11,16 @@
 // arc length behind and ahead of the previous match, so that a segment that passes the same
 // place twice (mode `single`) matches the right pass, and j is the nearer end of the piece of
 // path it falls on; only when the path is farther than `fallback_distance` from the robot
-// there is the nearest sample of the whole segment taken, if it is nearer.
+// there is the nearest sample of the whole segment taken, if it is nearer. The windowed
+// projection is answered by a core::PathIndex within fallback_distance: the same projection,
+// from the few segments near the robot instead of every one in the window.
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "bench/engine/trace.hpp"
+#include "core/path_index.hpp"
 #include "core/pose2.hpp"
 
 namespace retrace::bench {
@@ -40,11 +44,22 @@ class LocalTruth {
  private:
   std::size_t Nearest(const core::Vec2& p, std::size_t lo, std::size_t hi, double* d2) const;
 
+  // The teaching samples' positions (W), their arc length along the segment and the windowed
+  // projection over them within fallback_distance; shared by copies (the index refers to the
+  // vectors it sits beside, so it never moves).
+  struct Path {
+    Path(std::vector<core::Vec2> points, double radius);
+    Path(const Path&) = delete;
+    Path& operator=(const Path&) = delete;
+    std::vector<core::Vec2> positions;
+    std::vector<double> arc;
+    core::PathIndex index;
+  };
+
   const TeachMapTrace* map_;
   double window_;
   double fallback_distance_;
-  std::vector<core::Vec2> positions_;  // of the teaching samples (W)
-  std::vector<double> arc_;            // arc length of each sample's position along the segment
+  std::shared_ptr<const Path> path_;
   std::size_t match_ = 0;
 };
 
