@@ -218,6 +218,32 @@ void ReplayingTheRunLogTickByTickGivesTheLiveEstimates() {
   EXPECT_LT(max_difference, 0.05);
 }
 
+// Clutter beside the route (log-simulate's clutter block) ends some readings well short of the
+// clutter-free ones, the same readings for the same seed.
+void ClutterEndsSomeReadingsShort(const logs::LogIndex& index, const LogStreams& streams,
+                                  const ModeTeach& world_teach, const fs::path& world,
+                                  const LogConfig& config) {
+  LogConfig cluttered = config;
+  cluttered.clutter.density = 0.1;
+  const auto scans_of = [&](const LogConfig& c) {
+    std::vector<core::LaserScan> out;
+    SimulateScans(index, streams, world_teach, world, c, {},
+                  [&](double, const core::Pose2&, const core::LaserScan& s) { out.push_back(s); });
+    return out;
+  };
+  const std::vector<core::LaserScan> plain = scans_of(config);
+  const std::vector<core::LaserScan> first = scans_of(cluttered);
+  const std::vector<core::LaserScan> again = scans_of(cluttered);
+  ASSERT_EQ(first.size(), plain.size());
+  std::size_t shorter = 0;
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(first[i].ranges, again[i].ranges);
+    for (std::size_t k = 0; k < first[i].ranges.size(); ++k)
+      shorter += first[i].ranges[k] < plain[i].ranges[k] - 0.5 ? 1 : 0;
+  }
+  EXPECT_GT(shorter, 0U);
+}
+
 void SimulatedScansOfTheLogLocalizeInItsConsistentMap() {
   const Recorded& r = Drive();
   const logs::LogIndex index = logs::IndexLog(r.tmp.path() / "run_0.mcap");
@@ -254,27 +280,7 @@ void SimulatedScansOfTheLogLocalizeInItsConsistentMap() {
   EXPECT_LT(m.localization_error_m.rms, 0.15);
   EXPECT_LT(m.rejected_fraction, 0.05);  // nobody walks in the simulated world
 
-  // Clutter beside the route (log-simulate's clutter block) ends some readings well short of
-  // the clutter-free ones, the same readings for the same seed.
-  LogConfig cluttered = config;
-  cluttered.clutter.density = 0.1;
-  const auto scans_of = [&](const LogConfig& c) {
-    std::vector<core::LaserScan> out;
-    SimulateScans(index, streams, taught.modes.front(), world, c, {},
-                  [&](double, const core::Pose2&, const core::LaserScan& s) { out.push_back(s); });
-    return out;
-  };
-  const std::vector<core::LaserScan> plain = scans_of(config);
-  const std::vector<core::LaserScan> first = scans_of(cluttered);
-  const std::vector<core::LaserScan> again = scans_of(cluttered);
-  ASSERT_EQ(first.size(), plain.size());
-  std::size_t shorter = 0;
-  for (std::size_t i = 0; i < first.size(); ++i) {
-    EXPECT_EQ(first[i].ranges, again[i].ranges);
-    for (std::size_t k = 0; k < first[i].ranges.size(); ++k)
-      shorter += first[i].ranges[k] < plain[i].ranges[k] - 0.5 ? 1 : 0;
-  }
-  EXPECT_GT(shorter, 0U);
+  ClutterEndsSomeReadingsShort(index, streams, taught.modes.front(), world, config);
 
   // A world of several maps is refused.
   EXPECT_THROW(SimulateLog(index, streams, r.experiment.modes.front().teach, world, config, {},
