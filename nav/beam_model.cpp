@@ -67,6 +67,37 @@ BeamModel::Terms BeamModel::Evaluate(double z, double z_star) const {
   return EvaluateFast(z, ShortDecay(z), z_star);
 }
 
+BeamModel::TermBounds BeamModel::BoundsBeyond(double z, double short_decay, double lo) const {
+  TermBounds b;
+  if (z < 0.0) return b;  // no term (EvaluateFast's early return)
+  const double p_max = z >= range_max_ ? 1.0 : 0.0;
+  const double p_rand = z < range_max_ ? 1.0 / range_max_ : 0.0;
+  const double floor = w_max_ * p_max + w_rand_ * p_rand;  // the part that ignores z*
+  const double zs_lo = std::clamp(lo, 0.0, range_max_);    // z* in (zs_lo, range_max]
+  // eq. (8): p_short is on for z <= z* (z* > 0) and falls as z* grows (ShortScale decreases), so
+  // it is least at range_max when every z* there is on the short side, and greatest at the
+  // smallest z* on the short side.
+  if (z <= zs_lo && z <= range_max_) b.short_lo = w_short_ * short_scale_at_max_ * short_decay;
+  const double first_short = std::max(zs_lo, z);
+  if (first_short <= range_max_) {
+    b.short_hi = first_short > 0.0 ? w_short_ * ShortScale(first_short) * short_decay
+                                   : std::numeric_limits<double>::infinity();
+  }
+  // eq. (7): the Gaussian is greatest at the z* nearest to z, and its normaliser (the mass of
+  // N(z*, σ²) inside [0, range_max]) is least at an end of the interval, as it rises towards
+  // range_max / 2 and falls beyond.
+  b.rest_lo = floor;
+  b.rest_hi = floor;
+  if (z <= range_max_) {
+    const double sigma = config_.sigma_hit;
+    const double a = std::max(zs_lo - z, 0.0) / sigma;
+    const double g = std::exp(-0.5 * a * a) / (std::sqrt(2.0 * std::numbers::pi) * sigma);
+    const double norm = std::min(HitNormaliser(zs_lo), hit_norm_at_max_);
+    b.rest_hi += norm > 0.0 ? w_hit_ * g / norm : std::numeric_limits<double>::infinity();
+  }
+  return b;
+}
+
 BeamModel::Terms BeamModel::EvaluateFast(double z, double short_decay, double z_star) const {
   // No obstacle on the ray (kNoHit) or beyond the sensor: the map expects a max-range reading.
   const double zs = z_star >= range_max_ ? range_max_ : std::max(z_star, 0.0);
@@ -197,118 +228,6 @@ BeamModel::Terms BeamModel::SumTerms(double z, double short_decay, std::span<con
   sums.short_part = ShortTermsSum(num_short, short_decay, weights, &s);
   sums.total = TotalsSum(z, weights, s);
   return sums;
-}
-
-namespace {
-
-// For each tested beam b (index beams[b] into the scan, checked valid): its reading z[b] (m),
-// the short decay of that reading, and its unit direction (ux[b], uy[b]) in L.
-void ReadTestedBeams(const BeamModel& model, const core::LaserScan& scan,
-                     std::span<const int> beams, std::span<double> z, std::span<double> decay,
-                     std::span<double> ux, std::span<double> uy) {
-  for (std::size_t b = 0; b < beams.size(); ++b) {
-    const int i = beams[b];
-    RETRACE_CHECK(i >= 0 && static_cast<std::size_t>(i) < scan.size() &&
-                  scan.Valid(static_cast<std::size_t>(i)));
-    z[b] = scan.ranges[static_cast<std::size_t>(i)];
-    decay[b] = model.ShortDecay(z[b]);
-    const double a = scan.Angle(static_cast<std::size_t>(i));
-    ux[b] = std::cos(a);
-    uy[b] = std::sin(a);
-  }
-}
-
-// The particles that take part in the dynamic-point test (zero weights add nothing to either
-// sum), in the order of their headings: consecutive rays of a beam then point in nearly the same
-// direction, and CastMany clears their common start once per bundle. The sums stay in particle
-// order: order[k] is the place in it of the k-th particle by heading.
-struct DynamicTestParticles {
-  std::vector<std::size_t> order;
-  std::vector<double> px, py, c, s;  // position (M) and rotation (cos, sin of the heading)
-  std::vector<double> w_used;        // the weights in particle order; empty for equal weights
-};
-
-DynamicTestParticles SortedTestParticles(std::span<const core::Pose2> X_ML,
-                                         std::span<const double> weights) {
-  const std::size_t np = X_ML.size();
-  std::vector<double> pc(np), ps(np), pw(np);
-  std::vector<std::size_t> used;
-  used.reserve(np);
-  for (std::size_t j = 0; j < np; ++j) {
-    pc[j] = std::cos(X_ML[j].theta);  // one rotation per particle
-    ps[j] = std::sin(X_ML[j].theta);
-    pw[j] = weights.empty() ? 1.0 : weights[j];
-    if (pw[j] > 0.0) used.push_back(j);
-  }
-  const std::size_t nu = used.size();
-  DynamicTestParticles p;
-  if (!weights.empty()) {
-    for (const std::size_t j : used) p.w_used.push_back(pw[j]);
-  }
-  // (A NaN heading sorts last: it must not break the ordering std::sort relies on.)
-  p.order.resize(nu);
-  std::vector<double> heading(nu);
-  for (std::size_t u = 0; u < nu; ++u) {
-    p.order[u] = u;
-    const double theta = X_ML[used[u]].theta;
-    heading[u] = std::isnan(theta) ? std::numeric_limits<double>::infinity() : theta;
-  }
-  std::sort(p.order.begin(), p.order.end(), [&](std::size_t a, std::size_t b) {
-    return heading[a] < heading[b] || (heading[a] == heading[b] && a < b);
-  });
-  p.px.resize(nu);
-  p.py.resize(nu);
-  p.c.resize(nu);
-  p.s.resize(nu);
-  for (std::size_t k = 0; k < nu; ++k) {
-    const std::size_t j = used[p.order[k]];
-    p.px[k] = X_ML[j].x;
-    p.py[k] = X_ML[j].y;
-    p.c[k] = pc[j];
-    p.s[k] = ps[j];
-  }
-  return p;
-}
-
-}  // namespace
-
-void TestDynamicBeams(const BeamModel& model, const GridRayCaster& caster,
-                      std::span<const core::Pose2> X_ML, std::span<const double> weights,
-                      const core::LaserScan& scan, std::span<const int> beams, double chi,
-                      RayCastMethod method, DynamicBeamResult* result) {
-  RETRACE_CHECK(result != nullptr);
-  RETRACE_CHECK(weights.empty() || weights.size() == X_ML.size());
-  const std::size_t nb = beams.size();
-  result->dynamic.assign(nb, 0);
-  result->ratio.assign(nb, 0.0);
-  if (nb == 0 || X_ML.empty()) return;
-  std::vector<double> z(nb), decay(nb), ux(nb), uy(nb);
-  ReadTestedBeams(model, scan, beams, z, decay, ux, uy);
-  const DynamicTestParticles p = SortedTestParticles(X_ML, weights);
-  const std::size_t nu = p.order.size();
-  const double range_max = model.range_max();
-  BeamModel::Scratch scratch;
-  std::vector<double> rx(nu), ry(nu), z_cast(nu), z_star(nu);
-  // Beam-major order: the particles' rays of one beam run side by side over the same cells,
-  // so consecutive casts hit the cache.
-  for (std::size_t b = 0; b < nb; ++b) {
-    for (std::size_t k = 0; k < nu; ++k) {
-      rx[k] = p.c[k] * ux[b] - p.s[k] * uy[b];
-      ry[k] = p.s[k] * ux[b] + p.c[k] * uy[b];
-    }
-    if (method == RayCastMethod::kSphereTracing) {
-      caster.CastMany(p.px, p.py, rx, ry, range_max, z_cast);
-      for (std::size_t k = 0; k < nu; ++k) z_star[p.order[k]] = z_cast[k];
-    } else {
-      for (std::size_t k = 0; k < nu; ++k) {
-        z_star[p.order[k]] = caster.CastDda(p.px[k], p.py[k], rx[k], ry[k], range_max);
-      }
-    }
-    const BeamModel::Terms sums = model.SumTerms(z[b], decay[b], z_star, p.w_used, &scratch);
-    const double r = sums.total > 0.0 ? sums.short_part / sums.total : 0.0;  // eq. (9)
-    result->ratio[b] = r;
-    result->dynamic[b] = r > chi ? 1 : 0;
-  }
 }
 
 }  // namespace retrace::nav

@@ -7,10 +7,6 @@
 #include <span>
 #include <vector>
 
-#include "core/laser_scan.hpp"
-#include "core/pose2.hpp"
-#include "nav/grid_ray_caster.hpp"
-
 namespace retrace::nav {
 
 /// Mixture weights and parameters of the beam model (eq. 7-9).
@@ -98,6 +94,17 @@ class BeamModel {
   Terms SumTerms(double z, double short_decay, std::span<const double> z_star,
                  std::span<const double> weights, Scratch* scratch) const;
 
+  /// Bounds on one expected range's two parts of eq. (9) for a reading z (m) when all that is
+  /// known of its z* is that it lies in (lo, range_max] (lo < 0: anywhere in [0, range_max];
+  /// lo >= range_max: range_max, like a ray without a hit):
+  /// the short part w_short p_short and the rest of p_beam (total − short part), each between
+  /// its _lo and _hi (+inf where nothing bounds it). The dynamic-point test decides a beam from
+  /// such bounds where they settle it (nav/dynamic_beam_test.hpp).
+  struct TermBounds {
+    double short_lo = 0.0, short_hi = 0.0, rest_lo = 0.0, rest_hi = 0.0;
+  };
+  TermBounds BoundsBeyond(double z, double short_decay, double lo) const;
+
   const BeamModelConfig& config() const { return config_; }
   double range_max() const { return range_max_; }
 
@@ -125,30 +132,5 @@ class BeamModel {
   double hit_norm_at_max_ = 1.0;
   double short_scale_at_max_ = 0.0;
 };
-
-/// How the dynamic-point test computes the expected ranges.
-enum class RayCastMethod {
-  kSphereTracing,  ///< GridRayCaster::CastMany (all particles of a beam at once)
-  kDda,            ///< GridRayCaster::CastDda (the reference; same results, slower)
-};
-
-/// Outcome of the dynamic scan point test for a set of beams.
-struct DynamicBeamResult {
-  std::vector<std::uint8_t> dynamic;  ///< per tested beam: 1 when the ratio exceeds χ
-  std::vector<double> ratio;          ///< per tested beam: Σ_j z_short p_short / Σ_j p_beam
-};
-
-/// The dynamic scan point test (eq. 9) for the readings `beams` (indices into scan.ranges, all
-/// of which must be finite and inside [scan.range_min, scan.range_max]: checked) over the
-/// particles' LiDAR poses X_ML (M): beam i is dynamic when Σ_j w_j z_short p_short(z_i | x_j, m)
-/// / Σ_j w_j p_beam(z_i | x_j, m) > chi. `weights` are the particles' weights (one per pose) or
-/// empty for equal weights, which is Table 8.5's unweighted sum; with weights the sums stay
-/// expectations over the belief when the particles have not been resampled. Beam angles come
-/// from the scan (angle in L). The expected ranges are ray-cast on `caster`'s map up to
-/// model.range_max(). Writes into *result (resized; reuses its storage).
-void TestDynamicBeams(const BeamModel& model, const GridRayCaster& caster,
-                      std::span<const core::Pose2> X_ML, std::span<const double> weights,
-                      const core::LaserScan& scan, std::span<const int> beams, double chi,
-                      RayCastMethod method, DynamicBeamResult* result);
 
 }  // namespace retrace::nav

@@ -290,8 +290,8 @@ std::vector<std::uint8_t> Localizer::TestDynamic(const core::LaserScan& scan,
   StratifiedSample(X_ML, prior, config_.rejection.particles, &sample_X, &sample_w);
   out->rejection_particles = static_cast<int>(sample_X.size());
   DynamicBeamResult result;
-  TestDynamicBeams(*beam_model_, *caster_, sample_X, sample_w, scan, tested,
-                   config_.rejection.chi, RayCastMethod::kSphereTracing, &result);
+  TestDynamicBeams(*beam_model_, *caster_, sample_X, sample_w, scan, tested, config_.rejection.chi,
+                   DynamicTestOptions{}, &result);
   return std::move(result.dynamic);
 }
 

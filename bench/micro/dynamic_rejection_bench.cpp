@@ -1,9 +1,13 @@
 // The dynamic scan point test (eq. 7-9) for one localizer update: 500 particles x 108 beams,
 // each needing the expected range of its ray on the map, on the procedurally generated
 // 300 m x 300 m campus at 0.1 m of likelihood_bench.cpp with a 30 m LiDAR and pedestrians
-// shortening 20 % of the beams. Three implementations in the same run:
+// shortening 20 % of the beams. Four implementations in the same run:
 //
-//   SphereTracing      retrace's TestDynamicBeams (GridRayCaster::CastMany: a provably clear
+//   Bounds             retrace's TestDynamicBeams as the localizer calls it: a beam decided as
+//                      soon as bounds on eq. (9)'s sums settle it (a sample of 32 particles cast
+//                      exactly, then every ray cast to 0.6 m beyond the reading), the exact sums
+//                      of SphereTracing otherwise
+//   SphereTracing      TestDynamicBeams with every ratio (GridRayCaster::CastMany: a provably clear
 //                      common start per bundle of 32 rays of similar heading, then sphere
 //                      tracing on an exact clearance grid and the exact traversal over the last
 //                      cells, many rays in lockstep; BeamModel::SumTerms)
@@ -15,9 +19,12 @@
 //                      traversal of the precomputed one-byte occupancy mask
 //
 // All must give the same mask: `mismatches` counts beams whose classification differs from
-// SphereTracing's (and `ratio_mismatches` beams whose ratio differs in any bit); both must be 0.
+// SphereTracing's (and `ratio_mismatches` beams whose ratio differs in any bit, of those with a
+// ratio: Bounds computes it only for the `exact_beams` that its bounds do not decide); both must
+// be 0.
 //
-//   ./retrace_micro_bench --benchmark_filter=Dynamic --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//   ./retrace_micro_bench --benchmark_filter=Dynamic --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
 
@@ -35,6 +42,7 @@
 #include "core/pose2.hpp"
 #include "core/rng.hpp"
 #include "nav/beam_model.hpp"
+#include "nav/dynamic_beam_test.hpp"
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
 
@@ -189,17 +197,19 @@ void ReferenceDynamicBeams(const Fixture& f, double chi, DynamicBeamResult* resu
   }
 }
 
-enum class Method { kSphereTracing, kPerCellReference, kTightDda };
+enum class Method { kBounds, kSphereTracing, kPerCellReference, kTightDda };
 
 void RunOnce(const Fixture& f, Method method, DynamicBeamResult* result) {
   if (method == Method::kPerCellReference) {
     ReferenceDynamicBeams(f, 0.9, result);
-  } else {
-    retrace::nav::TestDynamicBeams(
-        f.model, f.caster, f.X_ML, {}, f.scan, f.beams, 0.9,
-        method == Method::kSphereTracing ? RayCastMethod::kSphereTracing : RayCastMethod::kDda,
-        result);
+    return;
   }
+  retrace::nav::DynamicTestOptions options;
+  options.method =
+      method == Method::kTightDda ? RayCastMethod::kDda : RayCastMethod::kSphereTracing;
+  options.decide_by_bounds = method == Method::kBounds;
+  retrace::nav::TestDynamicBeams(f.model, f.caster, f.X_ML, {}, f.scan, f.beams, 0.9, options,
+                                 result);
 }
 
 void Run(benchmark::State& state, Method method) {
@@ -208,12 +218,16 @@ void Run(benchmark::State& state, Method method) {
   // The check, outside the timed loop: this method gives the same ratios and mask as ours.
   RunOnce(f, Method::kSphereTracing, &ours);
   RunOnce(f, method, &mine);
-  int mismatches = 0, ratio_mismatches = 0, dynamic = 0;
+  int mismatches = 0, ratio_mismatches = 0, dynamic = 0, exact_beams = 0;
   for (std::size_t b = 0; b < f.beams.size(); ++b) {
     mismatches += mine.dynamic[b] != ours.dynamic[b] ? 1 : 0;
-    ratio_mismatches +=
-        std::bit_cast<std::uint64_t>(mine.ratio[b]) != std::bit_cast<std::uint64_t>(ours.ratio[b]) ? 1 : 0;
     dynamic += mine.dynamic[b];
+    if (std::isnan(mine.ratio[b])) continue;  // decided by bounds
+    ++exact_beams;
+    ratio_mismatches +=
+        std::bit_cast<std::uint64_t>(mine.ratio[b]) != std::bit_cast<std::uint64_t>(ours.ratio[b])
+            ? 1
+            : 0;
   }
   for (auto _ : state) {
     RunOnce(f, method, &result);
@@ -227,7 +241,11 @@ void Run(benchmark::State& state, Method method) {
   state.counters["pedestrian_beams"] = f.pedestrian_beams;
   state.counters["mismatches"] = mismatches;
   state.counters["ratio_mismatches"] = ratio_mismatches;
+  state.counters["exact_beams"] = exact_beams;
 }
+
+void BM_DynamicRejectionBounds(benchmark::State& state) { Run(state, Method::kBounds); }
+BENCHMARK(BM_DynamicRejectionBounds)->Unit(benchmark::kMillisecond);
 
 void BM_DynamicRejectionSphereTracing(benchmark::State& state) { Run(state, Method::kSphereTracing); }
 BENCHMARK(BM_DynamicRejectionSphereTracing)->Unit(benchmark::kMillisecond);

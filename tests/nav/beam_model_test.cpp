@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "nav/dynamic_beam_test.hpp"
 
 namespace retrace::nav {
 namespace {
@@ -141,6 +142,10 @@ core::LaserScan FourBeams(float a, float b, float c, float d) {
   return scan;
 }
 
+// Every ray cast to range_max and every ratio computed, with each ray caster.
+const DynamicTestOptions kAllRatios{RayCastMethod::kSphereTracing, false};
+const DynamicTestOptions kAllRatiosDda{RayCastMethod::kDda, false};
+
 TEST(DynamicBeams, ShortReadingsInFrontOfMappedWallsAndInOpenSpaceAreDynamic) {
   const core::OccupancyGrid g = EmptyRoomRightWall();
   const LikelihoodField f(g, {}, 30.0);
@@ -154,7 +159,7 @@ TEST(DynamicBeams, ShortReadingsInFrontOfMappedWallsAndInOpenSpaceAreDynamic) {
   // Beam 0 sees the wall at 3 m: static. Beam 1 (+y) and beam 2 (-x) meet no mapped obstacle:
   // a return at 1.5 m is something unmapped: dynamic.
   TestDynamicBeams(model, caster, X_ML, {}, FourBeams(3.0f, 1.5f, 1.5f, 1.0f), beams, 0.9,
-                   RayCastMethod::kSphereTracing, &r);
+                   kAllRatios, &r);
   ASSERT_EQ(r.dynamic.size(), 3u);
   EXPECT_EQ(r.dynamic[0], 0);
   EXPECT_EQ(r.dynamic[1], 1);
@@ -162,19 +167,19 @@ TEST(DynamicBeams, ShortReadingsInFrontOfMappedWallsAndInOpenSpaceAreDynamic) {
   EXPECT_LT(r.ratio[0], 0.05);
   // A pedestrian 1 m in front of the wall: dynamic.
   TestDynamicBeams(model, caster, X_ML, {}, FourBeams(2.0f, 1.5f, 1.5f, 1.0f), beams, 0.9,
-                   RayCastMethod::kSphereTracing, &r);
+                   kAllRatios, &r);
   EXPECT_EQ(r.dynamic[0], 1);
   // The reference ray caster gives the same ratios bit for bit.
   DynamicBeamResult ref;
   TestDynamicBeams(model, caster, X_ML, {}, FourBeams(2.0f, 1.5f, 1.5f, 1.0f), beams, 0.9,
-                   RayCastMethod::kDda, &ref);
+                   kAllRatiosDda, &ref);
   EXPECT_EQ(ref.ratio, r.ratio);
   EXPECT_EQ(ref.dynamic, r.dynamic);
   // Weights: equal weights give the unweighted sums; a zero weight removes a particle.
   std::vector<double> w(X_ML.size(), 1.0 / static_cast<double>(X_ML.size()));
   DynamicBeamResult weighted;
   TestDynamicBeams(model, caster, X_ML, w, FourBeams(2.0f, 1.5f, 1.5f, 1.0f), beams, 0.9,
-                   RayCastMethod::kSphereTracing, &weighted);
+                   kAllRatios, &weighted);
   for (std::size_t b = 0; b < beams.size(); ++b) EXPECT_NEAR(weighted.ratio[b], r.ratio[b], 1e-12);
 }
 
