@@ -151,6 +151,20 @@ void ObstacleAvoidance::CollectPoints(const core::LaserScan& scan) {
   // A -inf reading means something closer than range_min.
   points_R_.clear();
   points_R_.reserve(scan.size());
+  if (beam_cos_.size() != scan.size() || table_angle_min_ != scan.angle_min ||
+      table_angle_increment_ != scan.angle_increment) {
+    table_angle_min_ = scan.angle_min;
+    table_angle_increment_ = scan.angle_increment;
+    beam_cos_.resize(scan.size());
+    beam_sin_.resize(scan.size());
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      beam_cos_[i] = std::cos(scan.Angle(i));
+      beam_sin_[i] = std::sin(scan.Angle(i));
+    }
+  }
+  // robot_.X_RL * p, its rotation computed once.
+  const core::Pose2& X_RL = robot_.X_RL;
+  const double c = std::cos(X_RL.theta), s = std::sin(X_RL.theta);
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const float reading = scan.ranges[i];
     double range = 0.0;
@@ -161,8 +175,8 @@ void ObstacleAvoidance::CollectPoints(const core::LaserScan& scan) {
     } else {
       continue;
     }
-    const double a = scan.Angle(i);
-    points_R_.push_back(robot_.X_RL * core::Vec2(range * std::cos(a), range * std::sin(a)));
+    const double px = range * beam_cos_[i], py = range * beam_sin_[i];
+    points_R_.emplace_back(X_RL.x + c * px - s * py, X_RL.y + s * px + c * py);
   }
 }
 
