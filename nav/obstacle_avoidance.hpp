@@ -153,13 +153,13 @@ class ObstacleAvoidance {
   ObstacleAvoidanceConfig config_;
   RobotGeometry robot_;
   std::vector<core::Vec2> points_R_;  // scan points of the current Filter call, in R
+  int last_side_ = 0;                 // side of the current detour: +1 left, -1 right, 0 none
+  std::size_t hint_ = 0;              // index of the last blocking point, tested first
+  bool exact_contact_ = false;        // Evaluate must find the first contact, not just any
   // cos and sin of the beam angles of the last scan's geometry (angle_min, angle_increment,
   // beam count), which rarely changes: CollectPoints computes them once.
   double table_angle_min_ = 0.0, table_angle_increment_ = 0.0;
   std::vector<double> beam_cos_, beam_sin_;
-  int last_side_ = 0;                 // side of the current detour: +1 left, -1 right, 0 none
-  std::size_t hint_ = 0;              // index of the last blocking point, tested first
-  bool exact_contact_ = false;        // Evaluate must find the first contact, not just any
 };
 
 }  // namespace retrace::nav
