@@ -11,11 +11,10 @@ Pose2 Pose2::operator*(const Pose2& X_BC) const {
   return {x + c * X_BC.x - s * X_BC.y, y + s * X_BC.x + c * X_BC.y, theta + X_BC.theta};
 }
 
-Vec2 Pose2::operator*(const Vec2& p_B) const {
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
-  return {x + c * p_B.x() - s * p_B.y(), y + s * p_B.x() + c * p_B.y()};
-}
+Vec2 Pose2::operator*(const Vec2& p_B) const { return PoseTransform(*this)(p_B); }
+
+PoseTransform::PoseTransform(const Pose2& X)
+    : x_(X.x), y_(X.y), c_(std::cos(X.theta)), s_(std::sin(X.theta)) {}
 
 Pose2 Pose2::Inverse() const {
   const double c = std::cos(theta);

@@ -34,6 +34,19 @@ struct Pose2 {
   bool operator==(const Pose2&) const = default;
 };
 
+/// A pose with its rotation computed once, for mapping many points: PoseTransform(X)(p) is
+/// X * p bit for bit (Pose2::operator* computes cos and sin on every call).
+class PoseTransform {
+ public:
+  explicit PoseTransform(const Pose2& X);
+  Vec2 operator()(const Vec2& p_B) const {
+    return {x_ + c_ * p_B.x() - s_ * p_B.y(), y_ + s_ * p_B.x() + c_ * p_B.y()};
+  }
+
+ private:
+  double x_, y_, c_, s_;
+};
+
 /// Interpolates on SE(2) along the straight line in translation and the shortest arc in
 /// heading; t = 0 gives a, t = 1 gives b.
 Pose2 Interpolate(const Pose2& a, const Pose2& b, double t);

@@ -162,9 +162,7 @@ void ObstacleAvoidance::CollectPoints(const core::LaserScan& scan) {
       beam_sin_[i] = std::sin(scan.Angle(i));
     }
   }
-  // robot_.X_RL * p, its rotation computed once.
-  const core::Pose2& X_RL = robot_.X_RL;
-  const double c = std::cos(X_RL.theta), s = std::sin(X_RL.theta);
+  const core::PoseTransform X_RL(robot_.X_RL);
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const float reading = scan.ranges[i];
     double range = 0.0;
@@ -175,8 +173,7 @@ void ObstacleAvoidance::CollectPoints(const core::LaserScan& scan) {
     } else {
       continue;
     }
-    const double px = range * beam_cos_[i], py = range * beam_sin_[i];
-    points_R_.emplace_back(X_RL.x + c * px - s * py, X_RL.y + s * px + c * py);
+    points_R_.push_back(X_RL(core::Vec2(range * beam_cos_[i], range * beam_sin_[i])));
   }
 }
 

@@ -14,11 +14,12 @@ constexpr double kNeighbourGap = 0.3;  // m: neighbours farther apart lie on dif
 
 double ScanConstraint(const core::LaserScan& scan, const RobotGeometry& robot) {
   std::vector<core::Vec2> points;
+  const core::PoseTransform X_RL(robot.X_RL);
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (!scan.Valid(i)) continue;
     const double r = scan.ranges[i];
     const double a = scan.Angle(i);
-    const core::Vec2 p = robot.X_RL * core::Vec2(r * std::cos(a), r * std::sin(a));
+    const core::Vec2 p = X_RL(core::Vec2(r * std::cos(a), r * std::sin(a)));
     if (!points.empty() && (p - points.back()).norm() < kPointSpacing) continue;
     points.push_back(p);
   }

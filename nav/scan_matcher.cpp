@@ -47,11 +47,12 @@ void ScanMatcher::KeepPoints(const core::LaserScan& scan, std::vector<core::Vec2
   points_R->clear();
   const double range_max = std::min(config_.match_range, robot_.range_max);
   core::Vec2 last(std::numeric_limits<double>::infinity(), 0.0);
+  const core::PoseTransform X_RL(robot_.X_RL);
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const double r = scan.ranges[i];
     if (!scan.Valid(i) || r < robot_.range_min || r > range_max) continue;
     const double a = scan.Angle(i);
-    const core::Vec2 p_R = robot_.X_RL * core::Vec2(r * std::cos(a), r * std::sin(a));
+    const core::Vec2 p_R = X_RL(core::Vec2(r * std::cos(a), r * std::sin(a)));
     if ((p_R - last).norm() < config_.point_spacing) continue;
     points_R->push_back(p_R);
     last = p_R;
@@ -60,11 +61,12 @@ void ScanMatcher::KeepPoints(const core::LaserScan& scan, std::vector<core::Vec2
 
 void ScanMatcher::AddScan(const core::LaserScan& scan, const core::Pose2& X_MR) {
   const double range_max = std::min(config_.match_range, robot_.range_max);
+  const core::PoseTransform X_RL(robot_.X_RL), X_MR_map(X_MR);
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const double r = scan.ranges[i];
     if (!scan.Valid(i) || r < robot_.range_min || r > range_max) continue;
     const double a = scan.Angle(i);
-    const core::Vec2 p = X_MR * (robot_.X_RL * core::Vec2(r * std::cos(a), r * std::sin(a)));
+    const core::Vec2 p = X_MR_map(X_RL(core::Vec2(r * std::cos(a), r * std::sin(a))));
     const int vx = static_cast<int>(std::floor(p.x() / config_.voxel_size));
     const int vy = static_cast<int>(std::floor(p.y() / config_.voxel_size));
     const auto [it, inserted] =

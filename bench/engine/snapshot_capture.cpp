@@ -73,10 +73,10 @@ LocalizationSnapshot CaptureSnapshot(
     for (int col = 0; col < slice.size; ++col) {
       const core::Pose2 X_MR(slice.origin.x() + col * resolution,
                              slice.origin.y() + row * resolution, slice.theta);
-      const core::Pose2 X_ML = X_MR * s.X_RL;
+      const core::PoseTransform X_ML(X_MR * s.X_RL);
       float sum_all = 0.0f, sum_kept = 0.0f;
-      for (const core::Vec2& p : all) sum_all += field.LogLikelihood(X_ML * p);
-      for (const core::Vec2& p : kept) sum_kept += field.LogLikelihood(X_ML * p);
+      for (const core::Vec2& p : all) sum_all += field.LogLikelihood(X_ML(p));
+      for (const core::Vec2& p : kept) sum_kept += field.LogLikelihood(X_ML(p));
       slice.all_beams.push_back(sum_all);
       slice.static_beams.push_back(sum_kept);
     }
