@@ -90,20 +90,15 @@ double TimeToCollision(const core::Vec2& dp, const core::Vec2& dv, double reach)
   return (-b - std::sqrt(discriminant)) / a;
 }
 
-SocialStats Social(const RunTrace& run, double taught_length_m, double taught_time_s, bool success,
-                   double path_length_m, double time_s, const MetricsConfig& config) {
-  SocialStats out;
-  const std::vector<PlaybackSample>& samples = run.samples;
-  const std::vector<double> dt = SampleDurations(samples);
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    if (samples[i].pedestrian_gap < config.intimate_zone) out.intimate_time_s += dt[i];
-    if (samples[i].pedestrian_gap < config.personal_zone) out.personal_time_s += dt[i];
-  }
-  if (success && path_length_m > 0.0) out.path_efficiency = taught_length_m / path_length_m;
-  if (success && time_s > 0.0) out.time_efficiency = taught_time_s / time_s;
-  out.jerk_m_s3 = Summarize(Jerk(samples));
+namespace {
 
-  if (!samples.empty()) out.min_ttc_s = config.ttc_horizon;
+// The encounters of a run (the pedestrians that came within the personal zone, each closed when
+// it leaves the zone by the hysteresis or the record) into out->crowd, and the smallest time to
+// collision into out->min_ttc_s. dt: the samples' durations (s).
+void TrackEncounters(const RunTrace& run, const std::vector<double>& dt,
+                     const MetricsConfig& config, SocialStats* out) {
+  const std::vector<PlaybackSample>& samples = run.samples;
+  if (!samples.empty()) out->min_ttc_s = config.ttc_horizon;
   std::map<int, Encounter> open;  // by pedestrian id
   std::size_t k = 0;              // run.nearby is ordered by sample
   std::vector<int> seen;
@@ -117,7 +112,7 @@ SocialStats Social(const RunTrace& run, double taught_length_m, double taught_ti
       const NearbyPedestrian& n = run.nearby[k];
       const double ttc =
           TimeToCollision(n.position - p, n.velocity - v_robot, n.radius + run.robot_radius);
-      out.min_ttc_s = std::min(out.min_ttc_s, ttc);
+      out->min_ttc_s = std::min(out->min_ttc_s, ttc);
 
       const double gap = (n.position - p).norm() - n.radius - run.robot_radius;
       auto it = open.find(n.id);
@@ -127,7 +122,7 @@ SocialStats Social(const RunTrace& run, double taught_length_m, double taught_ti
       }
       if (it == open.end()) continue;
       if (gap > config.personal_zone + kEncounterHysteresis) {
-        Close(it->second, &out.crowd);
+        Close(it->second, &out->crowd);
         open.erase(it);
         continue;
       }
@@ -142,14 +137,31 @@ SocialStats Social(const RunTrace& run, double taught_length_m, double taught_ti
     // Pedestrians that left the record (farther than 5 m, or gone) end their encounters.
     for (auto it = open.begin(); it != open.end();) {
       if (std::find(seen.begin(), seen.end(), it->first) == seen.end()) {
-        Close(it->second, &out.crowd);
+        Close(it->second, &out->crowd);
         it = open.erase(it);
       } else {
         ++it;
       }
     }
   }
-  for (const auto& [id, e] : open) Close(e, &out.crowd);
+  for (const auto& [id, e] : open) Close(e, &out->crowd);
+}
+
+}  // namespace
+
+SocialStats Social(const RunTrace& run, double taught_length_m, double taught_time_s, bool success,
+                   double path_length_m, double time_s, const MetricsConfig& config) {
+  SocialStats out;
+  const std::vector<PlaybackSample>& samples = run.samples;
+  const std::vector<double> dt = SampleDurations(samples);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].pedestrian_gap < config.intimate_zone) out.intimate_time_s += dt[i];
+    if (samples[i].pedestrian_gap < config.personal_zone) out.personal_time_s += dt[i];
+  }
+  if (success && path_length_m > 0.0) out.path_efficiency = taught_length_m / path_length_m;
+  if (success && time_s > 0.0) out.time_efficiency = taught_time_s / time_s;
+  out.jerk_m_s3 = Summarize(Jerk(samples));
+  TrackEncounters(run, dt, config, &out);
   return out;
 }
 

@@ -26,7 +26,7 @@ using core::Vec2;
 using retrace::testing::kValid;
 using retrace::testing::ValidationErrorKey;
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNoReturnF = std::numeric_limits<float>::infinity();
 
 using testing::Rect;
 using testing::ScanSpec;
@@ -230,7 +230,7 @@ TEST(Mapper, NoReturnBeamsClearUpToTheClearingRangeWithoutMarking) {
   config.no_return_range = 10.0;
   Mapper mapper(config, RobotGeometry{});
   mapper.SetPose(Pose2(0.05, 0.05, 0.0));
-  ASSERT_TRUE(mapper.OnScan(UniformScan(181, core::DegToRad(180.0), kInf)));
+  ASSERT_TRUE(mapper.OnScan(UniformScan(181, core::DegToRad(180.0), kNoReturnF)));
   const core::OccupancyGrid& grid = mapper.grid();
   EXPECT_TRUE(CellsWhere(grid, Positive).empty());
   EXPECT_FALSE(CellsWhere(grid, Negative).empty());
@@ -251,7 +251,7 @@ TEST(Mapper, NoReturnBeamsClearNoFurtherThanTheScansOwnRangeMax) {
   config.no_return_range = 10.0;
   Mapper mapper(config, RobotGeometry{});
   mapper.SetPose(Pose2(0.05, 0.05, 0.0));
-  core::LaserScan scan = UniformScan(361, core::DegToRad(360.0) * 360.0 / 361.0, kInf);
+  core::LaserScan scan = UniformScan(361, core::DegToRad(360.0) * 360.0 / 361.0, kNoReturnF);
   scan.range_min = 0.2;
   scan.range_max = 5.0;
   ASSERT_TRUE(mapper.OnScan(scan));
@@ -269,7 +269,7 @@ TEST(Mapper, NoReturnBeamsClearNoFurtherThanTheScansOwnRangeMax) {
 core::LaserScan WallScanWithDropouts() {
   core::LaserScan scan = UniformScan(361, core::DegToRad(90.0), 0.0f);
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-    scan.ranges[i] = i % 7 == 3 ? kInf : static_cast<float>(3.03 / std::cos(scan.Angle(i)));
+    scan.ranges[i] = i % 7 == 3 ? kNoReturnF : static_cast<float>(3.03 / std::cos(scan.Angle(i)));
   }
   return scan;
 }
@@ -293,7 +293,7 @@ TEST(Mapper, NoReturnBeamsStopAtTheWallsOfTheirOwnScanAndOfTheMap) {
     return n;
   };
   EXPECT_EQ(free_behind_the_wall(), 0);
-  core::LaserScan all_dropouts = UniformScan(361, core::DegToRad(90.0), kInf);
+  core::LaserScan all_dropouts = UniformScan(361, core::DegToRad(90.0), kNoReturnF);
   mapper.Integrate(all_dropouts, Pose2(0.05, 0.05, 0.0));
   EXPECT_EQ(free_behind_the_wall(), 0);
   EXPECT_FALSE(CellsWhere(mapper.grid(), Positive).empty());  // the wall is still there
@@ -314,7 +314,7 @@ TEST(Mapper, ReadingsBeyondTheLidarsRangeOnlyClear) {
 TEST(Mapper, InvalidBeamsAreSkipped) {
   Mapper mapper(MapperConfig{}, RobotGeometry{});
   core::LaserScan scan = UniformScan(4, core::DegToRad(90.0), 2.0f);
-  scan.ranges = {-kInf, std::numeric_limits<float>::quiet_NaN(), 0.01f, 31.0f};
+  scan.ranges = {-kNoReturnF, std::numeric_limits<float>::quiet_NaN(), 0.01f, 31.0f};
   ASSERT_TRUE(mapper.OnScan(scan));
   EXPECT_TRUE(CellsWhere(mapper.grid(), Touched).empty());
   EXPECT_EQ(mapper.stats().beams_skipped, 4u);
@@ -382,7 +382,7 @@ TEST(Mapper, GridGrowsWhenDrivingOutOfTheInitialArea) {
   EXPECT_EQ(mapper.grid().width(), 100);
   EXPECT_EQ(mapper.grid().height(), 100);
   // A corridor: walls 2.03 m to either side, nothing ahead.
-  core::LaserScan scan = UniformScan(181, core::DegToRad(180.0), kInf);
+  core::LaserScan scan = UniformScan(181, core::DegToRad(180.0), kNoReturnF);
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const double a = scan.Angle(i);
     if (std::abs(std::sin(a)) > 0.2)
