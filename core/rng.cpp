@@ -14,8 +14,6 @@ std::uint64_t SplitMix64(std::uint64_t& x) {
   return z ^ (z >> 31);
 }
 
-std::uint64_t Rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-
 std::uint64_t Mix(std::uint64_t a, std::uint64_t b) {
   std::uint64_t x = a ^ (b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2));
   return SplitMix64(x);
@@ -34,20 +32,6 @@ Rng Rng::Split(std::string_view name) const {
 
 Rng Rng::Split(std::uint64_t index) const { return Rng(Mix(seed_, Mix(index, 0x5851f42d4c957f2dULL))); }
 
-std::uint64_t Rng::NextU64() {
-  const std::uint64_t result = Rotl(s_[1] * 5, 7) * 9;
-  const std::uint64_t t = s_[1] << 17;
-  s_[2] ^= s_[0];
-  s_[3] ^= s_[1];
-  s_[1] ^= s_[2];
-  s_[0] ^= s_[3];
-  s_[2] ^= t;
-  s_[3] = Rotl(s_[3], 45);
-  return result;
-}
-
-double Rng::Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
-
 std::uint64_t Rng::UniformIndex(std::uint64_t n) {
   RETRACE_CHECK(n > 0);
   // Rejection sampling removes modulo bias.
@@ -55,23 +39,6 @@ std::uint64_t Rng::UniformIndex(std::uint64_t n) {
   std::uint64_t x = NextU64();
   while (x >= limit) x = NextU64();
   return x % n;
-}
-
-double Rng::Normal() {
-  if (has_spare_) {
-    has_spare_ = false;
-    return spare_normal_;
-  }
-  double u = 0.0, v = 0.0, s = 0.0;
-  do {
-    u = 2.0 * Uniform() - 1.0;
-    v = 2.0 * Uniform() - 1.0;
-    s = u * u + v * v;
-  } while (s >= 1.0 || s == 0.0);
-  const double f = std::sqrt(-2.0 * std::log(s) / s);
-  spare_normal_ = v * f;
-  has_spare_ = true;
-  return u * f;
 }
 
 std::uint64_t HashBytes(const void* data, std::size_t size, std::uint64_t h) {

@@ -234,18 +234,6 @@ double RayCaster::Cast(const Vec2& origin, const Vec2& dir, double max_t) const 
   return CastFrom(origin, dir, max_t);
 }
 
-void RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
-                        std::span<const double> max_t, std::span<double> out) const {
-  RETRACE_CHECK(dirs.size() == max_t.size() && dirs.size() == out.size());
-  RETRACE_CHECK(std::isfinite(origin.x()) && std::isfinite(origin.y()));
-  for (std::size_t i = 0; i < dirs.size(); ++i) {
-    const Vec2& dir = dirs[i];
-    RETRACE_CHECK(std::isfinite(dir.x()) && std::isfinite(dir.y()) &&
-                  (dir.x() != 0.0 || dir.y() != 0.0));
-    out[i] = CastFrom(origin, dir, max_t[i]);
-  }
-}
-
 // The walk of one ray through the grid: its cell, its step per axis (-1, 0, 1), the ray
 // parameter of its next crossing per axis and the parameter between crossings (+inf for an axis
 // it never crosses).
@@ -327,6 +315,66 @@ inline double RayCaster::NearestHitInCell(std::size_t c, double ox, double oy, d
   return best;
 }
 
+struct RayCaster::FanStart {
+  double ox = 0.0, oy = 0.0;
+  double lo_x = 0.0, hi_x = 0.0, lo_y = 0.0, hi_y = 0.0;  // the box's sides minus the origin
+  int ix = 0, iy = 0;                                     // the origin's cell
+  // The first crossings' numerators: the cell's far side minus the origin, per direction.
+  double up_x = 0.0, down_x = 0.0, up_y = 0.0, down_y = 0.0;
+};
+
+RayCaster::FanStart RayCaster::StartFan(double ox, double oy) const {
+  // The terms as ClipToGrid and StartWalk compute them; a ray from inside the box starts at
+  // t0 = 0, where StartWalk's entry point is the origin itself.
+  const double h = cell_size_;
+  FanStart f;
+  f.ox = ox;
+  f.oy = oy;
+  f.lo_x = grid_min_.x() - ox;
+  f.hi_x = grid_max_.x() - ox;
+  f.lo_y = grid_min_.y() - oy;
+  f.hi_y = grid_max_.y() - oy;
+  f.ix =
+      std::clamp(static_cast<int>(std::floor((ox - grid_min_.x()) * inv_cell_size_)), 0, nx_ - 1);
+  f.iy =
+      std::clamp(static_cast<int>(std::floor((oy - grid_min_.y()) * inv_cell_size_)), 0, ny_ - 1);
+  f.up_x = grid_min_.x() + (f.ix + 1) * h - ox;
+  f.down_x = grid_min_.x() + f.ix * h - ox;
+  f.up_y = grid_min_.y() + (f.iy + 1) * h - oy;
+  f.down_y = grid_min_.y() + f.iy * h - oy;
+  return f;
+}
+
+double RayCaster::CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const {
+  if (!(max_t >= 0.0)) return kInf;
+  const double h = cell_size_;
+  double t0 = 0.0, t1 = max_t;
+  Walk w;
+  w.ix = fan.ix;
+  w.iy = fan.iy;
+  if (ux != 0.0) {
+    const double inv_ux = 1.0 / ux;
+    const double ta = fan.lo_x * inv_ux, tb = fan.hi_x * inv_ux;
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+    w.step_x = ux > 0.0 ? 1 : -1;
+    w.tx = (ux > 0.0 ? fan.up_x : fan.down_x) * inv_ux;
+    w.dtx = ux > 0.0 ? h * inv_ux : -h * inv_ux;
+  }
+  if (uy != 0.0) {
+    const double inv_uy = 1.0 / uy;
+    const double ta = fan.lo_y * inv_uy, tb = fan.hi_y * inv_uy;
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+    w.step_y = uy > 0.0 ? 1 : -1;
+    w.ty = (uy > 0.0 ? fan.up_y : fan.down_y) * inv_uy;
+    w.dty = uy > 0.0 ? h * inv_uy : -h * inv_uy;
+  }
+  if (!(t0 <= t1)) return kInf;
+  const double best = Traverse(fan.ox, fan.oy, ux, uy, t1, w);
+  return best <= max_t ? best : kInf;
+}
+
 double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) const {
   if (!(max_t >= 0.0) || nx_ == 0) return kInf;
   const double ox = origin.x(), oy = origin.y();
@@ -335,9 +383,12 @@ double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) co
   double t0 = 0.0, t1 = max_t;
   double inv_ux = 0.0, inv_uy = 0.0;
   if (!ClipToGrid(ox, oy, ux, uy, &t0, &t1, &inv_ux, &inv_uy)) return kInf;
-
   // Amanatides-Woo walk from the entry cell.
-  Walk w = StartWalk(ox, oy, ux, uy, t0, inv_ux, inv_uy);
+  const double best = Traverse(ox, oy, ux, uy, t1, StartWalk(ox, oy, ux, uy, t0, inv_ux, inv_uy));
+  return best <= max_t ? best : kInf;
+}
+
+double RayCaster::Traverse(double ox, double oy, double ux, double uy, double t1, Walk w) const {
   const double uu = ux * ux + uy * uy;
   double best = kInf;
   for (;;) {
@@ -357,7 +408,27 @@ double RayCaster::CastFrom(const Vec2& origin, const Vec2& dir, double max_t) co
       w.ty += w.dty;
     }
   }
-  return best <= max_t ? best : kInf;
+  return best;
+}
+
+void RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
+                        std::span<const double> max_t, std::span<double> out) const {
+  RETRACE_CHECK(dirs.size() == max_t.size() && dirs.size() == out.size());
+  RETRACE_CHECK(std::isfinite(origin.x()) && std::isfinite(origin.y()));
+  const bool inside = nx_ > 0 && origin.x() > grid_min_.x() && origin.x() < grid_max_.x() &&
+                      origin.y() > grid_min_.y() && origin.y() < grid_max_.y();
+  for (const Vec2& dir : dirs) {
+    RETRACE_CHECK(std::isfinite(dir.x()) && std::isfinite(dir.y()) &&
+                  (dir.x() != 0.0 || dir.y() != 0.0));
+  }
+  if (!inside) {
+    for (std::size_t i = 0; i < dirs.size(); ++i) out[i] = CastFrom(origin, dirs[i], max_t[i]);
+    return;
+  }
+  const FanStart fan = StartFan(origin.x(), origin.y());
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    out[i] = CastFromFan(fan, dirs[i].x(), dirs[i].y(), max_t[i]);
+  }
 }
 
 }  // namespace retrace::sim

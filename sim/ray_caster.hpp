@@ -71,6 +71,15 @@ class RayCaster {
 
   double CastFrom(const Vec2& origin, const Vec2& dir, double max_t) const;
   struct Walk;
+  struct FanStart;
+  // What the rays of a fan from an origin strictly inside the grid's box share: the origin's
+  // cell and the numerators of their slab tests and first crossings.
+  FanStart StartFan(double ox, double oy) const;
+  // CastFrom for a ray of that fan: the same operations on the shared numerators.
+  double CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const;
+  // The walk from w until a hit before the current cell's exit or t1: the nearest hit found
+  // (+inf if none), not yet compared with max_t.
+  double Traverse(double ox, double oy, double ux, double uy, double t1, Walk w) const;
   // Clips [*t0, *t1] to the grid's box (slab test), setting the inverse direction components
   // of the axes the ray moves along; false when the ray misses the box.
   bool ClipToGrid(double ox, double oy, double ux, double uy, double* t0, double* t1,
