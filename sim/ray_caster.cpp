@@ -315,13 +315,35 @@ inline double RayCaster::NearestHitInCell(std::size_t c, double ox, double oy, d
   return best;
 }
 
+// One axis of a fan: the box's sides minus the origin, and the sides of the origin's cell minus
+// the origin (the numerators of the first crossing going up and going down).
+struct FanAxis {
+  double lo = 0.0, hi = 0.0, up = 0.0, down = 0.0;
+};
+
 struct RayCaster::FanStart {
   double ox = 0.0, oy = 0.0;
-  double lo_x = 0.0, hi_x = 0.0, lo_y = 0.0, hi_y = 0.0;  // the box's sides minus the origin
-  int ix = 0, iy = 0;                                     // the origin's cell
-  // The first crossings' numerators: the cell's far side minus the origin, per direction.
-  double up_x = 0.0, down_x = 0.0, up_y = 0.0, down_y = 0.0;
+  int ix = 0, iy = 0;  // the origin's cell
+  FanAxis x, y;
 };
+
+namespace {
+
+// One axis of a ray of a fan (direction component u): its slab clips [*t0, *t1]; sets the walk's
+// step, first crossing and spacing along it (h: the cell size). Nothing for u = 0.
+inline void StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1, int* step,
+                         double* t, double* dt) {
+  if (u == 0.0) return;
+  const double inv = 1.0 / u;
+  const double ta = a.lo * inv, tb = a.hi * inv;
+  *t0 = std::max(*t0, std::min(ta, tb));
+  *t1 = std::min(*t1, std::max(ta, tb));
+  *step = u > 0.0 ? 1 : -1;
+  *t = (u > 0.0 ? a.up : a.down) * inv;
+  *dt = u > 0.0 ? h * inv : -h * inv;
+}
+
+}  // namespace
 
 RayCaster::FanStart RayCaster::StartFan(double ox, double oy) const {
   // The terms as ClipToGrid and StartWalk compute them; a ray from inside the box starts at
@@ -330,46 +352,25 @@ RayCaster::FanStart RayCaster::StartFan(double ox, double oy) const {
   FanStart f;
   f.ox = ox;
   f.oy = oy;
-  f.lo_x = grid_min_.x() - ox;
-  f.hi_x = grid_max_.x() - ox;
-  f.lo_y = grid_min_.y() - oy;
-  f.hi_y = grid_max_.y() - oy;
   f.ix =
       std::clamp(static_cast<int>(std::floor((ox - grid_min_.x()) * inv_cell_size_)), 0, nx_ - 1);
   f.iy =
       std::clamp(static_cast<int>(std::floor((oy - grid_min_.y()) * inv_cell_size_)), 0, ny_ - 1);
-  f.up_x = grid_min_.x() + (f.ix + 1) * h - ox;
-  f.down_x = grid_min_.x() + f.ix * h - ox;
-  f.up_y = grid_min_.y() + (f.iy + 1) * h - oy;
-  f.down_y = grid_min_.y() + f.iy * h - oy;
+  f.x = {grid_min_.x() - ox, grid_max_.x() - ox, grid_min_.x() + (f.ix + 1) * h - ox,
+         grid_min_.x() + f.ix * h - ox};
+  f.y = {grid_min_.y() - oy, grid_max_.y() - oy, grid_min_.y() + (f.iy + 1) * h - oy,
+         grid_min_.y() + f.iy * h - oy};
   return f;
 }
 
 double RayCaster::CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const {
   if (!(max_t >= 0.0)) return kInf;
-  const double h = cell_size_;
   double t0 = 0.0, t1 = max_t;
   Walk w;
   w.ix = fan.ix;
   w.iy = fan.iy;
-  if (ux != 0.0) {
-    const double inv_ux = 1.0 / ux;
-    const double ta = fan.lo_x * inv_ux, tb = fan.hi_x * inv_ux;
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-    w.step_x = ux > 0.0 ? 1 : -1;
-    w.tx = (ux > 0.0 ? fan.up_x : fan.down_x) * inv_ux;
-    w.dtx = ux > 0.0 ? h * inv_ux : -h * inv_ux;
-  }
-  if (uy != 0.0) {
-    const double inv_uy = 1.0 / uy;
-    const double ta = fan.lo_y * inv_uy, tb = fan.hi_y * inv_uy;
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-    w.step_y = uy > 0.0 ? 1 : -1;
-    w.ty = (uy > 0.0 ? fan.up_y : fan.down_y) * inv_uy;
-    w.dty = uy > 0.0 ? h * inv_uy : -h * inv_uy;
-  }
+  StartFanAxis(fan.x, ux, cell_size_, &t0, &t1, &w.step_x, &w.tx, &w.dtx);
+  StartFanAxis(fan.y, uy, cell_size_, &t0, &t1, &w.step_y, &w.ty, &w.dty);
   if (!(t0 <= t1)) return kInf;
   const double best = Traverse(fan.ox, fan.oy, ux, uy, t1, w);
   return best <= max_t ? best : kInf;
