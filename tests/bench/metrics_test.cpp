@@ -543,17 +543,27 @@ void ExpectKeys(const nlohmann::json& j, const std::vector<std::string>& keys) {
   EXPECT_EQ(j.size(), keys.size()) << j.dump();
 }
 
-TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
-  const TeachTrace teach = TeachWithMap(Straight(10.0, 0.0, 0.05));
+// Two runs along a 10 m straight taught path: run 3 all the way 0.1 m to the left, with a switch
+// to a map that does not exist (a NaN error); run 4 stops at 6 m, 0.1 m to the right.
+struct TwoRuns {
+  TeachTrace teach = TeachWithMap(Straight(10.0, 0.0, 0.05));
   std::vector<RunTrace> runs = {RunAlong(Straight(10.0, 0.1, 0.05), 3),
                                 RunAlong(Straight(6.0, -0.1, 0.05), 4)};
-  SwitchRecord sw;
-  sw.to = 1;  // no such map: NaN error
-  runs[0].switches.push_back(sw);
-  const MetricsConfig config;
-  const std::vector<RunMetrics> metrics = {ComputeRunMetrics(teach, runs[0], config),
-                                           ComputeRunMetrics(teach, runs[1], config)};
-  const nlohmann::json r = ToJson(metrics[0]);
+  MetricsConfig config;
+  std::vector<RunMetrics> metrics;
+
+  TwoRuns() {
+    SwitchRecord sw;
+    sw.to = 1;  // no such map: NaN error
+    runs[0].switches.push_back(sw);
+    for (const RunTrace& run : runs) metrics.push_back(ComputeRunMetrics(teach, run, config));
+  }
+  AggregateMetrics Aggregated() const { return Aggregate(teach, runs, metrics, config); }
+};
+
+TEST(Metrics, RunJsonHasTheDocumentedKeysAndNullForNaN) {
+  const TwoRuns two;
+  const nlohmann::json r = ToJson(two.metrics[0]);
   ExpectKeys(r, {"run", "seed", "outcome", "success", "samples", "time_s", "path_length_m",
                  "progress_m", "tracking_error_m", "localization_error_m", "localization_error_rad",
                  "lost_fraction", "localizer", "collisions", "switch_error", "dynamic_points",
@@ -578,8 +588,11 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   EXPECT_TRUE(r["collisions"]["min_pedestrian_gap_m"].is_null());  // inf: none seen
   EXPECT_TRUE(r["dynamic_points"]["precision"].is_null());
   EXPECT_TRUE(r["cpu"]["real_time_factor"].is_null());
+}
 
-  const nlohmann::json a = ToJson(Aggregate(teach, runs, metrics, config));
+TEST(Metrics, AggregateJsonHasTheDocumentedKeys) {
+  const TwoRuns two;
+  const nlohmann::json a = ToJson(two.Aggregated());
   ExpectKeys(a, {"runs",
                  "successes",
                  "success_rate",
@@ -627,10 +640,18 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
               "static_events", "pedestrian_events", "min_clearance_m", "min_pedestrian_gap_m",
               "runs_with_collision"});
   EXPECT_EQ(a["outcomes"]["success"], 2);
+  EXPECT_TRUE(a["switch_error"]["mean_m"].is_null());
+  EXPECT_EQ(a["switch_error"]["count"], 0);
+  EXPECT_NO_THROW((void)a.dump());
+}
+
+TEST(Metrics, RepeatabilityGoesToTheJsonAndItsStationsToACsv) {
+  const TwoRuns two;
+  const AggregateMetrics aggregate = two.Aggregated();
+  const nlohmann::json a = ToJson(aggregate);
   // The stations themselves go to a CSV: s, run 3, run 4, std, spread.
   const retrace::testing::TempDir tmp;
-  WriteRepeatabilityCsv(tmp.path() / "repeatability.csv",
-                        Aggregate(teach, runs, metrics, config).repeatability);
+  WriteRepeatabilityCsv(tmp.path() / "repeatability.csv", aggregate.repeatability);
   std::ifstream in(tmp.path() / "repeatability.csv");
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -640,9 +661,6 @@ TEST(Metrics, JsonHasTheDocumentedKeysAndNullForNaN) {
   EXPECT_EQ(lines[21], "10,0.1,nan,nan,nan");  // run 4 stopped at 6 m
   EXPECT_NEAR(a["repeatability_m"].get<double>(), std::sqrt(0.02), 1e-9);
   EXPECT_EQ(a["repeatability_stations_used"], 13);  // 0 .. 6 m
-  EXPECT_TRUE(a["switch_error"]["mean_m"].is_null());
-  EXPECT_EQ(a["switch_error"]["count"], 0);
-  EXPECT_NO_THROW((void)a.dump());
 }
 
 TEST(Metrics, EmptyRunsAndAnEmptyTeachDoNotCrash) {
