@@ -13,6 +13,7 @@
 #include "core/check.hpp"
 #include "core/errors.hpp"
 #include "nav/cluster_estimate.hpp"
+#include "nav/dynamic_beam_test.hpp"
 #include "nav/resampling.hpp"
 
 namespace retrace::nav {

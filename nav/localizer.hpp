@@ -19,7 +19,6 @@
 #include "core/rng.hpp"
 #include "core/twist.hpp"
 #include "nav/beam_model.hpp"
-#include "nav/dynamic_beam_test.hpp"
 #include "nav/grid_ray_caster.hpp"
 #include "nav/likelihood_field.hpp"
 #include "nav/motion_model.hpp"
