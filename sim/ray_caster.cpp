@@ -5,52 +5,16 @@
 #include <limits>
 
 #include "core/check.hpp"
+#include "sim/ray_hits.hpp"
 
 namespace retrace::sim {
+
+using ray_hits::CircleHit;
+using ray_hits::SegmentHit;
+
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Ray origin + t * dir against segment a + s * d, s in [0, 1]. Cramer's rule on
-// t * dir - s * d = a - origin; the range checks compare numerators against the denominator's
-// sign so that only accepted hits pay for the division. Both the public function and the grid
-// walk call this, so they agree bit for bit.
-inline double SegmentHit(double ox, double oy, double ux, double uy, double ax, double ay,
-                         double dx, double dy) {
-  const double denom = ux * dy - uy * dx;
-  const double wx = ax - ox;
-  const double wy = ay - oy;
-  const double nt = wx * dy - wy * dx;
-  const double ns = wx * uy - wy * ux;
-  if (denom > 0.0) {
-    if (nt < 0.0 || ns < 0.0 || ns > denom) return kInf;
-  } else if (denom < 0.0) {
-    if (nt > 0.0 || ns > 0.0 || ns < denom) return kInf;
-  } else {
-    return kInf;  // parallel or collinear: a grazing ray
-  }
-  return nt / denom + 0.0;  // + 0.0 turns a -0.0 into +0.0
-}
-
-// Ray origin + t * dir (|dir|^2 = uu) against the boundary of a circle (centre c, radius^2 r2).
-// Roots of uu t^2 - 2 b t + cc = 0; the near root is written as cc / (b + sqrt(D)) to avoid
-// cancellation, the far one (origin inside) likewise by its sign of b.
-inline double CircleHit(double ox, double oy, double ux, double uy, double uu, double cx, double cy,
-                        double r2) {
-  const double wx = cx - ox;
-  const double wy = cy - oy;
-  const double b = wx * ux + wy * uy;
-  const double cc = wx * wx + wy * wy - r2;
-  if (cc > 0.0) {  // outside
-    if (b <= 0.0) return kInf;
-    const double disc = b * b - uu * cc;
-    if (disc < 0.0) return kInf;
-    return cc / (b + std::sqrt(disc));
-  }
-  if (cc == 0.0) return 0.0;  // on the boundary
-  const double root = std::sqrt(b * b - uu * cc);
-  return b >= 0.0 ? (b + root) / uu : cc / (b - root);
-}
+constexpr double kInf = ray_hits::kMiss;
 
 struct CellSpan {
   int lo;
@@ -234,15 +198,6 @@ double RayCaster::Cast(const Vec2& origin, const Vec2& dir, double max_t) const 
   return CastFrom(origin, dir, max_t);
 }
 
-// The walk of one ray through the grid: its cell, its step per axis (-1, 0, 1), the ray
-// parameter of its next crossing per axis and the parameter between crossings (+inf for an axis
-// it never crosses).
-struct RayCaster::Walk {
-  int ix, iy;
-  int step_x = 0, step_y = 0;
-  double tx = kInf, ty = kInf, dtx = kInf, dty = kInf;
-};
-
 inline bool RayCaster::ClipToGrid(double ox, double oy, double ux, double uy, double* t0,
                                   double* t1, double* inv_ux, double* inv_uy) const {
   if (ux != 0.0) {
@@ -315,24 +270,8 @@ inline double RayCaster::NearestHitInCell(std::size_t c, double ox, double oy, d
   return best;
 }
 
-// One axis of a fan: the box's sides minus the origin, and the sides of the origin's cell minus
-// the origin (the numerators of the first crossing going up and going down).
-struct FanAxis {
-  double lo = 0.0, hi = 0.0, up = 0.0, down = 0.0;
-};
-
-struct RayCaster::FanStart {
-  double ox = 0.0, oy = 0.0;
-  int ix = 0, iy = 0;  // the origin's cell
-  FanAxis x, y;
-};
-
-namespace {
-
-// One axis of a ray of a fan (direction component u): its slab clips [*t0, *t1]; sets the walk's
-// step, first crossing and spacing along it (h: the cell size). Nothing for u = 0.
-inline void StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1, int* step,
-                         double* t, double* dt) {
+inline void RayCaster::StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1,
+                                    int* step, double* t, double* dt) {
   if (u == 0.0) return;
   const double inv = 1.0 / u;
   const double ta = a.lo * inv, tb = a.hi * inv;
@@ -342,8 +281,6 @@ inline void StartFanAxis(const FanAxis& a, double u, double h, double* t0, doubl
   *t = (u > 0.0 ? a.up : a.down) * inv;
   *dt = u > 0.0 ? h * inv : -h * inv;
 }
-
-}  // namespace
 
 RayCaster::FanStart RayCaster::StartFan(double ox, double oy) const {
   // The terms as ClipToGrid and StartWalk compute them; a ray from inside the box starts at
@@ -360,18 +297,31 @@ RayCaster::FanStart RayCaster::StartFan(double ox, double oy) const {
          grid_min_.x() + f.ix * h - ox};
   f.y = {grid_min_.y() - oy, grid_max_.y() - oy, grid_min_.y() + (f.iy + 1) * h - oy,
          grid_min_.y() + f.iy * h - oy};
+  const double far_x = std::max(f.x.hi, -f.x.lo), far_y = std::max(f.y.hi, -f.y.lo);
+  f.far = std::sqrt(far_x * far_x + far_y * far_y);
+  // Twice the margin of the cells' contents, and rounding in distances across the grid.
+  const double magnitude = std::max({std::abs(grid_min_.x()), std::abs(grid_min_.y()),
+                                     std::abs(grid_max_.x()), std::abs(grid_max_.y())});
+  f.eps = 2e-6 * h + 2e-9 * magnitude + 1e-9 * f.far;
   return f;
+}
+
+RayCaster::Walk RayCaster::StartFanWalk(const FanStart& fan, double ux, double uy,
+                                        double* t1) const {
+  // From inside the box the slabs leave t0 at 0.
+  double t0 = 0.0;
+  Walk w;
+  w.ix = fan.ix;
+  w.iy = fan.iy;
+  StartFanAxis(fan.x, ux, cell_size_, &t0, t1, &w.step_x, &w.tx, &w.dtx);
+  StartFanAxis(fan.y, uy, cell_size_, &t0, t1, &w.step_y, &w.ty, &w.dty);
+  return w;
 }
 
 double RayCaster::CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const {
   if (!(max_t >= 0.0)) return kInf;
-  double t0 = 0.0, t1 = max_t;
-  Walk w;
-  w.ix = fan.ix;
-  w.iy = fan.iy;
-  StartFanAxis(fan.x, ux, cell_size_, &t0, &t1, &w.step_x, &w.tx, &w.dtx);
-  StartFanAxis(fan.y, uy, cell_size_, &t0, &t1, &w.step_y, &w.ty, &w.dty);
-  if (!(t0 <= t1)) return kInf;
+  double t1 = max_t;
+  const Walk w = StartFanWalk(fan, ux, uy, &t1);
   const double best = Traverse(fan.ox, fan.oy, ux, uy, t1, w);
   return best <= max_t ? best : kInf;
 }
@@ -412,8 +362,8 @@ double RayCaster::Traverse(double ox, double oy, double ux, double uy, double t1
   return best;
 }
 
-void RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
-                        std::span<const double> max_t, std::span<double> out) const {
+std::size_t RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
+                               std::span<const double> max_t, std::span<double> out) const {
   RETRACE_CHECK(dirs.size() == max_t.size() && dirs.size() == out.size());
   RETRACE_CHECK(std::isfinite(origin.x()) && std::isfinite(origin.y()));
   const bool inside = nx_ > 0 && origin.x() > grid_min_.x() && origin.x() < grid_max_.x() &&
@@ -424,12 +374,23 @@ void RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
   }
   if (!inside) {
     for (std::size_t i = 0; i < dirs.size(); ++i) out[i] = CastFrom(origin, dirs[i], max_t[i]);
-    return;
+    return 0;
   }
   const FanStart fan = StartFan(origin.x(), origin.y());
-  for (std::size_t i = 0; i < dirs.size(); ++i) {
-    out[i] = CastFromFan(fan, dirs[i].x(), dirs[i].y(), max_t[i]);
+  std::size_t in_wedges = 0;
+  for (std::size_t i = 0; i < dirs.size();) {
+    const std::size_t last = WedgeEnd(fan, dirs, max_t, i);
+    if (last - i + 1 >= kMinWedge) {
+      CastWedge(fan, dirs, max_t, i, last, out);
+      in_wedges += last - i + 1;
+    } else {  // too few rays to share a walk
+      for (std::size_t k = i; k <= last; ++k) {
+        out[k] = CastFromFan(fan, dirs[k].x(), dirs[k].y(), max_t[k]);
+      }
+    }
+    i = last + 1;
   }
+  return in_wedges;
 }
 
 }  // namespace retrace::sim

@@ -6,6 +6,7 @@
 // to testing every primitive (min over RaySegmentHit / RayCircleHit).
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -27,6 +28,8 @@ double RayCircleHit(const Vec2& origin, const Vec2& dir, const Circle& c);
 /// Thread-safe for concurrent casts (all query methods are const and keep no scratch state).
 class RayCaster {
  public:
+  static constexpr double kNoHit = std::numeric_limits<double>::infinity();
+
   /// Builds the grid. cell_size (m) > 0 forces the bucket size; 0 picks it from the geometry's
   /// extent and primitive count. Keeps no reference to `geometry`.
   explicit RayCaster(const StaticGeometry& geometry, double cell_size = 0.0);
@@ -36,10 +39,12 @@ class RayCaster {
   /// non-zero (checked).
   double Cast(const Vec2& origin, const Vec2& dir, double max_t) const;
 
-  /// Casts a fan of rays sharing one origin: out[i] = Cast(origin, dirs[i], max_t[i]).
-  /// The spans must have equal sizes; out may alias max_t.
-  void CastFan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> max_t,
-               std::span<double> out) const;
+  /// Casts a fan of rays sharing one origin: out[i] = Cast(origin, dirs[i], max_t[i]), bit for
+  /// bit. The spans must have equal sizes; out may alias max_t. Where consecutive unit dirs turn
+  /// counter-clockwise in small steps (a scanner's beams), runs of them are cast together as
+  /// wedges (sim/ray_caster_wedge.cpp). Returns how many rays were cast in wedges.
+  std::size_t CastFan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> max_t,
+                      std::span<double> out) const;
 
   double cell_size() const { return cell_size_; }
   int grid_width() const { return nx_; }
@@ -69,14 +74,56 @@ class RayCaster {
                    const std::vector<std::uint32_t>& circle_count,
                    std::vector<std::uint32_t>* seg_fill, std::vector<std::uint32_t>* circle_fill);
 
+  // The walk of one ray through the grid: its cell, its step per axis (-1, 0, 1), the ray
+  // parameter of its next crossing per axis and the parameter between crossings (+inf for an
+  // axis it never crosses).
+  struct Walk {
+    int ix, iy;
+    int step_x = 0, step_y = 0;
+    double tx = kNoHit, ty = kNoHit, dtx = kNoHit, dty = kNoHit;
+  };
+  // One axis of a fan: the box's sides minus the origin, and the sides of the origin's cell minus
+  // the origin (the numerators of the first crossing going up and going down).
+  struct FanAxis {
+    double lo = 0.0, hi = 0.0, up = 0.0, down = 0.0;
+  };
+  struct FanStart {
+    double ox = 0.0, oy = 0.0;
+    int ix = 0, iy = 0;  // the origin's cell
+    FanAxis x, y;
+    double far = 0.0;  // distance (m) to the grid's farthest corner
+    double eps = 0.0;  // slack (m) for rounding in the distances a wedge compares
+  };
+  // A wedge casts at least kMinWedge rays (fewer walk faster one by one) and at most kMaxWedge.
+  static constexpr std::size_t kMinWedge = 12;
+  static constexpr std::size_t kMaxWedge = 64;
+  // One axis of a ray of a fan (direction component u): its slab clips [*t0, *t1]; sets the
+  // walk's step, first crossing and spacing along it (h: the cell size). Nothing for u = 0.
+  static void StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1, int* step,
+                           double* t, double* dt);
+
   double CastFrom(const Vec2& origin, const Vec2& dir, double max_t) const;
-  struct Walk;
-  struct FanStart;
   // What the rays of a fan from an origin strictly inside the grid's box share: the origin's
   // cell and the numerators of their slab tests and first crossings.
   FanStart StartFan(double ox, double oy) const;
   // CastFrom for a ray of that fan: the same operations on the shared numerators.
   double CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const;
+  // The walk of a ray of that fan from the origin's cell; clips *t1 to the grid's box.
+  Walk StartFanWalk(const FanStart& fan, double ux, double uy, double* t1) const;
+  // The last ray of the wedge that starts at ray `first` of a fan (sim/ray_caster_wedge.cpp).
+  std::size_t WedgeEnd(const FanStart& fan, std::span<const Vec2> dirs,
+                       std::span<const double> max_t, std::size_t first) const;
+  // Casts rays [first, last] of a fan as one wedge: out[i] = CastFromFan(fan, dirs[i], max_t[i]).
+  void CastWedge(const FanStart& fan, std::span<const Vec2> dirs, std::span<const double> max_t,
+                 std::size_t first, std::size_t last, std::span<double> out) const;
+  struct WedgeWalk;
+  struct Item;
+  static void WedgeSegmentHits(double ox, double oy, const Item& s, std::size_t n, const double* ux,
+                               const double* uy, double* best);
+  // The walk of a wedge's edge ray (direction (ux, uy)) up to ray parameter t1.
+  WedgeWalk StartWedgeWalk(const FanStart& fan, double ux, double uy, double t1) const;
+  // Steps the walk to its next cell and bounds the distance of the cells ahead.
+  void AdvanceWedgeWalk(const FanStart& fan, WedgeWalk* r) const;
   // The walk from w until a hit before the current cell's exit or t1: the nearest hit found
   // (+inf if none), not yet compared with max_t.
   double Traverse(double ox, double oy, double ux, double uy, double t1, Walk w) const;

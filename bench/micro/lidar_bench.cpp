@@ -306,13 +306,16 @@ void BM_RetraceRayCasterFan(benchmark::State& state) {
   for (std::size_t p = 0; p < w.poses.size(); ++p) BeamDirections(config, w.poses[p], &fans[p]);
   std::vector<double> limits(static_cast<std::size_t>(config.beams), config.range_max);
   std::vector<double> out(limits.size());
-  std::size_t k = 0;
+  std::size_t k = 0, in_wedges = 0;
   for (auto _ : state) {
     const std::size_t p = k++ % w.poses.size();
-    caster.CastFan(w.poses[p].translation(), fans[p], limits, out);
+    in_wedges += caster.CastFan(w.poses[p].translation(), fans[p], limits, out);
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * config.beams);
+  // The share of rays cast together in wedges (the rest walk the grid one by one).
+  state.counters["wedge_frac"] =
+      static_cast<double>(in_wedges) / static_cast<double>(state.iterations() * config.beams);
   state.counters["cell_m"] = caster.cell_size();
   state.counters["entries"] = static_cast<double>(caster.entry_count());
 }
