@@ -378,8 +378,12 @@ std::size_t RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
   }
   const FanStart fan = StartFan(origin.x(), origin.y());
   std::size_t in_wedges = 0;
+  // How deep the next wedge is made valid (m): first as deep as its rays reach, then a margin past
+  // the hits of the rays before it. A deeper wedge holds fewer rays; rays it leaves open are cast
+  // again on their own. Only the speed depends on it, never a range.
+  double depth = kNoHit;
   for (std::size_t i = 0; i < dirs.size();) {
-    const std::size_t last = WedgeEnd(fan, dirs, max_t, i);
+    const std::size_t last = WedgeEnd(fan, dirs, max_t, i, depth);
     if (last - i + 1 >= kMinWedge) {
       CastWedge(fan, dirs, max_t, i, last, out);
       in_wedges += last - i + 1;
@@ -388,6 +392,15 @@ std::size_t RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
         out[k] = CastFromFan(fan, dirs[k].x(), dirs[k].y(), max_t[k]);
       }
     }
+    double sum = 0.0;
+    int hits = 0;
+    for (std::size_t k = i; k <= last; ++k) {  // without a branch: hits come and go
+      const bool hit = out[k] < kNoHit;
+      sum += hit ? out[k] : 0.0;
+      hits += hit ? 1 : 0;
+    }
+    depth =
+        hits > 0 ? std::max(kWedgeDepthCells * cell_size_, kWedgeDepthFactor * sum / hits) : kNoHit;
     i = last + 1;
   }
   return in_wedges;

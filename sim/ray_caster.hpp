@@ -97,6 +97,12 @@ class RayCaster {
   // A wedge casts at least kMinWedge rays (fewer walk faster one by one) and at most kMaxWedge.
   static constexpr std::size_t kMinWedge = 12;
   static constexpr std::size_t kMaxWedge = 64;
+  // A wedge is at most this many cells wide where it is valid.
+  static constexpr double kWedgeWidth = 0.9;
+  // A wedge is made valid to kWedgeDepthFactor times the mean hit distance of the rays before it,
+  // and at least kWedgeDepthCells cells deep.
+  static constexpr double kWedgeDepthFactor = 1.5;
+  static constexpr double kWedgeDepthCells = 4.0;
   // One axis of a ray of a fan (direction component u): its slab clips [*t0, *t1]; sets the
   // walk's step, first crossing and spacing along it (h: the cell size). Nothing for u = 0.
   static void StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1, int* step,
@@ -110,14 +116,14 @@ class RayCaster {
   double CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const;
   // The walk of a ray of that fan from the origin's cell; clips *t1 to the grid's box.
   Walk StartFanWalk(const FanStart& fan, double ux, double uy, double* t1) const;
-  // The last ray of the wedge that starts at ray `first` of a fan (sim/ray_caster_wedge.cpp).
+  // The last ray of the wedge that starts at ray `first` of a fan and is valid `depth` (m) deep,
+  // or as deep as its rays reach if that is less (sim/ray_caster_wedge.cpp).
   std::size_t WedgeEnd(const FanStart& fan, std::span<const Vec2> dirs,
-                       std::span<const double> max_t, std::size_t first) const;
+                       std::span<const double> max_t, std::size_t first, double depth) const;
   // Casts rays [first, last] of a fan as one wedge: out[i] = CastFromFan(fan, dirs[i], max_t[i]).
   void CastWedge(const FanStart& fan, std::span<const Vec2> dirs, std::span<const double> max_t,
                  std::size_t first, std::size_t last, std::span<double> out) const;
   struct WedgeWalk;
-  struct Item;
   static void WedgeSegmentHits(double ox, double oy, const Item& s, std::size_t n, const double* ux,
                                const double* uy, double* best);
   // The walk of a wedge's edge ray (direction (ux, uy)) up to ray parameter t1.

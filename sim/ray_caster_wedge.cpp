@@ -1,7 +1,8 @@
 // Wedges of a fan: neighbouring rays of a scan cast together (RayCaster::CastFan).
 //
 // A wedge is a run of unit rays from one origin, each turned counter-clockwise from the one before,
-// narrow enough that its lateral width stays below 0.9 grid cells out to where its rays stop.
+// narrow enough that its lateral width stays below 0.9 grid cells out to the depth where it is
+// valid.
 // Only its two edge rays walk the grid; every cell either of them crosses is tested against
 // all the wedge's rays that are still open. That is enough: a cell that meets the wedge cannot
 // fit between the edge rays, so one of them crosses it (and with a good part of the cell on
@@ -23,6 +24,8 @@
 
 namespace retrace::sim {
 namespace {
+
+double Square(double x) { return x * x; }
 
 // A direction the wedge may carry: unit within rounding, so that ray parameters are distances.
 bool IsWedgeUnit(const Vec2& d) { return std::abs(d.x() * d.x() + d.y() * d.y() - 1.0) <= 1e-12; }
@@ -75,11 +78,13 @@ struct RayCaster::WedgeWalk {
   Walk w;
   double t1 = 0.0;      // the walk ends where the ray parameter passes t1
   double ahead2 = 0.0;  // squared distance (m^2) from the origin to the cells' quadrant
+  double past2 = 0.0;   // squared distance (m^2) of the cells it leaves out past t1
   bool done = false;
 };
 
 std::size_t RayCaster::WedgeEnd(const FanStart& fan, std::span<const Vec2> dirs,
-                                std::span<const double> max_t, std::size_t first) const {
+                                std::span<const double> max_t, std::size_t first,
+                                double depth) const {
   const Vec2& a = dirs[first];
   if (!IsWedgeUnit(a)) return first;
   // The walks go on to reach + a cell's diagonal (+ rounding slack).
@@ -100,7 +105,9 @@ std::size_t RayCaster::WedgeEnd(const FanStart& fan, std::span<const Vec2> dirs,
     if (!(dot > 0.0)) break;
     const double r = std::max(reach, reach_of(max_t[j]));
     // Width 2 t tan(w / 2) at the end of the walks, tan(w / 2) = sin w / (1 + cos w).
-    if (2.0 * (r + slack) * cross / (1.0 + dot) > 0.9 * cell_size_) break;
+    if (2.0 * (std::min(r, depth) + slack) * cross > kWedgeWidth * cell_size_ * (1.0 + dot)) {
+      break;
+    }
     reach = r;
     last = j;
   }
@@ -120,8 +127,11 @@ inline void RayCaster::AdvanceWedgeWalk(const FanStart& fan, WedgeWalk* r) const
   Walk& w = r->w;
   const double t_exit = std::min(w.tx, w.ty);
   if (t_exit >= r->t1) {
+    r->ahead2 = r->past2;
     r->done = true;
-  } else if (w.tx < w.ty) {
+    return;
+  }
+  if (w.tx < w.ty) {
     w.ix += w.step_x;
     r->done = w.ix < 0 || w.ix >= nx_;
     w.tx += w.dtx;
@@ -184,10 +194,21 @@ void RayCaster::CastWedge(const FanStart& fan, std::span<const Vec2> dirs,
   };
   if (open == 0) return;
 
+  // The wedge holds out to `valid` (m), where its width reaches kWedgeWidth cells less a cell's
+  // diagonal; its walks stop a diagonal past min(reach, valid), and every cell left out lies
+  // farther than that.
   const double eps = fan.eps;
-  const double t1 = reach + std::sqrt(2.0) * cell_size_ + 2.0 * eps;
-  std::array<WedgeWalk, 2> walks = {StartWedgeWalk(fan, dirs[first].x(), dirs[first].y(), t1),
-                                    StartWedgeWalk(fan, dirs[last].x(), dirs[last].y(), t1)};
+  const double diagonal = std::sqrt(2.0) * cell_size_;
+  const Vec2& a = dirs[first];
+  const Vec2& b = dirs[last];
+  const double cross = a.x() * b.y() - a.y() * b.x(), dot = a.x() * b.x() + a.y() * b.y();
+  const double valid =
+      kWedgeWidth * cell_size_ * (1.0 + dot) / (2.0 * cross) - diagonal - 2.0 * eps;
+  const double stop = std::min(reach, valid);
+  const double t1 = stop + diagonal + 3.0 * eps;
+  std::array<WedgeWalk, 2> walks = {StartWedgeWalk(fan, a.x(), a.y(), t1),
+                                    StartWedgeWalk(fan, b.x(), b.y(), t1)};
+  for (WedgeWalk& w : walks) w.past2 = (stop + 2.0 * eps) * (stop + 2.0 * eps);
   const WedgeSides side{dirs[first].x(), dirs[first].y(), dirs[last].x(), dirs[last].y(), eps};
   // The last cells tested: the two walks cross many cells both.
   std::array<std::size_t, 4> recent;
@@ -197,24 +218,31 @@ void RayCaster::CastWedge(const FanStart& fan, std::span<const Vec2> dirs,
   const Item* items = items_.data();
   const double ox = fan.ox, oy = fan.oy;
   double closed_near2 = -1.0;
+  // The nearest hit and the shortest limit of the open rays: no ray closes before one of them
+  // is nearer than the cells ahead.
+  double nearest = kNoHit;
+  double shortest = *std::min_element(limit.begin(), limit.begin() + open);
   for (;;) {
     // Every cell not yet tested that meets the wedge lies at least sqrt(near2) - eps from the
     // origin; a ray is closed when its hit is nearer (compared as squares, eps >> rounding).
     const double near2 = std::min(walks[0].ahead2, walks[1].ahead2);
-    if (near2 > closed_near2) {
+    if (near2 > closed_near2 &&
+        (Square(nearest + eps) <= near2 || Square(shortest + eps) < near2)) {
       closed_near2 = near2;
       for (std::size_t k = 0; k < open;) {
-        const double b = best[k] + eps, l = limit[k] + eps;
-        if (b * b <= near2 || l * l < near2) {
+        const double bk = best[k] + eps, lk = limit[k] + eps;
+        if (bk * bk <= near2 || lk * lk < near2) {
           close(k);
         } else {
           ++k;
         }
       }
       if (open == 0) return;
+      nearest = *std::min_element(best.begin(), best.begin() + open);
+      shortest = *std::min_element(limit.begin(), limit.begin() + open);
     }
     WedgeWalk& r = walks[0].ahead2 <= walks[1].ahead2 ? walks[0] : walks[1];
-    if (r.done) break;  // both are: nothing is left to test
+    if (r.done) break;  // both are: the rays still open reach past the wedge's valid depth
     const std::size_t c = static_cast<std::size_t>(r.w.iy) * static_cast<std::size_t>(nx_) +
                           static_cast<std::size_t>(r.w.ix);
     if (std::find(recent.begin(), recent.end(), c) == recent.end()) {
@@ -226,18 +254,23 @@ void RayCaster::CastWedge(const FanStart& fan, std::span<const Vec2> dirs,
         if (side.Outside(px, py, qx, qy)) continue;
         WedgeSegmentHits(ox, oy, s, open, ux.data(), uy.data(), best.data());
       }
+      if (cells[c].begin < mid) nearest = *std::min_element(best.begin(), best.begin() + open);
       for (std::uint32_t e = mid; e < end; ++e) {
         const Item& s = items[e];
         if (side.Outside(s.p - ox, s.q - oy, s.u)) continue;
         for (std::size_t k = 0; k < open; ++k) {
           const double t = ray_hits::CircleHit(ox, oy, ux[k], uy[k], uu[k], s.p, s.q, s.v);
           best[k] = t < best[k] ? t : best[k];
+          nearest = std::min(nearest, best[k]);
         }
       }
     }
     AdvanceWedgeWalk(fan, &r);
   }
-  while (open > 0) close(open - 1);
+  // Rays beyond `valid` walk on their own, from the origin.
+  for (std::size_t k = 0; k < open; ++k) {
+    out[index[k]] = CastFromFan(fan, ux[k], uy[k], limit[k]);
+  }
 }
 
 }  // namespace retrace::sim
