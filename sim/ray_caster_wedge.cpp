@@ -69,7 +69,7 @@ inline void RayCaster::WedgeSegmentHits(double ox, double oy, const Item& s, std
     const double t = nt / denom + 0.0;
     const bool ahead = (denom > 0.0) & (nt >= 0.0) & (ns >= 0.0) & (ns <= denom);
     const bool behind = (denom < 0.0) & (nt <= 0.0) & (ns <= 0.0) & (ns >= denom);
-    best[k] = (ahead | behind) & (t < best[k]) ? t : best[k];
+    best[k] = ((ahead | behind) & (t < best[k])) ? t : best[k];
   }
 }
 
