@@ -320,8 +320,13 @@ RayCaster::Walk RayCaster::StartFanWalk(const FanStart& fan, double ux, double u
 
 double RayCaster::CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const {
   if (!(max_t >= 0.0)) return kInf;
-  double t1 = max_t;
-  const Walk w = StartFanWalk(fan, ux, uy, &t1);
+  // StartFanWalk's steps, written out here so that they inline into the fan's loop.
+  double t0 = 0.0, t1 = max_t;
+  Walk w;
+  w.ix = fan.ix;
+  w.iy = fan.iy;
+  StartFanAxis(fan.x, ux, cell_size_, &t0, &t1, &w.step_x, &w.tx, &w.dtx);
+  StartFanAxis(fan.y, uy, cell_size_, &t0, &t1, &w.step_y, &w.ty, &w.dty);
   const double best = Traverse(fan.ox, fan.oy, ux, uy, t1, w);
   return best <= max_t ? best : kInf;
 }
@@ -362,6 +367,23 @@ double RayCaster::Traverse(double ox, double oy, double ux, double uy, double t1
   return best;
 }
 
+inline bool RayCaster::WedgeMayHold(const FanStart& fan, std::span<const Vec2> dirs,
+                                    std::span<const double> max_t, std::size_t first,
+                                    double depth) const {
+  // Wedges pay where the rays' hits lie a few cells out; on finer grids each of their rays
+  // would cross many cells that the other rays do not.
+  if (first + kMinWedge > dirs.size() || depth > kWedgeMaxDepthCells * cell_size_) return false;
+  // kMinWedge - 1 steps like the first, at the depth of the first ray (tan k x ~ k tan x).
+  const Vec2& a = dirs[first];
+  const Vec2& b = dirs[first + 1];
+  const double cross = a.x() * b.y() - a.y() * b.x(), dot = a.x() * b.x() + a.y() * b.y();
+  const double reach = max_t[first] >= 0.0 ? std::min({max_t[first], fan.far, depth}) : 0.0;
+  const double slack = std::sqrt(2.0) * cell_size_;
+  return cross > 0.0 && dot > 0.0 &&
+         2.0 * (reach + slack) * static_cast<double>(kMinWedge - 1) * cross <=
+             kWedgeWidth * cell_size_ * (1.0 + dot);
+}
+
 std::size_t RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
                                std::span<const double> max_t, std::span<double> out) const {
   RETRACE_CHECK(dirs.size() == max_t.size() && dirs.size() == out.size());
@@ -379,29 +401,36 @@ std::size_t RayCaster::CastFan(const Vec2& origin, std::span<const Vec2> dirs,
   const FanStart fan = StartFan(origin.x(), origin.y());
   std::size_t in_wedges = 0;
   // How deep the next wedge is made valid (m): first as deep as its rays reach, then a margin past
-  // the hits of the rays before it. A deeper wedge holds fewer rays; rays it leaves open are cast
-  // again on their own. Only the speed depends on it, never a range.
-  double depth = kNoHit;
-  for (std::size_t i = 0; i < dirs.size();) {
-    const std::size_t last = WedgeEnd(fan, dirs, max_t, i, depth);
-    if (last - i + 1 >= kMinWedge) {
-      CastWedge(fan, dirs, max_t, i, last, out);
-      in_wedges += last - i + 1;
-    } else {  // too few rays to share a walk
-      for (std::size_t k = i; k <= last; ++k) {
-        out[k] = CastFromFan(fan, dirs[k].x(), dirs[k].y(), max_t[k]);
+  // a running mean of the hits before it. A deeper wedge holds fewer rays; rays it leaves open are
+  // cast again on their own. Only the speed depends on it, never a range.
+  double depth = kNoHit, mean_hit = 0.0;
+  bool any_hit = false;
+  const auto note = [&](double range) {
+    if (!(range < kNoHit)) return;
+    mean_hit = any_hit ? mean_hit + 0.125 * (range - mean_hit) : range;
+    any_hit = true;
+    depth = std::max(kWedgeDepthCells * cell_size_, kWedgeDepthFactor * mean_hit);
+  };
+  const std::size_t n = dirs.size();
+  for (std::size_t i = 0; i < n;) {
+    if (WedgeMayHold(fan, dirs, max_t, i, depth)) {
+      const std::size_t last = WedgeEnd(fan, dirs, max_t, i, depth);
+      if (last - i + 1 >= kMinWedge) {
+        CastWedge(fan, dirs, max_t, i, last, out);
+        in_wedges += last - i + 1;
+        for (std::size_t k = i; k <= last; k += 4) note(out[k]);
+        i = last + 1;
+        continue;
       }
     }
-    double sum = 0.0;
-    int hits = 0;
-    for (std::size_t k = i; k <= last; ++k) {  // without a branch: hits come and go
-      const bool hit = out[k] < kNoHit;
-      sum += hit ? out[k] : 0.0;
-      hits += hit ? 1 : 0;
+    // One by one, kMinWedge rays before the next try: on a grid too fine for wedges this loop
+    // is all there is.
+    const std::size_t end = std::min(n, i + kMinWedge);
+    for (std::size_t k = i; k < end; ++k) {
+      out[k] = CastFromFan(fan, dirs[k].x(), dirs[k].y(), max_t[k]);
     }
-    depth =
-        hits > 0 ? std::max(kWedgeDepthCells * cell_size_, kWedgeDepthFactor * sum / hits) : kNoHit;
-    i = last + 1;
+    note(out[end - 1]);
+    i = end;
   }
   return in_wedges;
 }

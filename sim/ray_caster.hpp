@@ -103,6 +103,8 @@ class RayCaster {
   // and at least kWedgeDepthCells cells deep.
   static constexpr double kWedgeDepthFactor = 1.5;
   static constexpr double kWedgeDepthCells = 4.0;
+  // Wedges are tried only while that depth is at most this many cells.
+  static constexpr double kWedgeMaxDepthCells = 8.0;
   // One axis of a ray of a fan (direction component u): its slab clips [*t0, *t1]; sets the
   // walk's step, first crossing and spacing along it (h: the cell size). Nothing for u = 0.
   static void StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1, int* step,
@@ -116,6 +118,10 @@ class RayCaster {
   double CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const;
   // The walk of a ray of that fan from the origin's cell; clips *t1 to the grid's box.
   Walk StartFanWalk(const FanStart& fan, double ux, double uy, double* t1) const;
+  // Whether a wedge of kMinWedge rays valid `depth` (m) deep may start at ray `first` of a fan: a
+  // cheap guess from the first step, so that fine grids skip WedgeEnd (which decides).
+  bool WedgeMayHold(const FanStart& fan, std::span<const Vec2> dirs, std::span<const double> max_t,
+                    std::size_t first, double depth) const;
   // The last ray of the wedge that starts at ray `first` of a fan and is valid `depth` (m) deep,
   // or as deep as its rays reach if that is less (sim/ray_caster_wedge.cpp).
   std::size_t WedgeEnd(const FanStart& fan, std::span<const Vec2> dirs,

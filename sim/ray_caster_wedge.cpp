@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include "sim/ray_caster.hpp"
 #include "sim/ray_hits.hpp"
