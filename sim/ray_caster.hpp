@@ -104,7 +104,7 @@ class RayCaster {
   static constexpr double kWedgeDepthFactor = 1.5;
   static constexpr double kWedgeDepthCells = 4.0;
   // Wedges are tried only while that depth is at most this many cells.
-  static constexpr double kWedgeMaxDepthCells = 8.0;
+  static constexpr double kWedgeMaxDepthCells = 12.0;
   // One axis of a ray of a fan (direction component u): its slab clips [*t0, *t1]; sets the
   // walk's step, first crossing and spacing along it (h: the cell size). Nothing for u = 0.
   static void StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1, int* step,
