@@ -130,6 +130,11 @@ class RayCaster {
   void CastWedge(const FanStart& fan, std::span<const Vec2> dirs, std::span<const double> max_t,
                  std::size_t first, std::size_t last, std::span<double> out) const;
   struct WedgeWalk;
+  struct WedgeRays;
+  struct WedgeSides;
+  // Tests the primitives of cell c against the wedge's open rays.
+  void TestWedgeCell(std::size_t c, const FanStart& fan, const WedgeSides& side,
+                     WedgeRays* rays) const;
   static void WedgeSegmentHits(double ox, double oy, const Item& s, std::size_t n, const double* ux,
                                const double* uy, double* best);
   // The walk of a wedge's edge ray (direction (ux, uy)) up to ray parameter t1.

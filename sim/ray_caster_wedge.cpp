@@ -18,7 +18,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 
 #include "sim/ray_caster.hpp"
 #include "sim/ray_hits.hpp"
@@ -31,10 +30,12 @@ double Square(double x) { return x * x; }
 // A direction the wedge may carry: unit within rounding, so that ray parameters are distances.
 bool IsWedgeUnit(const Vec2& d) { return std::abs(d.x() * d.x() + d.y() * d.y() - 1.0) <= 1e-12; }
 
+}  // namespace
+
 // The half-planes beyond a wedge's edges (unit directions a and b, counter-clockwise from a by
 // less than 90 degrees) and behind its origin, where no ray of the wedge goes. A primitive
 // farther than eps (m) inside one of them is not tested: every one of its hits would be +inf.
-struct WedgeSides {
+struct RayCaster::WedgeSides {
   double ax, ay, bx, by, eps;
 
   // The segment from p to q (relative to the origin).
@@ -52,8 +53,6 @@ struct WedgeSides {
            sx * cx + sy * cy < -m * std::sqrt(sx * sx + sy * sy);
   }
 };
-
-}  // namespace
 
 // best[k] = min(best[k], SegmentHit(origin, (ux[k], uy[k]), segment s)) for k < n, without a
 // branch: the same operations as ray_hits::SegmentHit, its range checks as masks, so that the
@@ -160,40 +159,87 @@ inline void RayCaster::AdvanceWedgeWalk(const FanStart& fan, WedgeWalk* r) const
   r->ahead2 = dx * dx + dy * dy;
 }
 
-void RayCaster::CastWedge(const FanStart& fan, std::span<const Vec2> dirs,
-                          std::span<const double> max_t, std::size_t first, std::size_t last,
-                          std::span<double> out) const {
-  // The open rays, packed at the front: their direction, nearest hit so far, limit and index.
-  // (Left uninitialised: only the first `open` entries are ever read.)
+// The open rays of a wedge, packed at the front: their direction, nearest hit so far, limit and
+// index in the fan; the arrays are left uninitialised, only the first `open` entries are read.
+struct RayCaster::WedgeRays {
   std::array<double, kMaxWedge> ux, uy, uu, best, limit;
   std::array<std::uint32_t, kMaxWedge> index;
   std::size_t open = 0;
-  double reach = 0.0;
-  for (std::size_t i = first; i <= last; ++i) {
-    if (!(max_t[i] >= 0.0)) {
-      out[i] = kNoHit;
-      continue;
-    }
-    ux[open] = dirs[i].x();
-    uy[open] = dirs[i].y();
-    uu[open] = ux[open] * ux[open] + uy[open] * uy[open];
+  // The nearest hit and the shortest limit of the open rays: no ray closes before one of them
+  // is nearer than the cells ahead.
+  double nearest = kNoHit, shortest = kNoHit;
+
+  void Add(const Vec2& d, double max_t, std::size_t i) {
+    ux[open] = d.x();
+    uy[open] = d.y();
+    uu[open] = d.x() * d.x() + d.y() * d.y();
     best[open] = kNoHit;
-    limit[open] = max_t[i];
+    limit[open] = max_t;
     index[open] = static_cast<std::uint32_t>(i);
-    reach = std::max(reach, std::min(max_t[i], fan.far));
+    shortest = std::min(shortest, max_t);
     ++open;
   }
-  const auto close = [&](std::size_t k) {
-    out[index[k]] = best[k] <= limit[k] ? best[k] : kNoHit;
-    --open;
-    ux[k] = ux[open];
-    uy[k] = uy[open];
-    uu[k] = uu[open];
-    best[k] = best[open];
-    limit[k] = limit[open];
-    index[k] = index[open];
-  };
-  if (open == 0) return;
+  // Writes the result of every open ray whose hit is nearer than sqrt(near2) - eps (compared as
+  // squares, eps >> their rounding), or whose limit is, and drops it.
+  void CloseNearerThan(double near2, double eps, std::span<double> out) {
+    if (!(Square(nearest + eps) <= near2 || Square(shortest + eps) < near2)) return;
+    for (std::size_t k = 0; k < open;) {
+      if (!(Square(best[k] + eps) <= near2 || Square(limit[k] + eps) < near2)) {
+        ++k;
+        continue;
+      }
+      out[index[k]] = best[k] <= limit[k] ? best[k] : kNoHit;
+      --open;
+      ux[k] = ux[open];
+      uy[k] = uy[open];
+      uu[k] = uu[open];
+      best[k] = best[open];
+      limit[k] = limit[open];
+      index[k] = index[open];
+    }
+    nearest = *std::min_element(best.begin(), best.begin() + open);
+    shortest = *std::min_element(limit.begin(), limit.begin() + open);
+  }
+};
+
+void RayCaster::TestWedgeCell(std::size_t c, const FanStart& fan, const WedgeSides& side,
+                              WedgeRays* rays) const {
+  const double ox = fan.ox, oy = fan.oy;
+  const std::uint32_t begin = cells_[c].begin, mid = cells_[c].mid, end = cells_[c + 1].begin;
+  const std::size_t n = rays->open;
+  for (std::uint32_t e = begin; e < mid; ++e) {
+    const Item& s = items_[e];
+    const double px = s.p - ox, py = s.q - oy;
+    if (side.Outside(px, py, px + s.u, py + s.v)) continue;
+    WedgeSegmentHits(ox, oy, s, n, rays->ux.data(), rays->uy.data(), rays->best.data());
+  }
+  if (begin < mid) rays->nearest = *std::min_element(rays->best.begin(), rays->best.begin() + n);
+  for (std::uint32_t e = mid; e < end; ++e) {
+    const Item& s = items_[e];
+    if (side.Outside(s.p - ox, s.q - oy, s.u)) continue;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t =
+          ray_hits::CircleHit(ox, oy, rays->ux[k], rays->uy[k], rays->uu[k], s.p, s.q, s.v);
+      rays->best[k] = std::min(t, rays->best[k]);
+      rays->nearest = std::min(rays->nearest, rays->best[k]);
+    }
+  }
+}
+
+void RayCaster::CastWedge(const FanStart& fan, std::span<const Vec2> dirs,
+                          std::span<const double> max_t, std::size_t first, std::size_t last,
+                          std::span<double> out) const {
+  WedgeRays rays;
+  double reach = 0.0;
+  for (std::size_t i = first; i <= last; ++i) {
+    if (max_t[i] >= 0.0) {
+      rays.Add(dirs[i], max_t[i], i);
+      reach = std::max(reach, std::min(max_t[i], fan.far));
+    } else {
+      out[i] = kNoHit;
+    }
+  }
+  if (rays.open == 0) return;
 
   // The wedge holds out to `valid` (m), where its width reaches kWedgeWidth cells less a cell's
   // diagonal; its walks stop a diagonal past min(reach, valid), and every cell left out lies
@@ -209,68 +255,29 @@ void RayCaster::CastWedge(const FanStart& fan, std::span<const Vec2> dirs,
   const double t1 = stop + diagonal + 3.0 * eps;
   std::array<WedgeWalk, 2> walks = {StartWedgeWalk(fan, a.x(), a.y(), t1),
                                     StartWedgeWalk(fan, b.x(), b.y(), t1)};
-  for (WedgeWalk& w : walks) w.past2 = (stop + 2.0 * eps) * (stop + 2.0 * eps);
-  const WedgeSides side{dirs[first].x(), dirs[first].y(), dirs[last].x(), dirs[last].y(), eps};
+  for (WedgeWalk& w : walks) w.past2 = Square(stop + 2.0 * eps);
+  const WedgeSides side{a.x(), a.y(), b.x(), b.y(), eps};
   // The last cells tested: the two walks cross many cells both.
   std::array<std::size_t, 4> recent;
   recent.fill(cells_.size());
   std::size_t next_recent = 0;
-  const CellRange* cells = cells_.data();
-  const Item* items = items_.data();
-  const double ox = fan.ox, oy = fan.oy;
-  double closed_near2 = -1.0;
-  // The nearest hit and the shortest limit of the open rays: no ray closes before one of them
-  // is nearer than the cells ahead.
-  double nearest = kNoHit;
-  double shortest = *std::min_element(limit.begin(), limit.begin() + open);
   for (;;) {
-    // Every cell not yet tested that meets the wedge lies at least sqrt(near2) - eps from the
-    // origin; a ray is closed when its hit is nearer (compared as squares, eps >> rounding).
-    const double near2 = std::min(walks[0].ahead2, walks[1].ahead2);
-    if (near2 > closed_near2 &&
-        (Square(nearest + eps) <= near2 || Square(shortest + eps) < near2)) {
-      closed_near2 = near2;
-      for (std::size_t k = 0; k < open;) {
-        const double bk = best[k] + eps, lk = limit[k] + eps;
-        if (bk * bk <= near2 || lk * lk < near2) {
-          close(k);
-        } else {
-          ++k;
-        }
-      }
-      if (open == 0) return;
-      nearest = *std::min_element(best.begin(), best.begin() + open);
-      shortest = *std::min_element(limit.begin(), limit.begin() + open);
-    }
+    // Every cell not yet tested that meets the wedge lies at least sqrt(near2) - eps out.
+    rays.CloseNearerThan(std::min(walks[0].ahead2, walks[1].ahead2), eps, out);
+    if (rays.open == 0) return;
     WedgeWalk& r = walks[0].ahead2 <= walks[1].ahead2 ? walks[0] : walks[1];
     if (r.done) break;  // both are: the rays still open reach past the wedge's valid depth
     const std::size_t c = static_cast<std::size_t>(r.w.iy) * static_cast<std::size_t>(nx_) +
                           static_cast<std::size_t>(r.w.ix);
     if (std::find(recent.begin(), recent.end(), c) == recent.end()) {
       recent[next_recent++ % recent.size()] = c;
-      const std::uint32_t mid = cells[c].mid, end = cells[c + 1].begin;
-      for (std::uint32_t e = cells[c].begin; e < mid; ++e) {
-        const Item& s = items[e];
-        const double px = s.p - ox, py = s.q - oy, qx = px + s.u, qy = py + s.v;
-        if (side.Outside(px, py, qx, qy)) continue;
-        WedgeSegmentHits(ox, oy, s, open, ux.data(), uy.data(), best.data());
-      }
-      if (cells[c].begin < mid) nearest = *std::min_element(best.begin(), best.begin() + open);
-      for (std::uint32_t e = mid; e < end; ++e) {
-        const Item& s = items[e];
-        if (side.Outside(s.p - ox, s.q - oy, s.u)) continue;
-        for (std::size_t k = 0; k < open; ++k) {
-          const double t = ray_hits::CircleHit(ox, oy, ux[k], uy[k], uu[k], s.p, s.q, s.v);
-          best[k] = t < best[k] ? t : best[k];
-          nearest = std::min(nearest, best[k]);
-        }
-      }
+      TestWedgeCell(c, fan, side, &rays);
     }
     AdvanceWedgeWalk(fan, &r);
   }
   // Rays beyond `valid` walk on their own, from the origin.
-  for (std::size_t k = 0; k < open; ++k) {
-    out[index[k]] = CastFromFan(fan, ux[k], uy[k], limit[k]);
+  for (std::size_t k = 0; k < rays.open; ++k) {
+    out[rays.index[k]] = CastFromFan(fan, rays.ux[k], rays.uy[k], rays.limit[k]);
   }
 }
 
