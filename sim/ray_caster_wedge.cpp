@@ -2,8 +2,7 @@
 //
 // A wedge is a run of unit rays from one origin, each turned counter-clockwise from the one before,
 // narrow enough that its lateral width stays below 0.9 grid cells out to the depth where it is
-// valid.
-// Only its two edge rays walk the grid; every cell either of them crosses is tested against
+// valid. Only its two edge rays walk the grid; every cell either of them crosses is tested against
 // all the wedge's rays that are still open. That is enough: a cell that meets the wedge cannot
 // fit between the edge rays, so one of them crosses it (and with a good part of the cell on
 // either side, far above the walk's rounding). A ray is closed once its nearest hit so far lies
