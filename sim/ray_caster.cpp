@@ -270,18 +270,6 @@ inline double RayCaster::NearestHitInCell(std::size_t c, double ox, double oy, d
   return best;
 }
 
-inline void RayCaster::StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1,
-                                    int* step, double* t, double* dt) {
-  if (u == 0.0) return;
-  const double inv = 1.0 / u;
-  const double ta = a.lo * inv, tb = a.hi * inv;
-  *t0 = std::max(*t0, std::min(ta, tb));
-  *t1 = std::min(*t1, std::max(ta, tb));
-  *step = u > 0.0 ? 1 : -1;
-  *t = (u > 0.0 ? a.up : a.down) * inv;
-  *dt = u > 0.0 ? h * inv : -h * inv;
-}
-
 RayCaster::FanStart RayCaster::StartFan(double ox, double oy) const {
   // The terms as ClipToGrid and StartWalk compute them; a ray from inside the box starts at
   // t0 = 0, where StartWalk's entry point is the origin itself.
@@ -306,27 +294,10 @@ RayCaster::FanStart RayCaster::StartFan(double ox, double oy) const {
   return f;
 }
 
-RayCaster::Walk RayCaster::StartFanWalk(const FanStart& fan, double ux, double uy,
-                                        double* t1) const {
-  // From inside the box the slabs leave t0 at 0.
-  double t0 = 0.0;
-  Walk w;
-  w.ix = fan.ix;
-  w.iy = fan.iy;
-  StartFanAxis(fan.x, ux, cell_size_, &t0, t1, &w.step_x, &w.tx, &w.dtx);
-  StartFanAxis(fan.y, uy, cell_size_, &t0, t1, &w.step_y, &w.ty, &w.dty);
-  return w;
-}
-
 double RayCaster::CastFromFan(const FanStart& fan, double ux, double uy, double max_t) const {
   if (!(max_t >= 0.0)) return kInf;
-  // StartFanWalk's steps, written out here so that they inline into the fan's loop.
-  double t0 = 0.0, t1 = max_t;
-  Walk w;
-  w.ix = fan.ix;
-  w.iy = fan.iy;
-  StartFanAxis(fan.x, ux, cell_size_, &t0, &t1, &w.step_x, &w.tx, &w.dtx);
-  StartFanAxis(fan.y, uy, cell_size_, &t0, &t1, &w.step_y, &w.ty, &w.dty);
+  double t1 = max_t;
+  const Walk w = StartFanWalk(fan, ux, uy, &t1);
   const double best = Traverse(fan.ox, fan.oy, ux, uy, t1, w);
   return best <= max_t ? best : kInf;
 }

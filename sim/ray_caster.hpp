@@ -5,6 +5,7 @@
 // decides which primitives are tested, and it is conservative, so the result is bit-identical
 // to testing every primitive (min over RaySegmentHit / RayCircleHit).
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -164,5 +165,31 @@ class RayCaster {
   std::vector<CellRange> cells_;  // nx_ * ny_ + 1 (sentinel)
   std::vector<Item> items_;
 };
+
+// The fan's set-up, inline for the loops over its rays (ray_caster.cpp and ray_caster_wedge.cpp).
+
+inline void RayCaster::StartFanAxis(const FanAxis& a, double u, double h, double* t0, double* t1,
+                                    int* step, double* t, double* dt) {
+  if (u == 0.0) return;
+  const double inv = 1.0 / u;
+  const double ta = a.lo * inv, tb = a.hi * inv;
+  *t0 = std::max(*t0, std::min(ta, tb));
+  *t1 = std::min(*t1, std::max(ta, tb));
+  *step = u > 0.0 ? 1 : -1;
+  *t = (u > 0.0 ? a.up : a.down) * inv;
+  *dt = u > 0.0 ? h * inv : -h * inv;
+}
+
+inline RayCaster::Walk RayCaster::StartFanWalk(const FanStart& fan, double ux, double uy,
+                                               double* t1) const {
+  // From inside the box the slabs leave t0 at 0.
+  double t0 = 0.0;
+  Walk w;
+  w.ix = fan.ix;
+  w.iy = fan.iy;
+  StartFanAxis(fan.x, ux, cell_size_, &t0, t1, &w.step_x, &w.tx, &w.dtx);
+  StartFanAxis(fan.y, uy, cell_size_, &t0, t1, &w.step_y, &w.ty, &w.dty);
+  return w;
+}
 
 }  // namespace retrace::sim
