@@ -136,6 +136,7 @@ class RayCaster {
   // Tests the primitives of cell c against the wedge's open rays.
   void TestWedgeCell(std::size_t c, const FanStart& fan, const WedgeSides& side,
                      WedgeRays* rays) const;
+  // best[k] = min(best[k], hit of ray k with segment s) for the first n rays, without a branch.
   static void WedgeSegmentHits(double ox, double oy, const Item& s, std::size_t n, const double* ux,
                                const double* uy, double* best);
   // The walk of a wedge's edge ray (direction (ux, uy)) up to ray parameter t1.
