@@ -120,8 +120,11 @@ void AugmentedMclConfig::Validate() const {
   core::RequireNonNegative("path_sigma_xy", path_sigma_xy);
   core::RequireNonNegative("path_sigma_theta", path_sigma_theta);
   core::RequireIntInRange("confirm_updates", confirm_updates, 1, 1'000'000);
+  core::RequireIntInRange("min_beams", min_beams, 1, 1'000'000);
   core::RequireIntInRange("max_updates", max_updates, confirm_updates, 1'000'000);
   core::RequireNonNegative("margin", margin);
+  core::RequireInRange("min_cluster_share", min_cluster_share, 0.0, 1.0);
+  core::RequireNonNegative("jump_cost", jump_cost);
   core::RequireInRange("free_threshold", free_threshold, 0.0, 0.5);
   if (!(free_threshold < 0.5)) {
     throw core::ConfigError("free_threshold", "must be < 0.5 (unknown cells are 0.5)");
@@ -200,6 +203,7 @@ void Localizer::Restart(const core::Pose2& X_MR) {
   ResetAverages();
   trial_.Stop();
   lost_ = false;
+  failed_trials_ = 0;
   estimate_ = anchor_ = X_MR;
   estimate_stale_ = false;
   challenger_updates_ = 0;
@@ -395,23 +399,35 @@ void Localizer::RunRecovery(std::span<const double> xs, std::span<const double> 
                             double belief_evidence, LocalizerUpdate* out) {
   const AugmentedMclConfig& aug = config_.augmented;
   if (trial_.running()) {
-    trial_.Weigh(*field_, robot_.X_RL, xs, ys, belief_evidence, rng_);
+    trial_.Weigh(*field_, robot_.X_RL, xs, ys, belief_evidence, aug.min_beams, rng_);
     out->trial_updates = trial_.updates();
     out->trial_log_bayes_factor = trial_.log_bayes_factor();
-    if (trial_.updates() >= aug.confirm_updates && trial_.log_bayes_factor() > aug.margin) {
+    if (lost_ && trial_.updates() >= aug.confirm_updates && TrialWins()) {
       // The trial explains the last scans better than the belief: it becomes the belief.
       particles_ = trial_.Draw(particles_.size(), rng_);
       trial_.Stop();
       w_fast_ = w_slow_;
       lost_ = false;
       out->reacquired = true;
-    } else if (trial_.updates() >= aug.max_updates ||
-               (!lost_ && trial_.log_bayes_factor() < 0.0)) {
+      failed_trials_ = 0;
+    } else if (trial_.weighed() >= aug.max_updates || !lost_) {
       trial_.Stop();
+      failed_trials_ = lost_ ? failed_trials_ + 1 : 0;
     }
     return;
   }
+  if (!lost_) failed_trials_ = 0;
   if (lost_) trial_.Start(RecoveryHypotheses());
+}
+
+bool Localizer::TrialWins() const {
+  const AugmentedMclConfig& aug = config_.augmented;
+  const std::optional<ClusterMean> main = trial_.Main();
+  if (!main || main->weight < aug.min_cluster_share) return false;
+  if (trial_.mean_likelihood() < aug.trigger_ratio * w_slow_) return false;
+  // The farther the trial would move the estimate, the more evidence it needs.
+  const double jump = core::Distance(main->X_MR, Estimate());
+  return trial_.log_bayes_factor() > aug.margin + aug.jump_cost * jump;
 }
 
 void Localizer::FollowCluster(bool jump) {
@@ -509,9 +525,11 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
   };
   // The taught poses within path_reach of the estimate; all of them when none is.
   const core::Pose2 estimate = Estimate();
+  // Widening while lost: each trial that ended without winning adds path_reach.
+  const double reach = aug.path_reach * (1.0 + failed_trials_);
   std::vector<std::size_t> reachable;
   for (std::size_t i = 0; i < recovery_poses_.size(); ++i) {
-    if (core::Distance(recovery_poses_[i], estimate) <= aug.path_reach) reachable.push_back(i);
+    if (core::Distance(recovery_poses_[i], estimate) <= reach) reachable.push_back(i);
   }
   if (reachable.empty()) {
     for (std::size_t i = 0; i < recovery_poses_.size(); ++i) reachable.push_back(i);

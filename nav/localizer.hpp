@@ -60,10 +60,19 @@ struct DynamicRejectionConfig {
 /// While lost, and when `enabled`, a recovery trial (nav/recovery_trial.hpp) runs `hypotheses`
 /// hypotheses beside the belief: near_fraction of them around the estimate (Gaussian), the rest
 /// around poses of the taught path of the current map and the start of the next
-/// (Localizer::SetRecoveryPoses; uniformly over the map's free cells when none are given). The
-/// trial replaces the belief only once it has explained at least confirm_updates scans and its
-/// summed log evidence beats the belief's by `margin` nats; after max_updates it ends. No random
-/// particle ever enters the belief directly.
+/// (Localizer::SetRecoveryPoses; uniformly over the map's free cells when none are given), those
+/// within path_reach of the estimate, a reach that widens by path_reach with every trial that
+/// ends without winning while the localizer stays lost. The trial replaces the belief only on
+/// evidence a wrong place cannot collect, and only while the belief is lost (a trial ends when the
+/// belief is found again): it has explained at least confirm_updates scans of at least min_beams
+/// kept beams each, weighed on the same beams as the belief and moved by the same odometry; its
+/// summed log
+/// evidence beats the belief's by margin + jump_cost × the distance it would move the estimate
+/// (a prior against far places: a wrong place far away, in a map that distorts distant parts
+/// alike, can fit a few scans well); it explains the scans as a localized belief
+/// does (its mean average likelihood at least trigger_ratio · w_slow: adopting it would not
+/// leave the localizer lost); and at least min_cluster_share of its weight agrees on one place.
+/// After max_updates it ends. No random particle ever enters the belief directly.
 ///
 /// The average likelihood of an update is the expectation over the belief (prior weights) of
 /// the per-beam geometric mean exp(Σ_i log p_i / n) (1/m): with about a hundred beams the plain
@@ -85,8 +94,11 @@ struct AugmentedMclConfig {
   /// m: only the taught poses this close to the estimate (the whole path when none is)
   double path_reach = 10.0;
   int confirm_updates = 5;        ///< scans a trial must explain before it may win
-  int max_updates = 25;           ///< scans after which a trial that has not won ends
+  int min_beams = 6;              ///< kept beams a scan needs to count as explained
+  int max_updates = 25;           ///< scans weighed after which a trial that has not won ends
   double margin = 30.0;           ///< nats by which a trial's evidence must beat the belief's
+  double min_cluster_share = 0.7;  ///< of the trial's weight in its main cluster, to win
+  double jump_cost = 4.0;  ///< nats of evidence more per metre the estimate would move
   double free_threshold = 0.25;   ///< a cell is free when its probability <= this
 
   template <class V>
@@ -103,8 +115,11 @@ struct AugmentedMclConfig {
     v("path_sigma_theta", path_sigma_theta);
     v("path_reach", path_reach);
     v("confirm_updates", confirm_updates);
+    v("min_beams", min_beams);
     v("max_updates", max_updates);
     v("margin", margin);
+    v("min_cluster_share", min_cluster_share);
+    v("jump_cost", jump_cost);
     v("free_threshold", free_threshold);
   }
   /// Throws core::ConfigError naming the key.
@@ -286,6 +301,8 @@ class Localizer {
                      std::vector<double>* xs, std::vector<double>* ys) const;
   void RunRecovery(std::span<const double> xs, std::span<const double> ys,
                    double belief_evidence, LocalizerUpdate* out);
+  // The running trial has the evidence to replace the belief (AugmentedMclConfig).
+  bool TrialWins() const;
   void FollowCluster(bool jump);
   void Restart(const core::Pose2& X_MR);
 
@@ -312,6 +329,7 @@ class Localizer {
   core::Pose2 anchor_;
   core::Pose2 challenger_;
   int challenger_updates_ = 0;
+  int failed_trials_ = 0;  // trials ended without winning since the localizer became lost
 };
 
 }  // namespace retrace::nav

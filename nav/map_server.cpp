@@ -1,6 +1,7 @@
 #include "nav/map_server.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -9,124 +10,130 @@
 #include "core/path_projection.hpp"
 
 namespace retrace::nav {
+namespace {
 
-MapServer::MapServer(TeachBundle bundle, const LoopConfig& loop)
-    : bundle_(std::move(bundle)), loop_(loop) {
-  if (bundle_.maps.empty())
+std::shared_ptr<const TeachBundle> Linked(TeachBundle bundle, const MapServerConfig& config) {
+  if (bundle.maps.empty())
     throw core::ConfigError("maps", "the teach bundle holds no partial map");
-  for (const PartialMap& map : bundle_.maps) route_length_ += map.path.Length();
-  if (loop_.enabled && !bundle_.maps.back().path.empty() && !bundle_.maps.front().path.empty()) {
-    const core::Pose2 end_in_first = LastMapInFirst() * bundle_.maps.back().path.back();
-    loops_ = core::Distance(end_in_first, bundle_.maps.front().path.front()) <=
-             loop_.closure_radius + loop_.drift * route_length_;
+  if (!bundle.linked) {
+    RouteLinkConfig link;
+    link.drift = config.drift;
+    link.revisit_radius = config.closure_radius;
+    LinkRoute(bundle, link);
+  }
+  return std::make_shared<const TeachBundle>(std::move(bundle));
+}
+
+// Arc length of p's projection onto the path (0 for a path of fewer than two poses).
+double ArcOf(const core::Path& path, const core::Vec2& p) {
+  if (path.size() < 2) return 0.0;
+  return core::ProjectOntoPath(path.positions(), path.arc_lengths(), p, 0.0, path.Length()).s;
+}
+
+}  // namespace
+
+MapServer::MapServer(TeachBundle bundle, const MapServerConfig& config)
+    : bundle_(Linked(std::move(bundle), config)), config_(config), graph_(bundle_, config.drift) {
+  const TeachBundle& b = *bundle_;
+  if (config_.loop && !b.maps.back().path.empty() && !b.maps.front().path.empty()) {
+    const core::Pose2 end_in_first = LastMapInFirst() * b.maps.back().path.back();
+    loops_ = core::Distance(end_in_first, b.maps.front().path.front()) <=
+             config_.closure_radius + config_.drift * graph_.Length();
   }
 }
 
-void MapServer::HandOver(Localizer& localizer, PathFollower& follower) {
-  follower.SetPath(current().path);
-  previous_tail_.clear();
-  if (index_ > 0) {
-    const core::Path& path = bundle_.maps[index_ - 1].path;
-    const core::Pose2 X_this_previous = bundle_.maps[index_ - 1].X_MS.Inverse();
-    for (std::size_t i = 0; i < path.size(); ++i) {
-      if (path.Length() - path.ArcLength(i) <= kPreviousPathReach)
-        previous_tail_.push_back((X_this_previous * path[i]).translation());
-    }
-  }
-  previous_tail_arc_ = core::CumulativeArcLength(previous_tail_);
-  std::vector<core::Pose2> where = current().path.poses();
-  const bool has_next = !IsLast() || loops_;
-  if (has_next) {
-    // The next map's frame in this one: its start is this map's switch pose (or, after the last
-    // map of a loop, map 0's origin carried back through the chain).
-    const std::size_t next = IsLast() ? 0 : index_ + 1;
-    const core::Pose2 X_this_next = IsLast() ? LastMapInFirst().Inverse() : current().X_MS;
-    const core::Path& path = bundle_.maps[next].path;
-    for (std::size_t i = 0; i < path.size() && path.ArcLength(i) <= kNextPathReach; ++i) {
-      where.push_back(X_this_next * path[i]);
-    }
-  }
-  localizer.SetRecoveryPoses(std::move(where));
+void MapServer::HandOver(Localizer& localizer, PathFollower& follower, double s) {
+  follower.SetPathAt(current().path, s);
+  localizer.SetRecoveryPoses(graph_.PosesInReach(index_, config_.max_sigma));
 }
 
-void MapServer::Start(Localizer& localizer, PathFollower& follower) {
-  index_ = 0;
+RoutePlace MapServer::NearestMap(const core::Pose2& X_M0R) const {
+  const std::vector<RoutePlace> places =
+      graph_.Place(0, X_M0R, std::numeric_limits<double>::infinity());
+  return *std::min_element(places.begin(), places.end(),
+                           [](const RoutePlace& a, const RoutePlace& b) {
+                             return a.distance + a.sigma < b.distance + b.sigma;
+                           });
+}
+
+void MapServer::Start(Localizer& localizer, PathFollower& follower, std::size_t map,
+                      const core::Pose2& X_MR) {
+  RETRACE_CHECK(map < size());
+  index_ = map;
   localizer.SetMap(current().grid);
-  HandOver(localizer, follower);
+  HandOver(localizer, follower, ArcOf(current().path, X_MR.translation()));
 }
 
-MapStep MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
-                          double max_distance) const {
+MapDecision MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
+                              double max_distance) const {
+  MapDecision d;
   if (f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path)) {
-    if (!IsLast()) return MapStep::kNext;
-    return loops_ ? MapStep::kWrap : MapStep::kDone;
+    if (!IsLast()) {
+      // The common case: path k+1 begins where path k ends, at the switch pose (eq. 1).
+      d.step = MapStep::kSwitch;
+      d.place = {index_ + 1,  TransformToNextMap(current().X_MS, X_MR),
+                 current().X_MS.Inverse(), 0.0, 0.0, 0.0, false};
+      return d;
+    }
+    if (!loops_) {
+      d.step = MapStep::kDone;
+      return d;
+    }
+    d.step = MapStep::kWrap;
+    // Through a revisit edge that closes the loop here, when there is one.
+    for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma)) {
+      if (p.map == 0 && p.via_revisit && p.distance <= max_distance) d.place = p;
+    }
+    return d;
   }
-  if (f.off_path && previous_tail_.size() >= 2 &&
-      core::ProjectOntoPath(previous_tail_, previous_tail_arc_, X_MR.translation(), 0.0,
-                            previous_tail_arc_.back())
-              .distance <= max_distance) {
-    return MapStep::kBack;
+  if (!f.off_path) return d;
+  const std::vector<RoutePlace> places = graph_.Place(index_, X_MR, config_.max_sigma);
+  const RoutePlace* best = nullptr;
+  for (const RoutePlace& p : places) {
+    // Still on the current path, behind the progress or beyond the follower's rejoin window:
+    // the map holds the robot.
+    if (p.map == index_ && p.distance <= max_distance) return d;
+    if (p.map == index_ || p.distance > max_distance) continue;
+    if (best == nullptr || p.distance + p.sigma < best->distance + best->sigma) best = &p;
   }
-  return MapStep::kStay;
+  if (best != nullptr) {
+    d.step = MapStep::kSwitch;
+    d.place = *best;
+  }
+  return d;
 }
 
-MapSwitch MapServer::SwitchBack(Localizer& localizer, PathFollower& follower) {
-  RETRACE_CHECK(index_ > 0);
+MapSwitch MapServer::Switch(const RoutePlace& place, Localizer& localizer,
+                            PathFollower& follower) {
+  RETRACE_CHECK(place.map < size());
   MapSwitch s;
   s.from = index_;
-  s.to = index_ - 1;
+  s.to = place.map;
   s.X_MkR = localizer.Estimate();
-  index_ = s.to;
-  // The previous map's switch pose is the current map's frame in it: eq. (1) inverted.
-  localizer.ApplyMapSwitch(current().grid, current().X_MS);
-  HandOver(localizer, follower);
-  follower.SetPathFromEnd(current().path, localizer.Estimate().translation(), kPreviousPathReach);
+  s.sigma = place.sigma;
+  index_ = place.map;
+  localizer.ApplyMapSwitch(current().grid, place.X_jk);  // eq. (1) for the next map
+  if (place.sigma > config_.min_sigma_xy) {
+    // The transform may be off by about sigma here: let the scans find the robot again.
+    localizer.Initialize(localizer.Estimate(), place.sigma, config_.min_sigma_theta);
+  }
+  HandOver(localizer, follower, place.s);
   s.X_MnR = localizer.Estimate();
   return s;
 }
 
-MapSwitch MapServer::SwitchToNext(Localizer& localizer, PathFollower& follower) {
-  RETRACE_CHECK(!IsLast());
-  MapSwitch s;
-  s.from = index_;
-  s.to = index_ + 1;
-  s.X_MkR = localizer.Estimate();
-  // X_{M_{k+1} M_k} = inverse(X_{M_k S}); applied to X_{M_k R} it is eq. (1).
-  const core::Pose2 X_next_prev = current().X_MS.Inverse();
-  ++index_;
-  localizer.ApplyMapSwitch(current().grid, X_next_prev);
-  HandOver(localizer, follower);
-  s.X_MnR = localizer.Estimate();
-  return s;
-}
-
-core::Pose2 MapServer::LastMapInFirst() const {
-  core::Pose2 X_first_last = core::Pose2::Identity();
-  for (std::size_t k = 0; k + 1 < bundle_.maps.size(); ++k)
-    X_first_last = X_first_last * bundle_.maps[k].X_MS;
-  return X_first_last;
-}
-
-MapSwitch MapServer::WrapToFirst(Localizer& localizer, PathFollower& follower) {
+MapSwitch MapServer::WrapToFirst(const MapDecision& decision, Localizer& localizer,
+                                 PathFollower& follower) {
   RETRACE_CHECK(IsLast());
-  MapSwitch s;
-  s.from = index_;
-  s.to = 0;
-  s.X_MkR = localizer.Estimate();
-  const core::Pose2 X_first_last = LastMapInFirst();
-  index_ = 0;
-  localizer.ApplyMapSwitch(current().grid, X_first_last);
-  HandOver(localizer, follower);
-  SpreadAfterWrap(localizer);
-  s.X_MnR = localizer.Estimate();
-  return s;
-}
-
-void MapServer::SpreadAfterWrap(Localizer& localizer) const {
-  // The chain of switch poses carries the maps' drift over the whole loop: spread the particles
-  // over what that drift allows, and let the scans find the robot again.
-  const double sigma_xy = std::max(loop_.min_sigma_xy, 0.5 * loop_.drift * route_length_);
-  localizer.Initialize(localizer.Estimate(), sigma_xy, loop_.min_sigma_theta);
+  if (decision.place.map == 0 && decision.place.via_revisit) {
+    return Switch(decision.place, localizer, follower);
+  }
+  // By the chain over the whole loop, which carries the maps' drift over the route.
+  RoutePlace place;
+  place.map = 0;
+  place.X_jk = LastMapInFirst();
+  place.sigma = std::max(config_.min_sigma_xy, 0.5 * config_.drift * graph_.Length());
+  return Switch(place, localizer, follower);
 }
 
 }  // namespace retrace::nav

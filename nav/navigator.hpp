@@ -27,23 +27,32 @@ struct NavigatorTick {
   std::optional<MapSwitch> map_switch;  ///< the switch or wrap made at this tick
   bool wrapped = false;                 ///< map_switch went from the last map back to map 0
   bool route_done = false;              ///< at the end of the last path (and no loop to go on)
+  /// The command was held to follower.creep_speed: the localizer is lost, or a re-acquisition
+  /// has not held for augmented.confirm_updates updates yet.
+  bool creeping = false;
 };
 
 class Navigator {
  public:
   /// Throws core::ConfigError for an invalid config or a bundle without maps.
   Navigator(const LocalizerConfig& localizer, const PathFollowerConfig& follower,
-            const RobotGeometry& robot, TeachBundle bundle, const LoopConfig& loop,
+            const RobotGeometry& robot, TeachBundle bundle, const MapServerConfig& server,
             core::Rng localizer_rng);
 
-  /// Map 0 and path 0, and the particles drawn around X_M0R (Localizer::Initialize).
-  void Start(const core::Pose2& X_M0R, double sigma_xy, double sigma_theta);
+  /// Map `map` and its path, the follower's progress where X_MR lies on it, and the particles
+  /// drawn around X_MR (Localizer::Initialize).
+  void Start(std::size_t map, const core::Pose2& X_MR, double sigma_xy, double sigma_theta);
+  /// As Start, in the map whose taught path lies nearest X_M0R, a pose given in map 0's frame
+  /// (MapServer::NearestMap): a run that begins mid-route begins in the map that holds it.
+  void StartNearest(const core::Pose2& X_M0R, double sigma_xy, double sigma_theta);
   /// One odometry increment (robot frame).
   void OnOdometry(const core::OdometryDelta& delta) { localizer_.Predict(delta); }
   /// One scan (LiDAR frame); the update is gated on motion (Localizer::Update).
-  LocalizerUpdate OnScan(const core::LaserScan& scan) { return localizer_.Update(scan); }
+  LocalizerUpdate OnScan(const core::LaserScan& scan);
   /// One control tick, dt s after the previous one: the follower on the estimate, then the map
   /// server's rule (MapServer::Decide); after a switch the follower runs again on the new path.
+  /// While the localizer is lost, and for augmented.confirm_updates updates after a
+  /// re-acquisition, the command is held to follower.creep_speed (its turn rate scaled alike).
   NavigatorTick OnControlTick(double dt);
 
   core::Pose2 Estimate() const { return localizer_.Estimate(); }
@@ -55,6 +64,7 @@ class Navigator {
   Localizer localizer_;
   PathFollower follower_;
   MapServer server_;
+  int confirming_ = 0;  // updates a re-acquisition must still hold for
 };
 
 }  // namespace retrace::nav

@@ -1,6 +1,7 @@
 #include "nav/online_switcher.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "core/config.hpp"
@@ -13,11 +14,18 @@ double OnlineSwitchingConfig::MaxMapLength() const {
   return drift_budget / drift;
 }
 
+double OnlineSwitchingConfig::MinMapLength() const {
+  if (!(tolerance > 0.0)) return 0.0;
+  if (!(drift > 0.0)) return std::numeric_limits<double>::infinity();
+  return tolerance / drift;
+}
+
 void OnlineSwitchingConfig::Validate() const {
   core::RequirePositive("revisit_radius", revisit_radius);
   core::RequireNonNegative("window", window);
   core::RequireInRange("drift", drift, 0.0, 0.5);
   core::RequireNonNegative("drift_budget", drift_budget);
+  core::RequireNonNegative("tolerance", tolerance);
   // A map must be able to outgrow the window it chooses its end in, or it would end where it
   // began.
   if (!(MaxMapLength() > window)) {
@@ -27,6 +35,13 @@ void OnlineSwitchingConfig::Validate() const {
                                                 core::FormatNumber(MaxMapLength()) +
                                                 " m of travel, window " +
                                                 core::FormatNumber(window) + " m (0: no budget)");
+  }
+  // A loop the tolerance calls consistent must fit in a map.
+  if (std::isfinite(MaxMapLength()) && !(MaxMapLength() > MinMapLength())) {
+    throw core::ConfigError("tolerance", "must be below the drift budget: loops up to " +
+                                             core::FormatNumber(MinMapLength()) +
+                                             " m would be consistent, but maps end after " +
+                                             core::FormatNumber(MaxMapLength()) + " m");
   }
 }
 
@@ -51,7 +66,11 @@ bool RevisitDetector::OnPose(const core::Pose2& X_OR) {
     const Sample& a = trail_[i];
     const Sample& b = trail_[i + 1];
     if (b.travelled > travelled_ - lag_) break;
-    const double radius = config_.revisit_radius + config_.drift * (travelled_ - b.travelled);
+    const double loop_drift = config_.drift * (travelled_ - b.travelled);
+    // A consistent loop needs no new map; its later samples lie closer still (the trail is in
+    // the order driven), so the search ends here.
+    if (loop_drift <= config_.tolerance) break;
+    const double radius = config_.revisit_radius + loop_drift;
     if (core::SegmentDistance(p, a.p, b.p) < radius) {
       revisit = true;
       break;

@@ -11,6 +11,15 @@
 // `drift` times the distance driven between the two visits (odometry's error is a few per cent of
 // the distance driven), which makes the test err on the early side.
 //
+// Only a revisit that is inconsistent needs a new map ("a revisit needs a new map only when it is
+// inconsistent", docs/METHOD.md): what blurs a map is the drift gathered between the two visits
+// of a place, not the visit. The odometry model's expected error over the loop is `drift` times
+// the distance driven between the two visits; while it is at most `tolerance` (what the localizer
+// tolerates in one map) the revisit is consistent and the map goes on (a U-turn after ten metres
+// has drifted centimetres). The test runs on at every sample, so a robot that comes back along
+// its trail switches once the loop has grown inconsistent: no map ends before tolerance / drift
+// metres of travel (MinMapLength) for a revisit.
+//
 // Also when the map's drift reaches its budget ("switching bounds drift, not only revisits";
 // docs/METHOD.md, online map switching): a map is only useful while the drift its own odometry gathered is small against
 // what the localizer tolerates, and a route whose first revisit comes late would otherwise be one
@@ -50,13 +59,21 @@ struct OnlineSwitchingConfig {
   /// m of expected drift (drift × the map's length of travel) at which a map is closed even
   /// without a revisit (route.online_drift_budget); 0: never.
   double drift_budget = 12.0;
+  /// m of expected drift over a loop (drift × the distance driven between the two visits) up to
+  /// which a revisit is consistent and needs no new map (route.revisit_tolerance); 0: every
+  /// revisit closes the map.
+  double tolerance = 0.5;
 
   /// m of travel after which a map reaches its drift budget: drift_budget / drift; infinite
   /// when either is 0.
   double MaxMapLength() const;
+  /// m of travel a loop must have for a revisit to close the map: tolerance / drift (0 when the
+  /// tolerance is 0; infinite when drift is 0 and the tolerance is not).
+  double MinMapLength() const;
 
   /// Throws core::ConfigError naming the key: revisit_radius > 0, window >= 0, 0 <= drift <= 0.5,
-  /// drift_budget >= 0 and, when the budget applies, MaxMapLength() > window.
+  /// drift_budget >= 0, tolerance >= 0 and, when the budget applies, MaxMapLength() > window and
+  /// MaxMapLength() > MinMapLength().
   void Validate() const;
 };
 

@@ -33,6 +33,7 @@ void PathFollowerConfig::Validate() const {
   core::RequirePositive("tangent_window", tangent_window);
   core::RequirePositive("max_speed", max_speed);
   core::RequireInRange("min_speed", min_speed, 0.0, max_speed);
+  core::RequireInRange("creep_speed", creep_speed, 0.0, max_speed);
   core::RequirePositive("max_yaw_rate", max_yaw_rate);
   core::RequireNonNegative("kp_lateral", kp_lateral);
   core::RequireNonNegative("kd_lateral", kd_lateral);
@@ -63,13 +64,11 @@ void PathFollower::SetPath(const core::Path& path) {
   heading_rate_ = 0.0;
 }
 
-void PathFollower::SetPathFromEnd(const core::Path& path, const core::Vec2& p_M, double reach) {
+void PathFollower::SetPathAt(const core::Path& path, double s) {
   SetPath(path);
   const double length = path_.Length();
   if (length <= kTinyLength) return;
-  progress_.MoveTo(core::ProjectOntoPath(path_.positions(), path_.arc_lengths(), p_M,
-                                         std::max(0.0, length - reach), length)
-                       .s);
+  progress_.MoveTo(std::clamp(s, 0.0, length));
 }
 
 double PathFollower::TangentAt(double s) const {

@@ -60,6 +60,10 @@ struct PathFollowerConfig {
   double tangent_window = 0.5;
   double max_speed = 1.0;     ///< m/s
   double min_speed = 0.05;    ///< m/s, floor while driving so that the robot never stalls
+  /// m/s. The speed limit while the localizer is lost, and until a re-acquisition has held for
+  /// augmented.confirm_updates updates (nav::Navigator): the robot creeps on, so that scans keep
+  /// coming, but never drives on at speed from an estimate that just jumped.
+  double creep_speed = 0.2;
   double max_yaw_rate = 1.0;  ///< rad/s, |omega| limit of the command
   double kp_lateral = 1.0;    ///< rad/s per m of lateral error
   double kd_lateral = 0.5;    ///< rad/s per m/s of lateral error rate
@@ -85,6 +89,7 @@ struct PathFollowerConfig {
     v("tangent_window", tangent_window);
     v("max_speed", max_speed);
     v("min_speed", min_speed);
+    v("creep_speed", creep_speed);
     v("max_yaw_rate", max_yaw_rate);
     v("kp_lateral", kp_lateral);
     v("kd_lateral", kd_lateral);
@@ -126,9 +131,9 @@ class PathFollower {
   /// Starts following `path` (poses in the current map frame M) from its first pose: progress
   /// and derivative state are reset. An empty path counts as already reached.
   void SetPath(const core::Path& path);
-  /// As SetPath, but the progress starts at the robot's place on the path's last `reach`
-  /// metres (a robot that came back into this path from the next one, driving backwards).
-  void SetPathFromEnd(const core::Path& path, const core::Vec2& p_M, double reach);
+  /// As SetPath, but the progress starts at arc length s (m, clamped to the path): where the
+  /// robot entered the path (the map server hands a path over by place).
+  void SetPathAt(const core::Path& path, double s);
   const core::Path& path() const { return path_; }
 
   /// One control step from the estimate X_MR (robot R in map M) after dt s (the control

@@ -1,6 +1,7 @@
 #include "nav/recovery_trial.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "core/check.hpp"
 #include "nav/resampling.hpp"
@@ -12,14 +13,24 @@ void RecoveryTrial::Start(std::vector<core::Pose2> hypotheses) {
   hypotheses_ = std::move(hypotheses);
   weights_.assign(hypotheses_.size(), 1.0 / static_cast<double>(hypotheses_.size()));
   updates_ = 0;
+  weighed_ = 0;
   log_bayes_factor_ = 0.0;
+  likelihood_sum_ = 0.0;
 }
 
 void RecoveryTrial::Stop() {
   hypotheses_.clear();
   weights_.clear();
   updates_ = 0;
+  weighed_ = 0;
   log_bayes_factor_ = 0.0;
+  likelihood_sum_ = 0.0;
+}
+
+std::optional<ClusterMean> RecoveryTrial::Main() const {
+  std::vector<Particle> particles(hypotheses_.size());
+  for (std::size_t j = 0; j < hypotheses_.size(); ++j) particles[j] = {hypotheses_[j], weights_[j]};
+  return MainCluster(particles);
 }
 
 void RecoveryTrial::Predict(const core::OdometryDelta& delta, const MotionNoise& noise,
@@ -29,17 +40,22 @@ void RecoveryTrial::Predict(const core::OdometryDelta& delta, const MotionNoise&
 
 void RecoveryTrial::Weigh(const LikelihoodField& field, const core::Pose2& X_RL,
                           std::span<const double> xs, std::span<const double> ys,
-                          double belief_evidence, core::Rng& rng) {
+                          double belief_evidence, int min_points, core::Rng& rng) {
   RETRACE_CHECK(running() && xs.size() == ys.size());
   const std::size_t n = hypotheses_.size();
   std::vector<double> log_w(n), w(n);
+  double likelihood = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
-    log_w[j] = std::log(weights_[j]) +
-               field.SumLogLikelihood(hypotheses_[j] * X_RL, xs.data(), ys.data(), xs.size());
+    const double ll =
+        field.SumLogLikelihood(hypotheses_[j] * X_RL, xs.data(), ys.data(), xs.size());
+    log_w[j] = std::log(weights_[j]) + ll;
+    if (!xs.empty()) likelihood += weights_[j] * std::exp(ll / static_cast<double>(xs.size()));
   }
+  likelihood_sum_ += likelihood;
   const double evidence = NormalizeLogWeights(log_w, w);
   log_bayes_factor_ += evidence - belief_evidence;
-  ++updates_;
+  ++weighed_;
+  if (static_cast<int>(xs.size()) >= min_points) ++updates_;
   weights_ = std::move(w);
   if (EffectiveSampleSize(weights_) < 0.5 * static_cast<double>(n)) {
     const std::vector<std::size_t> idx = LowVarianceResample(weights_, n, rng);

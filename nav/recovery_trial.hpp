@@ -11,12 +11,14 @@
 // `margin` nats does it replace the belief: a re-acquisition supported by several updates. A
 // trial that has not won after `max_updates` ends.
 
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "core/pose2.hpp"
 #include "core/rng.hpp"
 #include "core/twist.hpp"
+#include "nav/cluster_estimate.hpp"
 #include "nav/likelihood_field.hpp"
 #include "nav/motion_model.hpp"
 #include "nav/particle.hpp"
@@ -36,13 +38,25 @@ class RecoveryTrial {
   /// Weighs the hypotheses with the update's beam end points (L frame, as the belief's), adds
   /// this scan's evidence minus the belief's `belief_evidence` to the log Bayes factor, and
   /// resamples the hypotheses (low variance) when their effective sample size falls below half.
+  /// The scan counts as explained (updates()) only with at least `min_points` end points: a few
+  /// beams fit many places.
   void Weigh(const LikelihoodField& field, const core::Pose2& X_RL, std::span<const double> xs,
-             std::span<const double> ys, double belief_evidence, core::Rng& rng);
+             std::span<const double> ys, double belief_evidence, int min_points,
+             core::Rng& rng);
 
-  /// Updates weighed since Start.
+  /// Scans explained since Start (weighed with at least min_points end points).
   int updates() const { return updates_; }
+  /// Scans weighed since Start.
+  int weighed() const { return weighed_; }
   /// Σ over those updates of (log evidence of the trial − log evidence of the belief), nats.
   double log_bayes_factor() const { return log_bayes_factor_; }
+  /// The mean over those updates of the trial's average likelihood (as the belief's w_avg: the
+  /// expectation over the hypotheses of the per-beam geometric mean, 1/m).
+  double mean_likelihood() const { return weighed_ > 0 ? likelihood_sum_ / weighed_ : 0.0; }
+  /// The trial's main cluster (nav/cluster_estimate.hpp): its mean, and its share of the weight,
+  /// near 1 when the hypotheses agree on one place, lower while two places still explain the
+  /// scans alike. nullopt before Start.
+  std::optional<ClusterMean> Main() const;
   /// The trial's particles drawn to `count` by weight (low variance), equally weighted.
   std::vector<Particle> Draw(std::size_t count, core::Rng& rng) const;
 
@@ -50,7 +64,9 @@ class RecoveryTrial {
   std::vector<core::Pose2> hypotheses_;
   std::vector<double> weights_;
   int updates_ = 0;
+  int weighed_ = 0;
   double log_bayes_factor_ = 0.0;
+  double likelihood_sum_ = 0.0;
 };
 
 }  // namespace retrace::nav

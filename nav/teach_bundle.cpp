@@ -35,6 +35,7 @@ fs::path LastPoseFile(const fs::path& dir, std::size_t k) {
 }
 fs::path SwitchPosesFile(const fs::path& dir) { return dir / "switch_poses.txt"; }
 fs::path CountFile(const fs::path& dir) { return dir / "sub_map_num.txt"; }
+fs::path RevisitsFile(const fs::path& dir) { return dir / "revisits.txt"; }
 
 std::string PoseLine(const core::Pose2& p) {
   return core::FormatNumber(p.x) + " " + core::FormatNumber(p.y) + " " +
@@ -139,6 +140,45 @@ bool SamePose(const core::Pose2& a, const core::Pose2& b) {
          std::abs(core::AngleDiff(a.theta, b.theta)) <= kPoseAgreement;
 }
 
+std::string RevisitsText(const TeachBundle& bundle) {
+  std::string text =
+      "# retrace teach bundle: the route graph's revisit edges, one per line: maps a < b, the\n"
+      "# place's arc length on path a and on path b (m), and map b's frame in map a's as\n"
+      "# registered there: x (m) y (m) yaw (rad)\n";
+  for (const RevisitEdge& e : bundle.revisits) {
+    text += std::to_string(e.a) + " " + std::to_string(e.b) + " " + core::FormatNumber(e.s_a) +
+            " " + core::FormatNumber(e.s_b) + " " + PoseLine(e.X_ab);
+  }
+  return text;
+}
+
+// revisits.txt, when there is one (a folder written before the route graph has none: the map
+// server links it when it loads it).
+void ReadRevisits(const fs::path& dir, TeachBundle* bundle) {
+  const fs::path file = RevisitsFile(dir);
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return;
+  const std::size_t n = bundle->maps.size();
+  for (const NumberLine& line : ReadNumberLines(file)) {
+    const std::vector<double>& v = line.values;
+    if (v.size() != 7) {
+      FailAt(file, line.line,
+             "expected 7 numbers (a b s_a s_b x y yaw), got " + std::to_string(v.size()));
+    }
+    const auto index = [&](double x) {
+      if (!(x >= 0.0) || x != std::floor(x) || x >= static_cast<double>(n)) {
+        FailAt(file, line.line, "map index " + core::FormatNumber(x) + " is not one of the " +
+                                    std::to_string(n) + " maps");
+      }
+      return static_cast<std::size_t>(x);
+    };
+    RevisitEdge e{index(v[0]), index(v[1]), v[2], v[3], core::Pose2(v[4], v[5], v[6])};
+    if (!(e.a < e.b)) FailAt(file, line.line, "map a must come before map b");
+    bundle->revisits.push_back(e);
+  }
+  bundle->linked = true;
+}
+
 TeachBundle ReadBundleFiles(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw core::IoError("no such folder");
@@ -179,6 +219,7 @@ TeachBundle ReadBundleFiles(const fs::path& dir) {
                           std::to_string(k));
     }
   }
+  ReadRevisits(dir, &bundle);
   return bundle;
 }
 
@@ -204,6 +245,12 @@ void WriteTeachBundle(const fs::path& dir, const TeachBundle& bundle) {
   }
   RemoveStaleMaps(dir, n);
   io::WriteFileAtomic(SwitchPosesFile(dir), switch_poses);
+  if (bundle.linked) {
+    io::WriteFileAtomic(RevisitsFile(dir), RevisitsText(bundle));
+  } else {
+    std::error_code ec;
+    fs::remove(RevisitsFile(dir), ec);
+  }
   // Last: a reader that finds the count finds everything it counts.
   io::WriteFileAtomic(CountFile(dir), std::to_string(n) + "\n");
 }

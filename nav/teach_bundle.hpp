@@ -10,6 +10,9 @@
 //   <dir>/last_pose_k.txt                   X_{M_k S} again as AutoNavi's path_register writes
 //                                           it: a single `x y yaw` line, no header
 //   <dir>/sub_map_num.txt                   the number of partial maps
+//   <dir>/revisits.txt                      the route graph's revisit edges (RevisitEdge), one
+//                                           `a b s_a s_b x y yaw` line each (retrace's own;
+//                                           absent in folders written before it: see `linked`)
 //
 // Units: m and rad. Every file is written atomically.
 
@@ -30,9 +33,25 @@ struct PartialMap {
   core::Pose2 X_MS;          ///< switch pose: where the next map starts, in M
 };
 
-/// The partial maps of one teaching run, in driving order.
+/// A place where the taught paths of two maps come back to each other (a revisit), and the
+/// transform between the two frames measured there by registering the maps
+/// (nav/route_graph.hpp, nav/map_registration.hpp). The switch poses relate consecutive maps;
+/// these edges relate the maps a route passes again.
+struct RevisitEdge {
+  std::size_t a = 0;  ///< the earlier map
+  std::size_t b = 0;  ///< the later map (a < b)
+  double s_a = 0.0;   ///< m: arc length of the place on path a
+  double s_b = 0.0;   ///< m: ... and on path b
+  core::Pose2 X_ab;   ///< X_{M_a M_b}: map b's frame in map a's, as registered at the place
+};
+
+/// The partial maps of one teaching run, in driving order, and the route graph's revisit edges.
 struct TeachBundle {
   std::vector<PartialMap> maps;
+  std::vector<RevisitEdge> revisits;
+  /// The revisits have been searched for (nav::LinkRoute); a bundle read from a folder written
+  /// before route graphs existed has not, and the map server searches when it loads it.
+  bool linked = false;
 };
 
 /// Writes `bundle` into the folder `dir` (created if needed) in the layout above; grids are

@@ -112,8 +112,12 @@ void TeachRecorder::SwitchOnline(SwitchReason reason) {
   // least one step before it, and no earlier than `window` before that, nor before the map has
   // begun. A drift-budget switch thus ends the map within `window` before its budget runs out.
   const double latest = detector_->travelled() - detector_->step();
-  const double earliest =
-      std::max(latest - detector_->config().window, map_start_travelled_ + kPlaceSpacing);
+  // A revisit's map is at least as long as the loop the drift rule allows (MinMapLength).
+  const double shortest =
+      reason == SwitchReason::kRevisit ? detector_->config().MinMapLength() : 0.0;
+  const double earliest = std::max({latest - detector_->config().window,
+                                    map_start_travelled_ + kPlaceSpacing,
+                                    std::min(map_start_travelled_ + shortest, latest)});
   // The held scans one place spacing apart, nearest first, so that of equal places the one
   // closest to the revisit wins (as for `auto` points).
   std::size_t chosen = held_.size();

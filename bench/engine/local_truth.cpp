@@ -91,4 +91,19 @@ void LocalTruthAcrossMaps::Enter(std::size_t map) {
   current_ = LocalTruth(teach_.maps.at(map), window_, fallback_distance_);
 }
 
+std::size_t LocalTruthAcrossMaps::NearestMap(const core::Pose2& X_WR) const {
+  std::size_t best = 0;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < teach_.maps.size(); ++k) {
+    for (const core::Pose2& X : teach_.maps[k].X_WR) {
+      const double d2 = (X.translation() - X_WR.translation()).squaredNorm();
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        best = k;
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace retrace::bench

@@ -61,9 +61,12 @@ class ObserverFeed {
 nav::Navigator StartNavigator(const Scenario& scenario, const nav::TeachBundle& bundle,
                               const core::Rng& rng) {
   const ScenarioConfig& config = scenario.config;
-  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle,
-                     nav::LoopConfig{}, rng.Split("localizer"));
-  nav.Start(core::Pose2::Identity(), config.playback.initial_sigma_xy,
+  nav::MapServerConfig server;
+  server.closure_radius = config.route.revisit_radius;
+  server.drift = config.route.online_drift;
+  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle, server,
+                     rng.Split("localizer"));
+  nav.Start(0, core::Pose2::Identity(), config.playback.initial_sigma_xy,
             core::DegToRad(config.playback.initial_sigma_yaw_deg));
   return nav;
 }

@@ -84,7 +84,7 @@ void RouteConfig::Validate() const {
 
 nav::OnlineSwitchingConfig RouteConfig::OnlineSwitching() const {
   return nav::OnlineSwitchingConfig{revisit_radius, switch_window, online_drift,
-                                    online_drift_budget};
+                                    online_drift_budget, revisit_tolerance};
 }
 
 void CrossingConfig::Validate() const {

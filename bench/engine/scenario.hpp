@@ -76,6 +76,11 @@ struct RouteConfig {
   /// maps longer than switch_window; 0: no budget (maps end only before revisits).
   /// docs/METHOD.md (online map switching) gives the sweep behind the default.
   double online_drift_budget = 12.0;
+  /// `online`: m of expected drift over a loop (online_drift × the distance driven between two
+  /// visits of a place) up to which a revisit is consistent and does not close the map; a
+  /// revisit map is then at least revisit_tolerance / online_drift m long. 0: every revisit
+  /// closes the map. docs/METHOD.md (online map switching) gives the sweep behind the default.
+  double revisit_tolerance = 0.5;
   /// How well a scan at a switch point must constrain the pose (≈ end points constraining the
   /// weakest direction); below it the scenario gets a warning naming a better place nearby.
   /// The default is where the scan matcher calls a scan degenerate (nav.scan_matcher
@@ -91,6 +96,7 @@ struct RouteConfig {
     v("switch_window", switch_window);
     v("online_drift", online_drift);
     v("online_drift_budget", online_drift_budget);
+    v("revisit_tolerance", revisit_tolerance);
     v("min_switch_constraint", min_switch_constraint);
   }
   /// The switching keys (the scenario checks that exactly one of file and points is given).

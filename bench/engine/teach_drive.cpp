@@ -1,5 +1,7 @@
 #include "bench/engine/teach_drive.hpp"
 
+#include "nav/route_graph.hpp"
+
 #include <algorithm>
 #include <condition_variable>
 #include <cstdint>
@@ -16,6 +18,7 @@
 #include "core/check.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "nav/route_graph.hpp"
 #include "nav/teach_recorder.hpp"
 #include "sim/simulator.hpp"
 #include "sim/teacher.hpp"
@@ -70,12 +73,17 @@ void SignalSwitches(std::vector<ModeRecorder>& recorders, const std::vector<doub
 
 std::vector<ModeTeach> FinishModeRecorders(std::vector<ModeRecorder>& recorders,
                                            const TeachTrace& trace, const std::vector<double>& time,
-                                           const std::vector<core::Pose2>& X_WR) {
+                                           const std::vector<core::Pose2>& X_WR,
+                                           const RouteConfig& route) {
+  nav::RouteLinkConfig link;
+  link.drift = route.online_drift;
+  link.revisit_radius = route.revisit_radius;
   std::vector<ModeTeach> teaches;
   for (ModeRecorder& r : recorders) {
     ModeTeach m;
     m.mode = r.mode;
     m.bundle = r.recorder.Finish();  // first: it integrates the keyframes held back (online)
+    nav::LinkRoute(m.bundle, link);
     m.match_counts = r.recorder.match_counts();
     m.online_switches = r.recorder.online_switches();
     m.trace = trace;
@@ -349,7 +357,8 @@ TeachResult RunTeachDrive(const Scenario& scenario, const std::vector<MapMode>& 
   if (tap != nullptr) tap->OnEnd();
   result.collisions = stepper.collisions();
   result.duration_s = simulator.time();
-  result.modes = FinishModeRecorders(recorders, trace, tick_time, tick_X_WR);
+  result.modes =
+      FinishModeRecorders(recorders, trace, tick_time, tick_X_WR, scenario.config.route);
   result.cpu_time_s = ThreadCpuSeconds() - cpu_start + feed.HelperCpuSeconds();
   return result;
 }

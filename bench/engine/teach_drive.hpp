@@ -65,10 +65,12 @@ void SignalSwitches(std::vector<ModeRecorder>& recorders, const std::vector<doub
 
 /// Finishes every recorder into its mode's teach: the bundle, and the drive's `trace` with the
 /// per-map traces — the poses the recorder was given, at the instants `time`, beside the truth
-/// `X_WR` (one entry per OnPose call, in order; `X_WR` may be empty: no truth).
+/// `X_WR` (one entry per OnPose call, in order; `X_WR` may be empty: no truth). Each bundle's
+/// revisits are found and registered with the route's drift and revisit radius (nav::LinkRoute).
 std::vector<ModeTeach> FinishModeRecorders(std::vector<ModeRecorder>& recorders,
                                            const TeachTrace& trace, const std::vector<double>& time,
-                                           const std::vector<core::Pose2>& X_WR);
+                                           const std::vector<core::Pose2>& X_WR,
+                                           const RouteConfig& route);
 
 /// Drives the route with the teacher and builds the bundles of `modes`; `tap` (optional) gets
 /// a copy of the sensor stream. With `threads` > 1, the recorders of the modes are shared out

@@ -1,8 +1,29 @@
 #include "bench/metrics/localizer_health.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace retrace::bench {
+
+double ErrorIncrease(const core::Pose2& X_MR_prev, const core::Pose2& X_MR,
+                     const core::Pose2& X_WR_prev, const core::Pose2& X_WR,
+                     const core::Pose2& X_MR_truth) {
+  const core::Pose2 truth_prev = X_MR_truth * core::Between(X_WR, X_WR_prev);
+  return (X_MR.translation() - X_MR_truth.translation()).norm() -
+         (X_MR_prev.translation() - truth_prev.translation()).norm();
+}
+
+namespace {
+
+// Keeps the larger of a running maximum (NaN: none yet) and v, with its time.
+void KeepMax(double v, double time, double* max, double* max_time) {
+  if (std::isfinite(v) && !(v <= *max)) {
+    *max = v;
+    *max_time = time;
+  }
+}
+
+}  // namespace
 
 LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
                                        std::span<const LocalizerSample> updates) {
@@ -18,13 +39,19 @@ LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
     h.lost_spells += s.lost && !prev.lost ? 1 : 0;
     if (s.map != prev.map) continue;  // a switch moves the frame, not the estimate
     const core::Pose2 predicted = prev.X_MR * core::Between(prev.X_OR, s.X_OR);
-    const double jump = core::Distance(predicted, s.X_MR);
-    if (!(jump <= h.max_jump_m)) {  // also replaces the initial NaN
-      h.max_jump_m = jump;
-      h.max_jump_time_s = s.time;
-    }
+    KeepMax(core::Distance(predicted, s.X_MR), s.time, &h.max_jump_m, &h.max_jump_time_s);
+    KeepMax(s.error_increase, s.time, &h.max_error_increase_m, &h.max_error_increase_time_s);
   }
-  for (const LocalizerSample& u : updates) h.reacquisitions += u.reacquired ? 1 : 0;
+  for (const LocalizerSample& u : updates) {
+    if (!u.reacquired) continue;
+    ++h.reacquisitions;
+    // The first sample at or after the update shows it.
+    const auto at = std::lower_bound(track.begin(), track.end(), u.time,
+                                     [](const EstimateSample& e, double t) { return e.time < t; });
+    if (at == track.end() || !std::isfinite(at->error_increase)) continue;
+    h.reacquisitions_closer += at->error_increase < 0.0 ? 1 : 0;
+    h.reacquisitions_wrong += at->error_increase > kWrongReacquisition ? 1 : 0;
+  }
   return h;
 }
 
@@ -34,10 +61,11 @@ LocalizerHealth CombineLocalizerHealth(std::span<const LocalizerHealth> runs) {
     all.lost_time_s += h.lost_time_s;
     all.lost_spells += h.lost_spells;
     all.reacquisitions += h.reacquisitions;
-    if (std::isfinite(h.max_jump_m) && !(h.max_jump_m <= all.max_jump_m)) {
-      all.max_jump_m = h.max_jump_m;
-      all.max_jump_time_s = h.max_jump_time_s;
-    }
+    all.reacquisitions_closer += h.reacquisitions_closer;
+    all.reacquisitions_wrong += h.reacquisitions_wrong;
+    KeepMax(h.max_jump_m, h.max_jump_time_s, &all.max_jump_m, &all.max_jump_time_s);
+    KeepMax(h.max_error_increase_m, h.max_error_increase_time_s, &all.max_error_increase_m,
+            &all.max_error_increase_time_s);
   }
   return all;
 }

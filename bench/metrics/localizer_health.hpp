@@ -19,7 +19,24 @@ struct EstimateSample {
   core::Pose2 X_MR;   ///< the estimate in that map
   core::Pose2 X_OR;   ///< the wheel odometry at the same instant
   bool lost = false;  ///< the localizer's own verdict
+  /// m: how much farther the estimate is from the truth than the sample before it was, both
+  /// measured against this sample's local truth (ErrorIncrease); NaN without a truth, at the
+  /// first sample and across a map switch.
+  double error_increase = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// A re-acquisition that took the estimate this much (m) farther from the truth is wrong.
+inline constexpr double kWrongReacquisition = 0.5;
+
+/// The increase of the localization error from one sample to the next, both measured in one
+/// alignment: the later sample's local truth X_MR_truth, and the earlier sample's truth carried
+/// back from it by the truth's own motion between them (X_WR_prev⁻¹ X_WR). The local truth's
+/// alignment moves with the teaching sample it matches (far from the taught route, by metres
+/// from one sample to the next), so the difference of two errors each in its own alignment would
+/// count the alignment's move as the estimate's.
+double ErrorIncrease(const core::Pose2& X_MR_prev, const core::Pose2& X_MR,
+                     const core::Pose2& X_WR_prev, const core::Pose2& X_WR,
+                     const core::Pose2& X_MR_truth);
 
 struct LocalizerHealth {
   double lost_time_s = 0.0;  ///< each lost sample holds until the next
@@ -29,13 +46,21 @@ struct LocalizerHealth {
   /// how far the estimate moved beyond the odometry's motion between them. NaN: < 2 samples.
   double max_jump_m = std::numeric_limits<double>::quiet_NaN();
   double max_jump_time_s = std::numeric_limits<double>::quiet_NaN();  ///< when it happened
+  /// With a truth: the largest single-step increase of the localization error (m,
+  /// EstimateSample::error_increase), and when; NaN without one.
+  double max_error_increase_m = std::numeric_limits<double>::quiet_NaN();
+  double max_error_increase_time_s = std::numeric_limits<double>::quiet_NaN();
+  /// With a truth: re-acquisitions that took the estimate closer to it, and those that took it
+  /// more than kWrongReacquisition farther away (over the sample that shows the update).
+  int reacquisitions_closer = 0;
+  int reacquisitions_wrong = 0;
 };
 
 LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
                                        std::span<const LocalizerSample> updates);
 
-/// Over several runs: sums of the times and counts, the largest jump (and its time, of the
-/// run that had it).
+/// Over several runs: sums of the times and counts, the largest jump and error increase (and
+/// their times, of the runs that had them).
 LocalizerHealth CombineLocalizerHealth(std::span<const LocalizerHealth> runs);
 
 }  // namespace retrace::bench

@@ -234,6 +234,9 @@ struct RunSeries {
   std::vector<double> lateral_offset_m;        ///< signed, > 0 left of the taught path
   std::vector<double> localization_error_m;    ///< NaN where the map index has no teach map
   std::vector<double> localization_error_rad;  ///< NaN where the map index has no teach map
+  /// The error's increase from the sample before, in one alignment (ErrorIncrease,
+  /// bench/metrics/localizer_health.hpp); NaN at the first sample and across a map switch.
+  std::vector<double> error_increase_m;
 };
 
 /// The metrics of one playback run.

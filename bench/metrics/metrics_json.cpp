@@ -98,7 +98,11 @@ nlohmann::json ToJson(const LocalizerHealth& h) {
           {"lost_spells", h.lost_spells},
           {"reacquisitions", h.reacquisitions},
           {"max_jump_m", io::JsonNumber(h.max_jump_m)},
-          {"max_jump_time_s", io::JsonNumber(h.max_jump_time_s)}};
+          {"max_jump_time_s", io::JsonNumber(h.max_jump_time_s)},
+          {"max_error_increase_m", io::JsonNumber(h.max_error_increase_m)},
+          {"max_error_increase_time_s", io::JsonNumber(h.max_error_increase_time_s)},
+          {"reacquisitions_closer", h.reacquisitions_closer},
+          {"reacquisitions_wrong", h.reacquisitions_wrong}};
 }
 
 nlohmann::json ToJson(const Summary& s) {

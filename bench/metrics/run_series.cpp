@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "bench/metrics/localizer_health.hpp"
+
 namespace retrace::bench {
 namespace internal {
 
@@ -15,6 +17,7 @@ RunSeries Series(TeachIndex& index, const RunTrace& run, const MetricsConfig& co
   if (with_localization) {
     out.localization_error_m.assign(n, kMetricNaN);
     out.localization_error_rad.assign(n, kMetricNaN);
+    out.error_increase_m.assign(n, kMetricNaN);
   }
   PathTracker tracker(index.path, config);
   int current_map = std::numeric_limits<int>::min();
@@ -29,14 +32,21 @@ RunSeries Series(TeachIndex& index, const RunTrace& run, const MetricsConfig& co
     }
     if (!with_localization) continue;
     LocalTruth* matcher = index.Matcher(sample.map_index);
-    if (sample.map_index != current_map) {
+    const bool same_map = sample.map_index == current_map;
+    if (!same_map) {
       current_map = sample.map_index;
       if (matcher != nullptr) matcher->Reset();
     }
     if (matcher == nullptr) continue;
-    const PoseError e = Compare(sample.X_MR, matcher->InMap(sample.X_WR));
+    const core::Pose2 truth = matcher->InMap(sample.X_WR);
+    const PoseError e = Compare(sample.X_MR, truth);
     out.localization_error_m[i] = e.distance;
     out.localization_error_rad[i] = e.angle;
+    if (same_map && i > 0) {
+      const PlaybackSample& prev = run.samples[i - 1];
+      out.error_increase_m[i] =
+          ErrorIncrease(prev.X_MR, sample.X_MR, prev.X_WR, sample.X_WR, truth);
+    }
   }
   return out;
 }

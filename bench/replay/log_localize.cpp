@@ -123,14 +123,16 @@ core::Rng LogLocalizeRng(std::uint64_t seed) {
 
 namespace {
 
-// A loop is driven again after its last map (nav::LoopConfig).
-nav::LoopConfig LoopOf(const LogConfig& config) {
-  return {.enabled = true,
-          .closure_radius = config.route.revisit_radius,
-          .drift = config.route.online_drift,
-          .min_sigma_xy = config.playback.initial_sigma_xy,
-          .min_sigma_theta =
-              std::max(core::DegToRad(config.playback.initial_sigma_yaw_deg), kWrapSigmaTheta)};
+// The route graph read with the route's drift; a loop is driven again after its last map.
+nav::MapServerConfig ServerOf(const LogConfig& config) {
+  nav::MapServerConfig server;
+  server.loop = true;
+  server.closure_radius = config.route.revisit_radius;
+  server.drift = config.route.online_drift;
+  server.min_sigma_xy = config.playback.initial_sigma_xy;
+  server.min_sigma_theta =
+      std::max(core::DegToRad(config.playback.initial_sigma_yaw_deg), kWrapSigmaTheta);
+  return server;
 }
 
 // The replay of one log: per scan, the navigator's step and what the metrics keep of it.
@@ -143,7 +145,7 @@ class LogReplay {
         options_(options),
         from_log_start_(window.from_s <= 0.0),
         nav_(config.nav.localizer, config.nav.follower, streams.robot, teach.bundle,
-             LoopOf(config), LogLocalizeRng(config.seed)),
+             ServerOf(config), LogLocalizeRng(config.seed)),
         feed_(streams.odometry, options.every_odometry_tick) {
     result_.loop = nav_.server().loops();
     if (!streams.reference.empty() && !teach.trace.X_WR.empty()) {
@@ -163,7 +165,7 @@ class LogReplay {
         streams_.reference.empty() ? std::nullopt : logs::PoseAt(streams_.reference, stamp);
     std::optional<core::Pose2> X_MR_truth;
     if (local_ && X_WR) X_MR_truth = local_->InMap(*X_WR);
-    Predict(stamp, t, *X_OR, X_MR_truth);
+    Predict(stamp, t, *X_OR, X_WR, &X_MR_truth);
     const double dt = previous_stamp_ ? std::max(stamp - *previous_stamp_, 1e-3) : 0.1;
     previous_stamp_ = stamp;
     result_.last_s = t;
@@ -193,20 +195,33 @@ class LogReplay {
   bool empty() const { return result_.samples.empty(); }
 
  private:
-  // The first scan starts the navigator (at `initial`, else at the local truth, else at map 0's
-  // origin); every later one gets the odometry since the one before.
+  // The first scan starts the navigator in the map nearest the start: `initial` (in map 0's
+  // frame) carried through the route graph, else the map whose taught trace passes nearest the
+  // reference and the local truth there, else map 0's origin. Every later scan gets the
+  // odometry since the one before.
   void Predict(double stamp, double t, const core::Pose2& X_OR,
-               const std::optional<core::Pose2>& X_MR_truth) {
+               const std::optional<core::Pose2>& X_WR, std::optional<core::Pose2>* X_MR_truth) {
     if (previous_stamp_) {
       feed_.To(nav_, stamp, X_OR);
       return;
     }
     result_.first_s = t;
-    const core::Pose2 start = options_.initial
-                                  ? *options_.initial
-                                  : (X_MR_truth ? *X_MR_truth : core::Pose2::Identity());
-    nav_.Start(start, config_.playback.initial_sigma_xy,
-               core::DegToRad(config_.playback.initial_sigma_yaw_deg));
+    const double sigma_xy = config_.playback.initial_sigma_xy;
+    const double sigma_theta = core::DegToRad(config_.playback.initial_sigma_yaw_deg);
+    if (options_.initial) {
+      nav_.StartNearest(*options_.initial, sigma_xy, sigma_theta);
+    } else if (local_ && X_WR) {
+      const std::size_t map = local_->NearestMap(*X_WR);
+      local_->Enter(map);
+      *X_MR_truth = local_->InMap(*X_WR);
+      nav_.Start(map, **X_MR_truth, sigma_xy, sigma_theta);
+    } else {
+      nav_.Start(0, core::Pose2::Identity(), sigma_xy, sigma_theta);
+    }
+    if (local_ && nav_.server().index() != 0 && options_.initial) {
+      local_->Enter(nav_.server().index());
+      if (X_WR) *X_MR_truth = local_->InMap(*X_WR);
+    }
     feed_.Start(nav_, stamp, X_OR, from_log_start_);
   }
 

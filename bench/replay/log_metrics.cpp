@@ -53,8 +53,15 @@ LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLoca
   LogLocalizeMetrics m;
   std::vector<EstimateSample> track;
   track.reserve(run.samples.size());
-  for (const LogLocalizeSample& s : run.samples) {
+  for (std::size_t i = 0; i < run.samples.size(); ++i) {
+    const LogLocalizeSample& s = run.samples[i];
     track.push_back({s.time, s.map, s.X_MR, s.X_OR, s.lost});
+    if (i == 0) continue;
+    const LogLocalizeSample& prev = run.samples[i - 1];
+    if (prev.map == s.map && s.X_MR_truth && s.X_WR && prev.X_WR) {
+      track.back().error_increase =
+          ErrorIncrease(prev.X_MR, s.X_MR, *prev.X_WR, *s.X_WR, *s.X_MR_truth);
+    }
   }
   m.localizer = ComputeLocalizerHealth(track, run.updates);
   m.scans = static_cast<int>(run.samples.size());

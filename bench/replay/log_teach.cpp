@@ -85,15 +85,8 @@ std::vector<MapMode> LogTeachModes(const LogConfig& config, const LogStreams& st
                               "--reference FILE, or --synthetic-odometry for a corrected log)");
     }
   }
-  if (config.route.switch_points.is(SwitchPlanning::kOnline)) {
-    bool switches = false;
-    for (MapMode mode : modes) switches = switches || SwitchesMaps(mode);
-    if (!switches) {
-      throw core::ConfigError("route.switch_points",
-                              "`online` switching needs a map mode that switches maps (partial or "
-                              "scan_matched)");
-    }
-  }
+  // Online switching (the default) cuts the maps of the modes that switch; a consistent or single
+  // map is one map whatever the switch points say, so asking for those modes alone is no error.
   return modes;
 }
 
@@ -143,7 +136,7 @@ LogTeachResult RunLogTeach(const logs::LogIndex& index, const LogStreams& stream
   });
   RequireTaughtDrive(index, streams, window, result);
 
-  result.modes = FinishModeRecorders(recorders, trace, trace.time, trace.X_WR);
+  result.modes = FinishModeRecorders(recorders, trace, trace.time, trace.X_WR, config.route);
   result.cpu_time_s = ThreadCpuSeconds() - cpu_start;
   return result;
 }

@@ -51,6 +51,14 @@ printf '\xff\xff\xff\xff' | dd of="$tmp/corrupt.mcap" bs=1 seek=$((size / 3)) co
 printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nODOM 1 0 0 0 0 0 2.0 h 2.0\nODOM 2 0 0 0 0 0 1.5 h 1.5\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 2.0 h 2.0\n' >"$tmp/backwards.log"
 printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 nan 1.0 0 0 0 0 0 0 1.0 h 1.0\n' >"$tmp/nan.log"
 printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 2.0 h 2.0\nODOM 0 0 0 0 0 0 2.0 h 2.0\n' >"$tmp/noreference.log"
+# CARMEN lines without odometry (RAWLASER1 carries no robot pose, no ODOM) but with TRUEPOS: the
+# one line names the option that draws odometry from the reference. A PARAM retrace reads,
+# malformed.
+for k in 0 1 2 3 4; do
+  printf 'RAWLASER1 0 -1.5 3.0 1.5 20.0 0.01 0 3 1.0 2.0 3.0 0 %s h %s\nTRUEPOS %s 0 0 0 0 0 %s h %s\n' \
+    "$k.5" "$k.5" "$k" "$k.5" "$k.5"
+done >"$tmp/noodometry.log"
+printf 'PARAM robot_front_laser_max far nohost 0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 2.0 h 2.0\n' >"$tmp/badparam.log"
 printf '\x00\x01\x02binary' >"$tmp/binary.bin"
 : >"$tmp/empty.log"
 
@@ -67,7 +75,6 @@ expect_bad unknown-topic "--scan-topic '/front' is not in the log" log-localize 
 expect_bad backwards "backwards.log: message 3 on 'ODOM'" log-teach "$tmp/backwards.log" --odometry-topic ODOM
 expect_bad nan-range "nan.log" log-info "$tmp/nan.log"
 expect_bad consistent-without-reference "consistent needs a reference" log-teach "$tmp/noreference.log" --mode consistent
-expect_bad online-without-switching "\`online\` switching needs a map mode that switches maps" log-teach "$mcap" --mode consistent
 expect_bad switch-beyond "beyond the driven path" log-teach "$mcap" --mode partial --switch-points 6,500
 expect_bad switch-order "must be strictly increasing" log-teach "$mcap" --switch-points 8,6
 expect_bad switch-word "route.switch_points" log-teach "$mcap" --switch-points sometimes
@@ -86,6 +93,40 @@ expect_bad compare-not-localize "metrics.json" log-compare "$tmp/taught" "$tmp/t
 expect_bad compare-labels "--labels: gives 3 labels for 2 folders" log-compare "$tmp/taught" "$tmp/taught_c" --labels a,b,c
 expect_bad simulate-partial-world "--teach: the world is the map of a teach folder of one map" log-simulate "$mcap" --teach "$teach"
 expect_bad simulate-no-reference "no reference to drive" log-simulate "$tmp/noreference.log" --teach "$tmp/taught_c/consistent/teach"
+expect_bad no-odometry "noodometry.log: no odometry (no ODOM lines, RAWLASER1 lines carry no robot pose); its reference 'TRUEPOS' can stand in: add --synthetic-odometry" log-teach "$tmp/noodometry.log"
+expect_bad no-odometry-localize "noodometry.log: no odometry (no ODOM lines" log-localize "$tmp/noodometry.log" --teach "$teach"
+expect_bad bad-param "badparam.log: message 1 on 'PARAM': PARAM robot_front_laser_max: 'far' is not a finite number" log-info "$tmp/badparam.log"
+
+# A log without odometry is described by log-info (exit 0), which names what would draw it.
+if "$retrace" log-info "$tmp/noodometry.log" >"$tmp/stdout" 2>"$tmp/stderr" &&
+  grep -qF "odometry:   none (no ODOM lines, RAWLASER1 lines carry no robot pose): log-teach and log-localize draw it from the reference 'TRUEPOS' with --synthetic-odometry" "$tmp/stdout"; then
+  pass=$((pass + 1))
+else
+  fail=$((fail + 1))
+  echo "FAIL no-odometry-info: log-info on a log without odometry:"
+  cat "$tmp/stdout" "$tmp/stderr"
+fi
+
+# A PARAM retrace does not read never refuses a log, whatever its value.
+printf 'PARAM laser_front_laser_flipped no nohost 0\nPARAM robot_name the blue pioneer nohost 0\n' >"$tmp/params.log"
+cat "$tmp/noreference.log" >>"$tmp/params.log"
+if "$retrace" log-info "$tmp/params.log" >"$tmp/stdout" 2>"$tmp/stderr"; then
+  pass=$((pass + 1))
+else
+  fail=$((fail + 1))
+  echo "FAIL unread-params: log-info on a log with PARAM laser_front_laser_flipped no:"
+  cat "$tmp/stderr"
+fi
+
+# The default (online) switching fits the modes asked for: a consistent map alone is taught.
+if "$retrace" log-teach "$mcap" --mode consistent --no-figures --out "$tmp/consistent_only" >/dev/null 2>"$tmp/stderr" &&
+  [ -f "$tmp/consistent_only/consistent/teach/sub_map_num.txt" ]; then
+  pass=$((pass + 1))
+else
+  fail=$((fail + 1))
+  echo "FAIL consistent-only: log-teach --mode consistent under the default switching:"
+  cat "$tmp/stderr"
+fi
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 
@@ -52,6 +54,15 @@ TEST(MapServer, EquationOneMapsTheSwitchPoseToIdentityAndKeepsRelativePoses) {
                  core::Between(a, b), 1e-12);
 }
 
+// The decision at the end of path k: map k+1, entered at its start, with eq. (1)'s transform.
+RoutePlace NextAtEnd(const MapServer& server, const core::Pose2& X_MR) {
+  FollowerOutput end;
+  end.goal_reached = true;
+  const MapDecision d = server.Decide(end, X_MR, 2.0);
+  EXPECT_EQ(d.step, MapStep::kSwitch);
+  return d.place;
+}
+
 TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
   const core::Pose2 X_M0S(4.0, 1.0, 0.7);
   MapServer server(TwoMaps(X_M0S));
@@ -67,7 +78,10 @@ TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
   const std::vector<Particle> before = localizer.particles();
   const core::Pose2 estimate_before = localizer.Estimate();
 
-  const MapSwitch s = server.SwitchToNext(localizer, follower);
+  const RoutePlace next = NextAtEnd(server, estimate_before);
+  EXPECT_EQ(next.map, 1u);
+  EXPECT_EQ(next.sigma, 0.0);
+  const MapSwitch s = server.Switch(next, localizer, follower);
   EXPECT_EQ(s.from, 0u);
   EXPECT_EQ(s.to, 1u);
   EXPECT_TRUE(server.IsLast());
@@ -93,15 +107,17 @@ TEST(MapServer, DecidesOnTheEndOfThePathByGoalOrRemainingArc) {
   FollowerOutput out;
   out.goal_reached = false;
   out.remaining = 0.2;
-  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kStay);
+  EXPECT_EQ(server.Decide(out, X_MR, 2.0).step, MapStep::kStay);
   out.remaining = MapServer::kPathEndTolerance;  // a log's estimate that passed the end
-  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kNext);
-  out.off_path = true;  // the progress is at the end, but the robot is elsewhere
-  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kStay);
+  EXPECT_EQ(server.Decide(out, X_MR, 2.0).step, MapStep::kSwitch);
+  out.off_path = true;  // the progress is at the end, but the robot is elsewhere: on path 0
+  EXPECT_EQ(server.Decide(out, X_MR, 2.0).step, MapStep::kStay);
   out.off_path = false;
   out.remaining = 0.2;
   out.goal_reached = true;
-  EXPECT_EQ(server.Decide(out, X_MR, 2.0), MapStep::kNext);
+  const MapDecision d = server.Decide(out, X_MR, 2.0);
+  EXPECT_EQ(d.step, MapStep::kSwitch);
+  EXPECT_EQ(d.place.map, 1u);
   EXPECT_THROW(MapServer(TeachBundle{}), core::ConfigError);
 }
 
@@ -109,8 +125,8 @@ TEST(MapServer, WrapsOnlyALoopWhenLoopingIsOn) {
   // Paths of 4 m and 2 m along x: the route ends 6 m from where it began. Within a 1 m radius
   // it is no loop, within 100 m it is; looping off never wraps.
   const TeachBundle straight = TwoMaps(core::Pose2(4.0, 0.0, 0.0));
-  LoopConfig loop;
-  loop.enabled = true;
+  MapServerConfig loop;
+  loop.loop = true;
   loop.closure_radius = 1.0;
   loop.drift = 0.0;
   MapServer line(straight, loop);
@@ -119,17 +135,21 @@ TEST(MapServer, WrapsOnlyALoopWhenLoopingIsOn) {
   PathFollower follower{PathFollowerConfig{}};
   line.Start(localizer, follower);
   localizer.Initialize(core::Pose2::Identity(), 0.01, 0.01);
-  line.SwitchToNext(localizer, follower);
+  line.Switch(NextAtEnd(line, core::Pose2(4.0, 0.0, 0.0)), localizer, follower);
   FollowerOutput end;
   end.goal_reached = true;
-  EXPECT_EQ(line.Decide(end, core::Pose2::Identity(), 2.0), MapStep::kDone);
+  EXPECT_EQ(line.Decide(end, core::Pose2::Identity(), 2.0).step, MapStep::kDone);
   loop.closure_radius = 100.0;  // everything closes within 100 m
   MapServer ring(straight, loop);
   EXPECT_TRUE(ring.loops());
   ring.Start(localizer, follower);
-  ring.SwitchToNext(localizer, follower);
-  EXPECT_EQ(ring.Decide(end, core::Pose2::Identity(), 2.0), MapStep::kWrap);
-  loop.enabled = false;
+  ring.Switch(NextAtEnd(ring, core::Pose2(4.0, 0.0, 0.0)), localizer, follower);
+  const MapDecision wrap = ring.Decide(end, core::Pose2::Identity(), 2.0);
+  EXPECT_EQ(wrap.step, MapStep::kWrap);
+  const MapSwitch s = ring.WrapToFirst(wrap, localizer, follower);
+  EXPECT_EQ(s.to, 0u);
+  EXPECT_EQ(ring.index(), 0u);
+  loop.loop = false;
   EXPECT_FALSE(MapServer(straight, loop).loops());
 }
 
@@ -146,30 +166,100 @@ TEST(MapServer, SwitchesBackWhenTheRouteIsDrivenBackwards) {
   PathFollower follower(PathFollowerConfig{});
   server.Start(localizer, follower);
   localizer.Initialize(X_M0S, 0.01, 0.01);
-  server.SwitchToNext(localizer, follower);
+  server.Switch(NextAtEnd(server, X_M0S), localizer, follower);
 
   // In map 1, on its path: stay. Map 0's (1.5, 0) facing back is (0, 2.5) in map 1, and 2.5 m
-  // from map 1's path ahead.
+  // from map 1's path.
   FollowerOutput on = follower.Compute(core::Pose2(0.5, 0.0, 0.0), 0.05);
-  EXPECT_EQ(server.Decide(on, core::Pose2(0.5, 0.0, 0.0), 2.0), MapStep::kStay);
+  EXPECT_EQ(server.Decide(on, core::Pose2(0.5, 0.0, 0.0), 2.0).step, MapStep::kStay);
   const core::Pose2 X_M1R = X_M0S.Inverse() * core::Pose2(1.5, 0.0, core::kPi);
   localizer.Initialize(X_M1R, 0.01, 0.01);
   FollowerOutput off = follower.Compute(X_M1R, 0.05);
   ASSERT_TRUE(off.off_path);
-  EXPECT_EQ(server.Decide(off, X_M1R, 2.0), MapStep::kBack);
+  const MapDecision back = server.Decide(off, X_M1R, 2.0);
+  ASSERT_EQ(back.step, MapStep::kSwitch);
+  EXPECT_EQ(back.place.map, 0u);
+  EXPECT_NEAR(back.place.s, 1.5, 1e-9);
   const core::Pose2 elsewhere(5.0, 5.0, 0.0);  // 5 m from both paths
-  EXPECT_EQ(server.Decide(off, elsewhere, 2.0), MapStep::kStay);
+  EXPECT_EQ(server.Decide(off, elsewhere, 2.0).step, MapStep::kStay);
 
-  const MapSwitch s = server.SwitchBack(localizer, follower);
+  const MapSwitch s = server.Switch(back.place, localizer, follower);
   EXPECT_EQ(s.from, 1u);
   EXPECT_EQ(s.to, 0u);
   EXPECT_EQ(server.index(), 0u);
   ExpectPoseNear(localizer.Estimate(), core::Pose2(1.5, 0.0, core::kPi), 0.05);
   EXPECT_NEAR(follower.Compute(localizer.Estimate(), 0.05).remaining, 2.5, 0.05);
-  // Map 0 has no previous map (and no loop): off its path, it stays.
+  // Off map 0's path and near no other: it stays.
   FollowerOutput lost = follower.Compute(core::Pose2(1.5, 6.0, 0.0), 0.05);
   ASSERT_TRUE(lost.off_path);
-  EXPECT_EQ(server.Decide(lost, core::Pose2(1.5, 6.0, 0.0), 2.0), MapStep::kStay);
+  EXPECT_EQ(server.Decide(lost, core::Pose2(1.5, 6.0, 0.0), 2.0).step, MapStep::kStay);
+}
+
+// Three maps of 10 m each: along +x in map 0, then up +y, then back along -x 10 m above map 0's
+// path, so that path 2 passes 10 m beside path 0, 20 m further along the route.
+TeachBundle ThreeMaps() {
+  TeachBundle bundle;
+  for (int k = 0; k < 3; ++k) {
+    PartialMap m;
+    m.grid = RoomMap();
+    m.path = core::Path({{0, 0, 0}, {5, 0, 0}, {10, 0, 0}});
+    m.X_MS = core::Pose2(10.0, 0.0, core::kPi / 2);
+    bundle.maps.push_back(m);
+  }
+  bundle.linked = true;  // no revisit edges unless a test adds them
+  return bundle;
+}
+
+TEST(MapServer, HandsOverTheMapWhosePathTheRobotIsOnByPlace) {
+  // A robot in map 0 that leaves path 0 at (5, 0) and comes to (5, 9), 1 m from path 2, is on
+  // map 2's path: the chain over map 1 holds 3 % of the 20 m of route between the two places.
+  const core::Pose2 X_M0R(5.0, 9.0, core::kPi);
+  FollowerOutput off;
+  off.off_path = true;
+  off.remaining = 5.0;
+  MapServer server(ThreeMaps());
+  const MapDecision d = server.Decide(off, X_M0R, 2.0);
+  ASSERT_EQ(d.step, MapStep::kSwitch);
+  EXPECT_EQ(d.place.map, 2u);
+  EXPECT_NEAR(d.place.s, 5.0, 1e-9);
+  EXPECT_NEAR(d.place.distance, 1.0, 1e-9);
+  EXPECT_NEAR(d.place.sigma, 0.03 * 20.0, 1e-9);
+  EXPECT_FALSE(d.place.via_revisit);
+  ExpectPoseNear(d.place.X_MR, core::Pose2(5.0, 1.0, 0.0), 1e-9);
+  // The switch spreads the particles over that sigma.
+  Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(2));
+  PathFollower follower(PathFollowerConfig{});
+  server.Start(localizer, follower);
+  localizer.Initialize(X_M0R, 0.01, 0.01);
+  server.Switch(d.place, localizer, follower);
+  EXPECT_EQ(server.index(), 2u);
+  EXPECT_NEAR(std::sqrt(localizer.Covariance()(0, 0)), 0.6, 0.1);
+
+  // At 10 % drift that chain may be off by 2 m: too long a chain, no hand-over.
+  MapServerConfig drifty;
+  drifty.drift = 0.1;
+  EXPECT_EQ(MapServer(ThreeMaps(), drifty).Decide(off, X_M0R, 2.0).step, MapStep::kStay);
+  // A revisit edge registered between path 0 and path 2 at that place is exact there.
+  TeachBundle linked = ThreeMaps();
+  linked.revisits.push_back({0, 2, 5.0, 5.0, MapServer(ThreeMaps()).graph().Chain(0, 2)});
+  const MapDecision via = MapServer(linked, drifty).Decide(off, X_M0R, 2.0);
+  ASSERT_EQ(via.step, MapStep::kSwitch);
+  EXPECT_EQ(via.place.map, 2u);
+  EXPECT_TRUE(via.place.via_revisit);
+  EXPECT_NEAR(via.place.sigma, 0.1, 1e-9);
+}
+
+TEST(MapServer, StartsInTheMapNearestTheStart) {
+  MapServer server(ThreeMaps());
+  const RoutePlace start = server.NearestMap(core::Pose2(3.0, 10.2, core::kPi));
+  EXPECT_EQ(start.map, 2u);
+  ExpectPoseNear(start.X_MR, core::Pose2(7.0, -0.2, 0.0), 1e-9);
+  EXPECT_EQ(server.NearestMap(core::Pose2(3.0, 0.2, 0.0)).map, 0u);
+  Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(2));
+  PathFollower follower(PathFollowerConfig{});
+  server.Start(localizer, follower, start.map, start.X_MR);
+  EXPECT_EQ(server.index(), 2u);
+  EXPECT_NEAR(follower.Compute(start.X_MR, 0.05).remaining, 3.0, 1e-9);
 }
 
 }  // namespace

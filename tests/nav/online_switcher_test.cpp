@@ -75,6 +75,38 @@ TEST(RevisitDetector, RefusesABadConfig) {
             std::numeric_limits<double>::infinity());
 }
 
+// Out 10 m along a corridor and back 0.5 m beside the way out: a dead end.
+double UTurnFires(const OnlineSwitchingConfig& config) {
+  RevisitDetector detector(config);
+  for (double d = 0.0; d < 20.0; d += 0.02) {
+    const Pose2 X = d < 10.0 ? Pose2(d, 0.0, 0.0) : Pose2(20.0 - d, 0.5, core::kPi);
+    if (detector.OnPose(X)) return detector.travelled();
+  }
+  return -1.0;
+}
+
+TEST(RevisitDetector, ARevisitIsAMapsEndOnlyOnceTheLoopIsInconsistent) {
+  // Every revisit counts (tolerance 0): back within 3 m (plus the drift allowance) of the way
+  // out where that lies more than 9 m of travel behind, 3.5 m into the way back.
+  EXPECT_NEAR(UTurnFires({3.0, 10.0, 0.03, 12.0, 0.0}), 13.5, 0.2);
+  // 0.5 m at 3 %: only a part of the way out 16.7 m of travel behind counts, so the detector
+  // fires 7 m into the way back, 3 m from the dead end's start.
+  const OnlineSwitchingConfig drift_aware{3.0, 10.0, 0.03, 12.0, 0.5};
+  EXPECT_NEAR(drift_aware.MinMapLength(), 16.667, 1e-3);
+  const double fired = UTurnFires(drift_aware);
+  EXPECT_GT(fired, drift_aware.MinMapLength());
+  EXPECT_LT(fired, 18.0);
+  // 1 m: the whole 20 m there and back is consistent.
+  EXPECT_LT(UTurnFires({3.0, 10.0, 0.03, 12.0, 1.0}), 0.0);
+  // A tolerance the drift budget cannot hold is refused, naming it.
+  try {
+    RevisitDetector(OnlineSwitchingConfig{3.0, 10.0, 0.03, 12.0, 13.0});
+    ADD_FAILURE() << "a tolerance beyond the budget was accepted";
+  } catch (const core::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("tolerance"), std::string::npos) << e.what();
+  }
+}
+
 TEST(RevisitDetector, TheDriftBudgetIsReachedAfterBudgetOverDriftMetresOfTheMap) {
   // 6 m at 3 %: 200 m of travel per map.
   RevisitDetector detector(OnlineSwitchingConfig{3.0, 10.0, 0.03, 6.0});

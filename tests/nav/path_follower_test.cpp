@@ -316,13 +316,15 @@ TEST(PathFollower, ProgressWaitsOffThePathAndRejoinsAhead) {
   EXPECT_NEAR(out.remaining, 21.0, 1e-9);
 }
 
-TEST(PathFollower, SetPathFromEndStartsWhereTheRobotIsOnTheEnd) {
+TEST(PathFollower, SetPathAtStartsTheProgressThere) {
   PathFollower follower({});
-  follower.SetPathFromEnd(Straight(30.0), Vec2(26.0, 0.3), 20.0);
+  follower.SetPathAt(Straight(30.0), 26.0);
   EXPECT_NEAR(follower.Compute(Pose2(26.0, 0.3, 0.0), kPeriod).remaining, 4.0, 1e-9);
-  // Only the last `reach` metres are searched.
-  follower.SetPathFromEnd(Straight(30.0), Vec2(2.0, 0.0), 20.0);
-  EXPECT_NEAR(follower.Compute(Pose2(2.0, 0.0, 0.0), kPeriod).remaining, 20.0, 1e-9);
+  // The progress only moves forward: a robot behind it is off the path ahead.
+  EXPECT_TRUE(follower.Compute(Pose2(2.0, 0.0, 0.0), kPeriod).off_path);
+  // Clamped to the path.
+  follower.SetPathAt(Straight(30.0), 45.0);
+  EXPECT_NEAR(follower.Compute(Pose2(30.0, 0.0, 0.0), kPeriod).remaining, 0.0, 1e-9);
 }
 
 TEST(PathFollower, EmptyPathIsReached) {

@@ -105,6 +105,33 @@ TEST_F(TeachBundleTest, RoundTripKeepsClassesPathsAndSwitchPoses) {
   }
 }
 
+TEST_F(TeachBundleTest, RevisitEdgesRoundTripAndOldFoldersAreNotLinked) {
+  TeachBundle bundle = MakeBundle(3);
+  bundle.revisits = {{0, 2, 1.5, 7.25, core::Pose2(0.3, -2.0, 0.125)}};
+  bundle.linked = true;
+  const fs::path dir = tmp_.path() / "teach";
+  WriteTeachBundle(dir, bundle);
+  const TeachBundle read = ReadTeachBundle(dir);
+  EXPECT_TRUE(read.linked);
+  ASSERT_EQ(read.revisits.size(), 1u);
+  EXPECT_EQ(read.revisits[0].a, 0u);
+  EXPECT_EQ(read.revisits[0].b, 2u);
+  EXPECT_EQ(read.revisits[0].s_a, 1.5);
+  EXPECT_EQ(read.revisits[0].s_b, 7.25);
+  EXPECT_EQ(read.revisits[0].X_ab, bundle.revisits[0].X_ab);
+  // A folder written before the route graph has no revisits.txt: read unlinked (the map
+  // server links it when it loads it).
+  fs::remove(dir / "revisits.txt");
+  EXPECT_FALSE(ReadTeachBundle(dir).linked);
+  // A bad line names the file and the line.
+  tmp_.Write(dir / "revisits.txt", "# edges\n0 3 1 2 0 0 0\n");
+  EXPECT_NE(ReadError(dir).find("revisits.txt:2: map index 3 is not one of the 3 maps"),
+            std::string::npos)
+      << ReadError(dir);
+  tmp_.Write(dir / "revisits.txt", "1 1 1 2 0 0 0\n");
+  EXPECT_NE(ReadError(dir).find("map a must come before map b"), std::string::npos);
+}
+
 TEST_F(TeachBundleTest, LastPoseFilesUseAutoNavisLayout) {
   TeachBundle bundle = MakeBundle(1);
   bundle.maps[0].X_MS = Pose2(1.5, -2.25, 0.5);
