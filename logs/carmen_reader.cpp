@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -308,6 +309,60 @@ double ParamNumber(std::string_view name, std::string_view value) {
   return *v;
 }
 
+// {name, value} of a PARAM line (ParseCarmenParam).
+std::pair<std::string, std::string> ParamOf(const Fields& f) {
+  RequireName(f, "PARAM");
+  const std::size_t n = f.size();
+  if (n < 3) f.Fail("expected a name and a value (PARAM name value ...)");
+  // The value ends where the trailer begins: `ipc_timestamp hostname logger_timestamp`, or in
+  // old logs `hostname logger_timestamp`.
+  std::size_t end = n;
+  if (n >= 6 && IsFiniteNumber(f[n - 3]) && IsFiniteNumber(f[n - 1])) {
+    end = n - 3;
+  } else if (n >= 5 && IsFiniteNumber(f[n - 1]) && !IsFiniteNumber(f[n - 2])) {
+    end = n - 2;
+  }
+  std::string value(f[2]);
+  for (std::size_t i = 3; i < end; ++i) {
+    value += ' ';
+    value += f[i];
+  }
+  return {std::string(f[1]), value};
+}
+
+// One of the old-format laser parameters ApplyCarmenParam reads: the laser it sets and which
+// of its values ("fov", "resolution", "max" or "flipped").
+struct LaserParam {
+  bool rear = false;
+  std::string_view key;
+};
+
+// The laser parameter `name` is, or nullopt for a parameter retrace does not read.
+std::optional<LaserParam> FindLaserParam(std::string_view name) {
+  for (const bool rear : {false, true}) {
+    const std::string side = rear ? "rear" : "front";
+    if (name == "robot_" + side + "_laser_max") return LaserParam{rear, "max"};
+    const std::string prefix = "laser_" + side + "_laser_";
+    if (!name.starts_with(prefix)) continue;
+    const std::string_view rest = name.substr(prefix.size());
+    for (const std::string_view key : {"fov", "resolution", "flipped"}) {
+      if (rest == key) return LaserParam{rear, key};
+    }
+  }
+  return std::nullopt;
+}
+
+// A boolean as CARMEN's ini files spell it: on/off as its param_daemon writes, and yes/no,
+// true/false, 1/0 as people write them by hand, in any case; nullopt for anything else.
+std::optional<bool> ParamBool(std::string_view value) {
+  std::string v(value);
+  std::transform(v.begin(), v.end(), v.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (v == "1" || v == "on" || v == "yes" || v == "true") return true;
+  if (v == "0" || v == "off" || v == "no" || v == "false") return false;
+  return std::nullopt;
+}
+
 }  // namespace
 
 bool IsCarmenLaser(std::string_view name) {
@@ -359,71 +414,46 @@ PoseStampedMessage ParseCarmenTruePose(std::string_view line) {
 
 std::pair<std::string, std::string> ParseCarmenParam(std::string_view line) {
   const Fields f(line);
-  RequireName(f, "PARAM");
-  const std::size_t n = f.size();
-  if (n < 3) f.Fail("expected a name and a value (PARAM name value ...)");
-  // The value ends where the trailer begins: `ipc_timestamp hostname logger_timestamp`, or in
-  // old logs `hostname logger_timestamp`.
-  std::size_t end = n;
-  if (n >= 6 && IsFiniteNumber(f[n - 3]) && IsFiniteNumber(f[n - 1])) {
-    end = n - 3;
-  } else if (n >= 5 && IsFiniteNumber(f[n - 1]) && !IsFiniteNumber(f[n - 2])) {
-    end = n - 2;
-  }
-  std::string value(f[2]);
-  for (std::size_t i = 3; i < end; ++i) {
-    value += ' ';
-    value += f[i];
-  }
-  return {std::string(f[1]), value};
+  return ParamOf(f);
 }
 
 bool ApplyCarmenParam(std::string_view name, std::string_view value,
                       CarmenLaserDefaults& defaults) {
-  CarmenLaserGeometry* g = nullptr;
-  std::string_view key;
-  for (auto [side, geometry] : {std::pair{std::string_view("front"), &defaults.front},
-                                std::pair{std::string_view("rear"), &defaults.rear}}) {
-    const std::string laser = "laser_" + std::string(side) + "_laser_";
-    const std::string robot = "robot_" + std::string(side) + "_laser_max";
-    if (name == robot) {
-      g = geometry;
-      key = "max";
-    } else if (name.starts_with(laser)) {
-      const std::string_view rest = name.substr(laser.size());
-      if (rest == "fov" || rest == "resolution" || rest == "flipped") {
-        g = geometry;
-        key = rest;
-      }
-    }
-  }
-  if (g == nullptr) return false;
-  const std::string label = "PARAM " + std::string(name);
-  if (key == "flipped") {
-    if (value == "1" || value == "on") {
-      g->flipped = true;
-    } else if (value == "0" || value == "off") {
-      g->flipped = false;
-    } else {
-      throw core::IoError(label + ": " + Shown(value) + " is not 0, 1, on or off");
-    }
+  const std::optional<LaserParam> param = FindLaserParam(name);
+  if (!param) return false;
+  CarmenLaserGeometry& g = param->rear ? defaults.rear : defaults.front;
+  if (param->key == "flipped") {
+    // Information only (see CarmenLaserGeometry::flipped): a value that is no boolean is
+    // ignored, never a reason to refuse the log.
+    if (const std::optional<bool> flipped = ParamBool(value)) g.flipped = *flipped;
     return true;
   }
+  const std::string label = "PARAM " + std::string(name);
   const double v = ParamNumber(name, value);
-  if (key == "max") {
+  if (param->key == "max") {
     if (!(v > 0.0)) throw core::IoError(label + ": " + Shown(value) + " is not a positive range");
-    g->max_range = v;
+    g.max_range = v;
   } else {
     if (!(v > 0.0 && v <= 360.0)) {
       throw core::IoError(label + ": " + Shown(value) + " is not an angle in (0, 360] deg");
     }
-    if (key == "fov") {
-      g->fov_deg = v;
+    if (param->key == "fov") {
+      g.fov_deg = v;
     } else {
-      g->resolution_deg = v;
+      g.resolution_deg = v;
     }
   }
   return true;
+}
+
+bool ApplyCarmenParamLine(std::string_view line, CarmenLaserDefaults& defaults) {
+  const Fields f(line);
+  RequireName(f, "PARAM");
+  // Only a parameter retrace reads can refuse the log: any other line is skipped unread.
+  if (f.size() < 2 || !FindLaserParam(f[1])) return false;
+  if (f.size() < 3) throw core::IoError("PARAM " + std::string(f[1]) + ": no value");
+  const auto [name, value] = ParamOf(f);
+  return ApplyCarmenParam(name, value, defaults);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -110,9 +110,16 @@ std::pair<std::string, std::string> ParseCarmenParam(std::string_view line);
 /// Applies one PARAM to the old-format laser geometry: laser_front_laser_fov,
 /// laser_front_laser_resolution, robot_front_laser_max, laser_front_laser_flipped and their rear
 /// counterparts. Returns false (and changes nothing) for any other name. Throws core::IoError for
-/// a value that is not a number in range (fov and resolution in (0, 360] deg, max > 0 m, flipped
-/// 0, 1, on or off).
+/// a value that is not a number in range (fov and resolution in (0, 360] deg, max > 0 m). flipped
+/// is read as a boolean (1/0, on/off, yes/no, true/false, any case) and, being information only,
+/// left unchanged for any other value.
 bool ApplyCarmenParam(std::string_view name, std::string_view value, CarmenLaserDefaults& defaults);
+
+/// Applies a PARAM line (ParseCarmenParam, then ApplyCarmenParam); returns whether it was one of
+/// the parameters retrace reads. A parameter retrace does not read never refuses a log: its line
+/// is skipped whatever its value (free text, a boolean, nothing). Throws core::IoError only for a
+/// line that is not PARAM and for a parameter retrace reads whose value is missing or malformed.
+bool ApplyCarmenParamLine(std::string_view line, CarmenLaserDefaults& defaults);
 
 /// A CARMEN log's messages in file order, streamed line by line (gzip or plain, detected from
 /// the content). Empty lines and `#` comments are skipped. Each RawMessage has topic = type =

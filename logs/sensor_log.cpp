@@ -267,7 +267,9 @@ void ChooseRosScans(const StreamChoice& choice, Gathered& g, LogIndex& index,
 }
 
 // Without an odometry topic, the odometry is tf's transform from the odom frame to the robot's
-// base frame: the one chosen, or the only frame tf moves there.
+// base frame: the one chosen, or the only frame tf moves there. A log without either has no
+// odometry: that is kept in odometry_missing, not refused here, for a log with a reference can
+// still be driven on odometry drawn from it (--synthetic-odometry, bench/replay/log_streams.hpp).
 void ChooseTfOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   const std::string& log = index.name;
   std::string base = choice.base_frame;
@@ -280,9 +282,11 @@ void ChooseTfOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index) 
   }
   const auto it = g.tf_odometry.find(base);
   if (it == g.tf_odometry.end()) {
-    throw core::IoError(
-        log + ": no odometry: no nav_msgs/msg/Odometry topic and no tf transform " + "from " +
-        Quote(choice.odom_frame) + (base.empty() ? std::string() : " to " + Quote(base)));
+    index.odometry_missing = "no nav_msgs/msg/Odometry topic, no tf from " +
+                             Quote(choice.odom_frame) +
+                             (base.empty() ? std::string() : " to " + Quote(base));
+    index.base_frame = base;  // the mount is still found from the base chosen
+    return;
   }
   g.RequireForward(&it->second, it->second.size(), "tf", index);
   index.odometry = std::move(it->second);
@@ -319,17 +323,47 @@ void ChooseRosReference(const StreamChoice& choice, Gathered& g, LogIndex& index
     g.RequireForward(&g.poses[reference_topic], g.poses[reference_topic].size(), reference_topic,
                      index);
     index.reference = std::move(g.poses[reference_topic]);
+    index.reference_topic = reference_topic;
     index.reference_source = reference_topic + " (geometry_msgs/msg/PoseStamped)";
   }
 }
 
+// The frame at the top of the static chain above `laser`: the robot's base where no odometry
+// names it (tf_static hangs the LiDAR on the robot, and nothing the robot moves is static).
+// Empty when no static transform leads up from the scans' frame.
+std::string StaticRoot(const Gathered& g, const std::string& laser) {
+  std::string frame = laser;
+  for (std::size_t depth = 0; depth < g.tf_static.size(); ++depth) {  // bounded: a cycle
+    const auto it = g.tf_static.find(frame);
+    if (it == g.tf_static.end()) break;
+    frame = it->second.parent;
+  }
+  return frame == laser ? std::string() : frame;
+}
+
 // The LiDAR's mount on the robot from tf_static; a log without one gets a note, not an error.
 void FindRosMount(const Gathered& g, LogIndex& index) {
+  const bool base_guessed = index.base_frame.empty();
+  if (base_guessed) index.base_frame = StaticRoot(g, index.laser_frame);
+  if (index.base_frame.empty()) {
+    index.X_RL = core::Pose2::Identity();
+    index.mount_source = "assumed at the base";
+    index.notes.push_back(
+        "no odometry names the robot's base frame and no static transform leads up from the "
+        "scans' frame " +
+        Quote(index.laser_frame) + ": the LiDAR is assumed at the robot's origin, facing forward");
+    return;
+  }
   if (const std::optional<core::Pose2> X_RL = StaticChain(g, index.base_frame, index.laser_frame)) {
     index.X_RL = *X_RL;
     index.mount_source = index.base_frame == index.laser_frame
                              ? "the scans are in the base frame"
                              : "tf_static " + index.base_frame + " -> " + index.laser_frame;
+    if (base_guessed) {
+      index.mount_source +=
+          " (the top of the scans' static chain: no odometry names the base; --base-frame "
+          "chooses another)";
+    }
   } else {
     index.X_RL = core::Pose2::Identity();
     index.mount_source = "assumed at the base";
@@ -379,18 +413,19 @@ void ChooseCarmenScans(const StreamChoice& choice, Gathered& g, LogIndex& index)
   index.base_frame = "base_link";
 }
 
-// Odometry: the robot poses of the chosen laser lines (exactly at the scans), else ODOM.
+// Odometry: the robot poses of the chosen laser lines (exactly at the scans), else ODOM. A log
+// with neither has no odometry, kept in odometry_missing as for a ROS log (ChooseTfOdometry);
+// lines chosen with --odometry-topic that the log lacks are an error.
 void ChooseCarmenOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   std::string odometry = choice.odometry_topic;
   if (odometry.empty()) {
     odometry = g.odometry.contains(index.scan_topic) ? index.scan_topic : "ODOM";
   }
   if (!g.odometry.contains(odometry)) {
-    throw core::IoError(
-        index.name + ": no odometry" +
-        (choice.odometry_topic.empty()
-             ? std::string(": no ODOM lines and ") + index.scan_topic + " lines carry no robot pose"
-             : " in " + Quote(odometry) + " lines"));
+    if (!choice.odometry_topic.empty())
+      throw core::IoError(index.name + ": no odometry in " + Quote(odometry) + " lines");
+    index.odometry_missing = "no ODOM lines, " + index.scan_topic + " lines carry no robot pose";
+    return;
   }
   g.RequireForward(&g.odometry[odometry], g.odometry[odometry].size(), odometry, index);
   index.odometry = std::move(g.odometry[odometry]);
@@ -403,6 +438,7 @@ void ChooseCarmenReference(const StreamChoice& choice, Gathered& g, LogIndex& in
   if (g.poses.contains(reference)) {
     g.RequireForward(&g.poses[reference], g.poses[reference].size(), reference, index);
     index.reference = std::move(g.poses[reference]);
+    index.reference_topic = reference;
     index.reference_source = reference + " lines";
   } else if (!choice.reference_topic.empty()) {
     throw core::IoError(index.name + ": --reference-topic " + Quote(reference) +
@@ -441,11 +477,7 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
   if (IsCarmen(m)) {
     const std::string_view line = Text(m);
     if (m.type == "PARAM") {
-      Decoded(log, number, m.topic, [&] {
-        const auto [name, value] = ParseCarmenParam(line);
-        ApplyCarmenParam(name, value, g.carmen_defaults);
-        return 0;
-      });
+      Decoded(log, number, m.topic, [&] { return ApplyCarmenParamLine(line, g.carmen_defaults); });
     } else if (IsCarmenLaser(m.type)) {
       const CarmenLaser laser =
           Decoded(log, number, m.topic, [&] { return ParseCarmenLaser(line, g.carmen_defaults); });
@@ -543,6 +575,7 @@ void RequireOverlappingClocks(LogIndex& index) {
                           StampSpan(index.reference) + ") does not overlap " + scans +
                           " in time (two clocks): it is not used");
     index.reference.clear();
+    index.reference_topic.clear();
     index.reference_source.clear();
   }
 }
@@ -735,8 +768,7 @@ void ReadScans(const LogIndex& index, double from_s, double to_s,
   while (source->Next(m)) {
     ++number;
     if (IsCarmen(m) && m.type == "PARAM") {
-      const auto [name, value] = ParseCarmenParam(Text(m));
-      ApplyCarmenParam(name, value, carmen_defaults);
+      ApplyCarmenParamLine(Text(m), carmen_defaults);
       continue;
     }
     if (m.topic != index.scan_topic) continue;

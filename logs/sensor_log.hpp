@@ -105,8 +105,13 @@ struct LogIndex {
   std::vector<ScanStream> scan_streams;  ///< every scan topic, in order of first appearance
   std::string scan_topic;
   ScanGeometry scan;
-  std::string odometry_source;         ///< what the odometry came from, for people
-  std::vector<StampedPose> odometry;   ///< X_OR, by stamp
+  std::string odometry_source;        ///< what the odometry came from, for people
+  std::vector<StampedPose> odometry;  ///< X_OR, by stamp; empty: see odometry_missing
+  /// Why the log has no odometry, for people ("no nav_msgs/msg/Odometry topic, no tf from
+  /// 'odom'"); empty when it has. Not a problem: odometry can be drawn from the reference
+  /// (--synthetic-odometry); the commands that drive on the log's own refuse it then.
+  std::string odometry_missing;
+  std::string reference_topic;         ///< the reference's topic (CARMEN: TRUEPOS); empty: none
   std::string reference_source;        ///< empty: no reference
   std::vector<StampedPose> reference;  ///< X_WR, by stamp
   std::string base_frame;
@@ -133,9 +138,10 @@ inline constexpr double kOtherClock = 3600.0;
 inline constexpr double kMaxRepeatedStampFraction = 0.5;
 
 /// Reads the log at `path` once, all but the scans. Throws core::IoError naming the log for a
-/// missing or malformed file or message. A log that cannot be used — without scans or odometry,
-/// a topic in `choice` that is not in the log or not of the right type, an ambiguous choice
-/// (several scan or odometry topics) — is still described, with the reason in `problem`.
+/// missing or malformed file or message. A log that cannot be used — without scans, a topic in
+/// `choice` that is not in the log or not of the right type, an ambiguous choice (several scan
+/// or odometry topics) — is still described, with the reason in `problem`. A log without
+/// odometry is usable (odometry_missing says so): only driving on its own odometry needs it.
 LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice = {});
 
 /// Throws core::IoError with `index.problem` if there is one.

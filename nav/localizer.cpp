@@ -424,7 +424,6 @@ bool Localizer::TrialWins() const {
   const AugmentedMclConfig& aug = config_.augmented;
   const std::optional<ClusterMean> main = trial_.Main();
   if (!main || main->weight < aug.min_cluster_share) return false;
-  if (trial_.mean_likelihood() < aug.trigger_ratio * w_slow_) return false;
   // The farther the trial would move the estimate, the more evidence it needs.
   const double jump = core::Distance(main->X_MR, Estimate());
   return trial_.log_bayes_factor() > aug.margin + aug.jump_cost * jump;

@@ -59,19 +59,17 @@ struct DynamicRejectionConfig {
 /// w_fast < trigger_ratio · w_slow: the belief explains the scans much worse than it used to.
 /// While lost, and when `enabled`, a recovery trial (nav/recovery_trial.hpp) runs `hypotheses`
 /// hypotheses beside the belief: near_fraction of them around the estimate (Gaussian), the rest
-/// around poses of the taught path of the current map and the start of the next
-/// (Localizer::SetRecoveryPoses; uniformly over the map's free cells when none are given), those
-/// within path_reach of the estimate, a reach that widens by path_reach with every trial that
-/// ends without winning while the localizer stays lost. The trial replaces the belief only on
-/// evidence a wrong place cannot collect, and only while the belief is lost (a trial ends when the
-/// belief is found again): it has explained at least confirm_updates scans of at least min_beams
-/// kept beams each, weighed on the same beams as the belief and moved by the same odometry; its
-/// summed log
-/// evidence beats the belief's by margin + jump_cost × the distance it would move the estimate
-/// (a prior against far places: a wrong place far away, in a map that distorts distant parts
-/// alike, can fit a few scans well); it explains the scans as a localized belief
-/// does (its mean average likelihood at least trigger_ratio · w_slow: adopting it would not
-/// leave the localizer lost); and at least min_cluster_share of its weight agrees on one place.
+/// around the taught poses within reach of the current map (Localizer::SetRecoveryPoses: the map
+/// server's route graph gives them; uniformly over the map's free cells when none are given),
+/// those within path_reach of the estimate, a reach that widens by path_reach with every trial
+/// that ends without winning while the localizer stays lost. The trial replaces the belief only
+/// on evidence a wrong place cannot collect, and only while the belief is lost (a trial ends
+/// when the belief is found again): it has explained at least confirm_updates scans of at least
+/// min_beams kept beams each, weighed on the same beams as the belief and moved by the same
+/// odometry; its summed log evidence beats the belief's by margin + jump_cost × the distance it
+/// would move the estimate (a prior against far places: a wrong place far away, in a map that
+/// distorts distant parts alike, can fit a few scans well); and at least min_cluster_share of its
+/// weight agrees on one place.
 /// After max_updates it ends. No random particle ever enters the belief directly.
 ///
 /// The average likelihood of an update is the expectation over the belief (prior weights) of
@@ -239,8 +237,9 @@ class Localizer {
   /// on; the next scan is used even without motion, w_slow / w_fast restart and a running
   /// recovery trial ends.
   void SetMap(const core::OccupancyGrid& map);
-  /// Where the robot can be in the current map (M), for recovery hypotheses: the taught path's
-  /// poses, and the start of the next map's. Empty: uniformly over the map's free cells.
+  /// Where the robot can be in the current map (M), for recovery hypotheses: the taught poses
+  /// within reach through the route graph (nav::RouteGraph::PosesInReach). Empty: uniformly over
+  /// the map's free cells.
   void SetRecoveryPoses(std::vector<core::Pose2> poses);
   /// Draws the particles around X_MR (M) with independent Gaussians of std sigma_xy (m) on x
   /// and y and sigma_theta (rad) on the heading. Throws core::ConfigError on a negative or

@@ -103,6 +103,14 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
   return d;
 }
 
+RoutePlace MapServer::Resume(const core::Pose2& X_MR) const {
+  const std::vector<RoutePlace> places = graph_.Place(index_, X_MR, config_.max_sigma);
+  return *std::min_element(places.begin(), places.end(),
+                           [](const RoutePlace& a, const RoutePlace& b) {
+                             return a.distance + a.sigma < b.distance + b.sigma;
+                           });
+}
+
 MapSwitch MapServer::Switch(const RoutePlace& place, Localizer& localizer,
                             PathFollower& follower) {
   RETRACE_CHECK(place.map < size());

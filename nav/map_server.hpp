@@ -103,6 +103,10 @@ class MapServer {
   /// counting the transform's expected error), if any. Otherwise stay.
   MapDecision Decide(const FollowerOutput& follower_output, const core::Pose2& X_MR,
                      double max_distance) const;
+  /// Where the robot is on the route now, whatever the follower's progress (an operator drove
+  /// it and hands it back): the map whose taught path lies nearest the estimate through the
+  /// graph (the current one included, transforms within max_sigma), entered at the robot's place.
+  RoutePlace Resume(const core::Pose2& X_MR) const;
   /// Carries out a kSwitch: the localizer gets the map with every particle and the estimate
   /// moved by place.X_jk (eq. (1) for the next map), spread over place.sigma when that exceeds
   /// min_sigma_xy; the follower gets its path with the progress at place.s.

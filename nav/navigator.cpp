@@ -22,6 +22,13 @@ void Navigator::StartNearest(const core::Pose2& X_M0R, double sigma_xy, double s
   Start(place.map, place.X_MR, sigma_xy, sigma_theta);
 }
 
+std::optional<MapSwitch> Navigator::Resume() {
+  const RoutePlace place = server_.Resume(localizer_.Estimate());
+  if (place.map != server_.index()) return server_.Switch(place, localizer_, follower_);
+  follower_.SetPathAt(server_.current().path, place.s);
+  return std::nullopt;
+}
+
 LocalizerUpdate Navigator::OnScan(const core::LaserScan& scan) {
   LocalizerUpdate update = localizer_.Update(scan);
   if (update.reacquired) {

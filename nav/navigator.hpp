@@ -55,6 +55,11 @@ class Navigator {
   /// re-acquisition, the command is held to follower.creep_speed (its turn rate scaled alike).
   NavigatorTick OnControlTick(double dt);
 
+  /// After an operator drove the robot and handed it back: the map and the place on its path
+  /// where the robot is now (MapServer::Resume), the follower's progress there. Returns the
+  /// switch when the map changed.
+  std::optional<MapSwitch> Resume();
+
   core::Pose2 Estimate() const { return localizer_.Estimate(); }
   const Localizer& localizer() const { return localizer_; }
   const MapServer& server() const { return server_; }

@@ -15,7 +15,6 @@ void RecoveryTrial::Start(std::vector<core::Pose2> hypotheses) {
   updates_ = 0;
   weighed_ = 0;
   log_bayes_factor_ = 0.0;
-  likelihood_sum_ = 0.0;
 }
 
 void RecoveryTrial::Stop() {
@@ -24,7 +23,6 @@ void RecoveryTrial::Stop() {
   updates_ = 0;
   weighed_ = 0;
   log_bayes_factor_ = 0.0;
-  likelihood_sum_ = 0.0;
 }
 
 std::optional<ClusterMean> RecoveryTrial::Main() const {
@@ -44,14 +42,10 @@ void RecoveryTrial::Weigh(const LikelihoodField& field, const core::Pose2& X_RL,
   RETRACE_CHECK(running() && xs.size() == ys.size());
   const std::size_t n = hypotheses_.size();
   std::vector<double> log_w(n), w(n);
-  double likelihood = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
-    const double ll =
-        field.SumLogLikelihood(hypotheses_[j] * X_RL, xs.data(), ys.data(), xs.size());
-    log_w[j] = std::log(weights_[j]) + ll;
-    if (!xs.empty()) likelihood += weights_[j] * std::exp(ll / static_cast<double>(xs.size()));
+    log_w[j] = std::log(weights_[j]) +
+               field.SumLogLikelihood(hypotheses_[j] * X_RL, xs.data(), ys.data(), xs.size());
   }
-  likelihood_sum_ += likelihood;
   const double evidence = NormalizeLogWeights(log_w, w);
   log_bayes_factor_ += evidence - belief_evidence;
   ++weighed_;

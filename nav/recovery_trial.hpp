@@ -50,9 +50,6 @@ class RecoveryTrial {
   int weighed() const { return weighed_; }
   /// Σ over those updates of (log evidence of the trial − log evidence of the belief), nats.
   double log_bayes_factor() const { return log_bayes_factor_; }
-  /// The mean over those updates of the trial's average likelihood (as the belief's w_avg: the
-  /// expectation over the hypotheses of the per-beam geometric mean, 1/m).
-  double mean_likelihood() const { return weighed_ > 0 ? likelihood_sum_ / weighed_ : 0.0; }
   /// The trial's main cluster (nav/cluster_estimate.hpp): its mean, and its share of the weight,
   /// near 1 when the hypotheses agree on one place, lower while two places still explain the
   /// scans alike. nullopt before Start.
@@ -66,7 +63,6 @@ class RecoveryTrial {
   int updates_ = 0;
   int weighed_ = 0;
   double log_bayes_factor_ = 0.0;
-  double likelihood_sum_ = 0.0;
 };
 
 }  // namespace retrace::nav

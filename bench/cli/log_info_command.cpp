@@ -77,7 +77,20 @@ void WriteScanStreams(std::ostream& out, const logs::LogIndex& index) {
   }
 }
 
+// A log without odometry (a motion-capture bag) is described, and what would stand in is named.
+std::string NoOdometryLine(const logs::LogIndex& index) {
+  const std::string line = "odometry:   none (" + index.odometry_missing + "): ";
+  if (index.reference_topic.empty()) {
+    return line +
+           "log-teach and log-localize need it, or a reference to draw it from with "
+           "--synthetic-odometry (--reference-topic or --reference FILE.tum)";
+  }
+  return line + "log-teach and log-localize draw it from the reference '" + index.reference_topic +
+         "' with --synthetic-odometry";
+}
+
 void WriteOdometryAndMount(std::ostream& out, const logs::LogIndex& index) {
+  if (!index.odometry_missing.empty()) out << NoOdometryLine(index) << "\n";
   if (!index.odometry_source.empty() && !index.odometry.empty()) {
     out << "odometry:   " << index.odometry_source << ": " << index.odometry.size() << " poses, "
         << FixedText(logs::PathLength(index.odometry), 1) << " m driven over "
@@ -89,7 +102,9 @@ void WriteOdometryAndMount(std::ostream& out, const logs::LogIndex& index) {
 }
 
 void WriteReference(std::ostream& out, const logs::LogIndex& index) {
-  if (index.reference.empty() && !index.scan_streams.empty()) {
+  if (index.reference.empty() && !index.odometry_missing.empty()) {
+    out << "reference:  none\n";
+  } else if (index.reference.empty() && !index.scan_streams.empty()) {
     out << "reference:  none (a corrected log's odometry is its reference: "
            "--synthetic-odometry draws drifting odometry from it)\n";
   } else if (!index.reference.empty()) {

@@ -12,7 +12,10 @@ EndConditions::EndConditions(const LimitsConfig& limits, double timeout_s)
 
 std::optional<Outcome> EndConditions::Check(const TickStatus& tick) {
   const double t = tick.time;
-  if (tick.localization_error > limits_.lost_distance) {
+  if (tick.operator_driving) {
+    lost_since_ = -1.0;
+    last_progress_time_ = t;
+  } else if (tick.localization_error > limits_.lost_distance) {
     if (lost_since_ < 0.0) lost_since_ = t;
   } else {
     lost_since_ = -1.0;

@@ -23,6 +23,8 @@ struct TickStatus {
   double localization_error = 0.0;  ///< m, estimate vs local truth
   std::size_t map_index = 0;        ///< the current map
   double remaining = 0.0;           ///< m of the current path left
+  /// An operator drives the robot (a takeover): neither lost nor stalled counts meanwhile.
+  bool operator_driving = false;
 };
 
 class EndConditions {

@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "bench/engine/end_conditions.hpp"
@@ -15,6 +16,7 @@
 #include "nav/navigator.hpp"
 #include "nav/obstacle_avoidance.hpp"
 #include "sim/simulator.hpp"
+#include "sim/teacher.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -113,6 +115,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
   std::optional<core::LaserScan> latest_scan;
   core::Twist command;
   std::optional<Outcome> outcome;
+  std::optional<sim::Teacher> operator_drive;  // a takeover in progress
 
   while (!outcome) {
     // 1. Step the world; the sensors that came due.
@@ -127,10 +130,21 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
       recorder.OnSwitch(s.time, *tick.map_switch, X_WR);
       feed.OnSwitch(s.time);
     }
-    // 4. Avoid on the latest scan, command the robot.
+    // 4. Avoid on the latest scan, command the robot (an operator who took it over drives it).
     nav::AvoidanceOutput avoid{.command = tick.follow.command};
     if (latest_scan) avoid = avoidance.Filter(tick.follow.command, *latest_scan);
     command = avoid.command;
+    if (operator_drive) {
+      command = avoid.command = operator_drive->Command(X_WR, stepper.control_dt());
+      avoid.modified = avoid.blocked = false;
+      if (operator_drive->Done()) {  // handed back: the navigator resumes where the robot is
+        operator_drive.reset();
+        if (const std::optional<nav::MapSwitch> sw = nav.Resume()) {
+          recorder.OnSwitch(s.time, *sw, X_WR);
+          feed.OnSwitch(s.time);
+        }
+      }
+    }
     // 5. Record; scripted events; check the end.
     const core::Pose2 X_MR = nav.Estimate();
     const core::Pose2 X_MR_truth = recorder.OnControlTick(
@@ -138,9 +152,13 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
     feed.OnTick(s.time, nav.localizer(), nav.server(), X_WR, X_MR_truth, command.v, simulator);
     recorder.OnEvents(s.time,
                       events.Fire(s.time, route_progress.Update(X_WR.translation()), simulator));
-    outcome = end.Check({s.time, tick.route_done, nav.server().IsLast(),
+    if (std::vector<core::Vec2> drive = events.TakeOver(); !drive.empty()) {
+      drive.insert(drive.begin(), X_WR.translation());
+      operator_drive.emplace(std::move(drive), config.teach.teacher, rng.Split("operator"));
+    }
+    outcome = end.Check({s.time, tick.route_done && !operator_drive, nav.server().IsLast(),
                          !stepper.collisions().empty(), Compare(X_MR, X_MR_truth).distance,
-                         nav.server().index(), tick.follow.remaining});
+                         nav.server().index(), tick.follow.remaining, operator_drive.has_value()});
   }
   feed.OnEnd();
   if (tap != nullptr) tap->OnEnd();

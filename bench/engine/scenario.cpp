@@ -70,6 +70,16 @@ void RouteConfig::Validate() const {
             core::FormatNumber(OnlineSwitching().MaxMapLength()) + " m of travel, window " +
             core::FormatNumber(switch_window) + " m (0: no budget)");
   }
+  core::RequireNonNegative("revisit_tolerance", revisit_tolerance);
+  const nav::OnlineSwitchingConfig online = OnlineSwitching();
+  if (std::isfinite(online.MaxMapLength()) && !(online.MaxMapLength() > online.MinMapLength())) {
+    throw core::ConfigError("revisit_tolerance",
+                            "must be below online_drift_budget (" +
+                                core::FormatNumber(online_drift_budget) + " m): a loop of " +
+                                core::FormatNumber(online.MinMapLength()) +
+                                " m would be consistent, but maps end after " +
+                                core::FormatNumber(online.MaxMapLength()) + " m");
+  }
   const std::vector<double>& points_at = switch_points.value;
   for (std::size_t i = 0; i < points_at.size(); ++i) {
     core::RequirePositive("switch_points", points_at[i]);
@@ -103,6 +113,15 @@ void EventConfig::Validate() const {
   if (at_route_s) core::RequireNonNegative("at_route_s", *at_route_s);
   if (action == EventAction::kObstacle && boxes.empty() && circles.empty()) {
     throw core::ConfigError("boxes", "an obstacle event needs at least one box or circle");
+  }
+  if (action == EventAction::kTakeover) {
+    if (drive.empty()) throw core::ConfigError("drive", "a takeover needs at least one point");
+    if (phase != EventPhase::kPlayback) {
+      throw core::ConfigError("phase", "a takeover happens in playback only");
+    }
+  }
+  if (action != EventAction::kTakeover && !drive.empty()) {
+    throw core::ConfigError("drive", "only a takeover drives the robot");
   }
 }
 

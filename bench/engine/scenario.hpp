@@ -126,7 +126,7 @@ struct PhaseObjectsConfig {
 };
 
 enum class EventPhase { kTeach, kPlayback, kBoth };
-enum class EventAction { kPedestrians, kCrossing, kObstacle };
+enum class EventAction { kPedestrians, kCrossing, kObstacle, kTakeover };
 
 /// Pedestrians sent across the robot's path: `count` people appear around `from` (within
 /// `spread`) and walk to `to` and back, again and again.
@@ -165,6 +165,10 @@ struct EventConfig {
   CrossingConfig crossing;
   std::vector<sim::BoxConfig> boxes;
   std::vector<sim::CircleConfig> circles;
+  /// `takeover` (playback only): an operator takes the robot over and drives it through these
+  /// points (W, m) as the teacher drives a route, then hands it back where the last one is; the
+  /// navigator keeps localizing all the while, its commands unused.
+  std::vector<core::Vec2> drive;
 
   template <class V>
   void Reflect(V& v) {
@@ -177,6 +181,7 @@ struct EventConfig {
     v("crossing", crossing);
     v("boxes", boxes);
     v("circles", circles);
+    v("drive", drive);
   }
   void Validate() const;
 };
@@ -348,8 +353,9 @@ struct retrace::core::EnumTraits<retrace::bench::EventPhase> {
 
 template <>
 struct retrace::core::EnumTraits<retrace::bench::EventAction> {
-  static constexpr std::array<std::pair<retrace::bench::EventAction, std::string_view>, 3> kNames{
+  static constexpr std::array<std::pair<retrace::bench::EventAction, std::string_view>, 4> kNames{
       {{retrace::bench::EventAction::kPedestrians, "pedestrians"},
        {retrace::bench::EventAction::kCrossing, "crossing"},
-       {retrace::bench::EventAction::kObstacle, "obstacle"}}};
+       {retrace::bench::EventAction::kObstacle, "obstacle"},
+       {retrace::bench::EventAction::kTakeover, "takeover"}}};
 };

@@ -1,5 +1,7 @@
 #include "bench/engine/scripted_events.hpp"
 
+#include <utility>
+
 #include <algorithm>
 #include <limits>
 
@@ -42,6 +44,9 @@ std::vector<std::string> ScriptedEvents::Fire(double time, double route_s, sim::
           for (const sim::BoxConfig& box : it->boxes) sim.AddObstacle(box);
           for (const sim::CircleConfig& circle : it->circles) sim.AddObstacle(circle);
           break;
+        case EventAction::kTakeover:
+          takeover_ = it->drive;
+          break;
       }
     } catch (const core::Error& e) {
       throw core::WorldError("scripted event '" + name + "': " + e.what());
@@ -51,6 +56,8 @@ std::vector<std::string> ScriptedEvents::Fire(double time, double route_s, sim::
   }
   return fired;
 }
+
+std::vector<core::Vec2> ScriptedEvents::TakeOver() { return std::exchange(takeover_, {}); }
 
 sim::PedestrianGroupConfig CrossingGroup(const CrossingConfig& crossing) {
   sim::PedestrianGroupConfig group;

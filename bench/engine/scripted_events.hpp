@@ -39,9 +39,13 @@ class ScriptedEvents {
   /// returns the names of those fired. Throws core::WorldError when an event cannot be
   /// carried out (its pedestrians cannot be placed, its obstacle would hit the robot).
   std::vector<std::string> Fire(double time, double route_s, sim::Simulator& sim);
+  /// The points of a takeover that fired since the last call (empty: none): the caller drives
+  /// them (the simulator has no driver of its own).
+  std::vector<core::Vec2> TakeOver();
 
  private:
   std::vector<EventConfig> pending_;
+  std::vector<core::Vec2> takeover_;
 };
 
 /// The pedestrian group of a crossing: they appear around `from` and walk to `to` and back.

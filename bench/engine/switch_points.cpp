@@ -27,14 +27,14 @@ struct Revisit {
 };
 
 // The first sample of the stretch [s_start, s_end] that comes within revisit_radius of an
-// earlier part of the same stretch lying more than nav::RevisitLag(revisit_radius) of travel
-// behind. Samples are s_start + i·step and s_end, so CheckSwitchPoints and SuggestSwitchPoints
+// earlier part of the same stretch lying more than nav::RevisitLag(revisit_radius), and more than
+// min_loop, of travel behind. Samples are s_start + i·step and s_end, so CheckSwitchPoints and SuggestSwitchPoints
 // see the same points.
 std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::vector<double>& cum,
                                     const core::PathIndex& index, double s_start, double s_end,
-                                    double revisit_radius) {
+                                    double revisit_radius, double min_loop) {
   const double step = nav::RevisitSampleStep(revisit_radius);
-  const double lag = nav::RevisitLag(revisit_radius);
+  const double lag = std::max(nav::RevisitLag(revisit_radius), min_loop);
   double previous = s_start;
   for (long i = 0;; ++i) {
     double s = s_start + static_cast<double>(i) * step;
@@ -83,7 +83,7 @@ double RouteLength(const std::vector<Vec2>& route) {
 
 std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
                                            const std::vector<double>& switch_points,
-                                           double revisit_radius) {
+                                           double revisit_radius, double min_loop) {
   RequireUsable(route, revisit_radius);
   const std::vector<double> cum = CumulativeArcLength(route);
   const double length = cum.back();
@@ -109,7 +109,8 @@ std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
   for (std::size_t k = 0; k <= switch_points.size(); ++k) {
     const double s_start = k == 0 ? 0.0 : switch_points[k - 1];
     const double s_end = k == switch_points.size() ? length : switch_points[k];
-    const auto revisit = FirstRevisit(route, cum, index, s_start, s_end, revisit_radius);
+    const auto revisit =
+        FirstRevisit(route, cum, index, s_start, s_end, revisit_radius, min_loop);
     if (!revisit) continue;
     std::ostringstream msg;
     msg << "partial map " << k << " (route " << ArcLengthText(s_start) << " to "
@@ -122,14 +123,15 @@ std::vector<std::string> CheckSwitchPoints(const std::vector<Vec2>& route,
   return warnings;
 }
 
-std::vector<double> SuggestSwitchPoints(const std::vector<Vec2>& route, double revisit_radius) {
+std::vector<double> SuggestSwitchPoints(const std::vector<Vec2>& route, double revisit_radius,
+                                        double min_loop) {
   RequireUsable(route, revisit_radius);
   const std::vector<double> cum = CumulativeArcLength(route);
   const core::PathIndex index(route, cum, revisit_radius);
   std::vector<double> points;
   double s_start = 0.0;
   while (const auto revisit =
-             FirstRevisit(route, cum, index, s_start, cum.back(), revisit_radius)) {
+             FirstRevisit(route, cum, index, s_start, cum.back(), revisit_radius, min_loop)) {
     // The last sample before the revisit: the map ending there is still clean, and it lies at
     // least (lag - step) beyond s_start, so the loop advances.
     points.push_back(revisit->s_before);

@@ -32,14 +32,17 @@ double RouteLength(const std::vector<core::Vec2>& route);
 /// Throws core::ConfigError("route.switch_points", ...) for switch points that are not
 /// strictly increasing, ≤ 0 or ≥ the route length (the message gives the length), and
 /// core::ConfigError for a route of fewer than 2 points or a revisit_radius that is not > 0.
+/// With min_loop > 0 only a revisit after more than min_loop m of travel counts: a shorter loop
+/// gathers less drift than the localizer tolerates (route.revisit_tolerance / online_drift,
+/// nav::OnlineSwitchingConfig::MinMapLength).
 std::vector<std::string> CheckSwitchPoints(const std::vector<core::Vec2>& route,
                                            const std::vector<double>& switch_points,
-                                           double revisit_radius);
+                                           double revisit_radius, double min_loop = 0.0);
 
 /// Greedy switch points (m of arc length): each new map starts just before the current one
 /// would begin to revisit itself, in the sense of CheckSwitchPoints, which finds no fault in
 /// the result. Empty when the route never revisits itself. Throws like CheckSwitchPoints.
 std::vector<double> SuggestSwitchPoints(const std::vector<core::Vec2>& route,
-                                        double revisit_radius);
+                                        double revisit_radius, double min_loop = 0.0);
 
 }  // namespace retrace::bench

@@ -61,8 +61,10 @@ AggregateMetrics AggregateMode(const Scenario& scenario, const ModeTeach& teach,
   aggregate.map_quality =
       ComputeMapQuality(teach, scenario.teach_world.geometry,
                         scenario.config.nav.localizer.likelihood_field.occupied_threshold);
-  aggregate.switching = EvaluateSwitching(teach.trace, scenario.config.route.revisit_radius,
-                                          SwitchReasons(teach, scenario.config.route));
+  aggregate.switching =
+      EvaluateSwitching(teach.trace, scenario.config.route.revisit_radius,
+                        SwitchReasons(teach, scenario.config.route),
+                        scenario.config.route.OnlineSwitching().MinMapLength());
   aggregate.match_counts = teach.match_counts;
   return aggregate;
 }

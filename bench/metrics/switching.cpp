@@ -28,7 +28,7 @@ std::vector<std::string> SwitchReasons(const ModeTeach& teach, const RouteConfig
 }
 
 SwitchingQuality EvaluateSwitching(const TeachTrace& trace, double revisit_radius,
-                                   const std::vector<std::string>& reasons) {
+                                   const std::vector<std::string>& reasons, double min_loop) {
   SwitchingQuality q;
   const bool with_reasons = reasons.size() + 1 == trace.maps.size();
   q.maps = static_cast<int>(trace.maps.size());
@@ -70,8 +70,8 @@ SwitchingQuality EvaluateSwitching(const TeachTrace& trace, double revisit_radiu
     if (why == "revisit") ++q.reason_counts.revisit;
     if (why == "drift_budget") ++q.reason_counts.drift_budget;
   }
-  q.minimum = static_cast<int>(SuggestSwitchPoints(path, revisit_radius).size()) + 1;
-  q.warnings = CheckSwitchPoints(path, q.switch_travel_m, revisit_radius);
+  q.minimum = static_cast<int>(SuggestSwitchPoints(path, revisit_radius, min_loop).size()) + 1;
+  q.warnings = CheckSwitchPoints(path, q.switch_travel_m, revisit_radius, min_loop);
   q.revisiting = static_cast<int>(q.warnings.size());
   return q;
 }

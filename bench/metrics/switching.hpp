@@ -2,12 +2,16 @@
 // How well a mode's maps were cut, judged on the teaching drive's ground truth — the check that
 // online switching (nav/online_switcher.hpp), which never sees the route, did its job:
 //   maps        partial maps made
-//   minimum     the fewest maps this drive needs so that none holds a place twice: greedy cuts
-//               just before each revisit (SuggestSwitchPoints on the driven path), which is
-//               optimal because a piece of a map that holds no place twice holds none either
-//   revisiting  maps that hold a place twice: their stretch of the driven path comes within
-//               route.revisit_radius of an earlier part of the same stretch lying more than
-//               3·revisit_radius behind (CheckSwitchPoints on the driven path); must be 0
+//   minimum     the fewest maps this drive needs so that none holds a place twice after a loop
+//               longer than the drift rule allows: greedy cuts just before each such revisit
+//               (SuggestSwitchPoints on the driven path), which is optimal because a piece of a
+//               map without one has none either
+//   revisiting  maps that hold a place twice after such a loop: their stretch of the driven path
+//               comes within route.revisit_radius of an earlier part of the same stretch lying
+//               more than 3·revisit_radius and more than route.revisit_tolerance /
+//               route.online_drift behind (CheckSwitchPoints on the driven path); must be 0. A
+//               shorter loop (a dead end turned back from) gathers less drift than the localizer
+//               tolerates and is no fault.
 // The driven path is the ground-truth trajectory of the teaching drive, and switches are placed
 // on it at the distance driven when each map began. Each switch also says why it happened:
 //   operator      a listed switch point (route.switch_points: [...])
@@ -49,9 +53,11 @@ struct SwitchingQuality {
 std::vector<std::string> SwitchReasons(const ModeTeach& teach, const RouteConfig& route);
 
 /// The switching quality of one mode's teach trace (see above); `reasons` (SwitchReasons), if
-/// given, says why map k + 1 began at [k]. Throws core::ConfigError for a revisit_radius that is
-/// not > 0.
+/// given, says why map k + 1 began at [k]; min_loop (m) is the drift rule's shortest loop that
+/// counts (nav::OnlineSwitchingConfig::MinMapLength). Throws core::ConfigError for a
+/// revisit_radius that is not > 0.
 SwitchingQuality EvaluateSwitching(const TeachTrace& trace, double revisit_radius,
-                                   const std::vector<std::string>& reasons = {});
+                                   const std::vector<std::string>& reasons = {},
+                                   double min_loop = 0.0);
 
 }  // namespace retrace::bench

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/errors.hpp"
 
@@ -11,6 +12,34 @@ namespace {
 
 constexpr double kStepDistance = 0.02;  // m
 constexpr double kStepAngle = 0.0175;   // rad
+
+// The one line that refuses a log without odometry: what it lacks and, when a reference (the
+// log's or `reference_file`) can stand in, the option that draws the odometry from it.
+std::string NoOdometry(const logs::LogIndex& index, const LogStreams& streams,
+                       const std::optional<std::filesystem::path>& reference_file,
+                       bool synthetic_odometry) {
+  const std::string line = index.name + ": no odometry (" + index.odometry_missing + ")";
+  if (!streams.reference.empty()) {
+    const std::string reference = reference_file ? "the reference '" + reference_file->string()
+                                                 : "its reference '" + index.reference_topic;
+    return line + "; " + reference + "' can stand in: add --synthetic-odometry";
+  }
+  return line + " and no reference to draw it from: give one with --reference FILE.tum" +
+         (synthetic_odometry ? "" : " and add --synthetic-odometry");
+}
+
+// The stamps (s) a reference file must overlap: the log's odometry, else (a log without one)
+// its scans.
+struct StampSpan {
+  double from = 0.0;
+  double to = 0.0;
+  std::string what;
+};
+
+StampSpan LogStampSpan(const logs::LogIndex& index) {
+  if (index.odometry.empty()) return {index.scan.first_stamp, index.scan.last_stamp, "scans"};
+  return {index.odometry.front().t, index.odometry.back().t, "odometry"};
+}
 
 }  // namespace
 
@@ -53,17 +82,21 @@ LogStreams PrepareLogStreams(const logs::LogIndex& index, const LogConfig& confi
     streams.reference_source = reference_file->string();
     std::stable_sort(streams.reference.begin(), streams.reference.end(),
                      [](const io::StampedPose& a, const io::StampedPose& b) { return a.t < b.t; });
-    if (streams.reference.empty() || streams.reference.back().t < index.odometry.front().t ||
-        streams.reference.front().t > index.odometry.back().t) {
-      throw core::IoError(reference_file->string() +
-                          ": the reference does not overlap the log's odometry in time (stamps " +
-                          core::FormatNumber(index.odometry.front().t) + " to " +
-                          core::FormatNumber(index.odometry.back().t) + " s)");
+    const StampSpan log = LogStampSpan(index);
+    if (streams.reference.empty() || streams.reference.back().t < log.from ||
+        streams.reference.front().t > log.to) {
+      throw core::IoError(reference_file->string() + ": the reference does not overlap the log's " +
+                          log.what + " in time (stamps " + core::FormatNumber(log.from) + " to " +
+                          core::FormatNumber(log.to) + " s)");
     }
   } else if (!index.reference.empty()) {
     streams.reference = index.reference;
     streams.reference_source = index.reference_source;
   }
+  // Only driving on the log's own odometry needs it: a log without odometry (a motion-capture
+  // bag) is driven on odometry drawn from its reference.
+  if (index.odometry.empty() && (!synthetic_odometry || streams.reference.empty()))
+    throw core::IoError(NoOdometry(index, streams, reference_file, synthetic_odometry));
   if (synthetic_odometry) {
     if (streams.reference.empty()) {
       streams.reference = index.odometry;

@@ -34,7 +34,9 @@ struct LogStreams {
 /// `synthetic_odometry`, odometry drawn from that reference (or, without one, from the log's
 /// odometry, which then becomes the reference) with `config.sim.odometry` and `config.seed`.
 /// Throws core::IoError for an unreadable reference file or one that does not overlap the log's
-/// odometry in time.
+/// odometry (without one, its scans) in time, and for a log without odometry
+/// (LogIndex::odometry_missing) unless synthetic odometry is drawn from a reference: one line
+/// saying what is missing and, where a reference can stand in, to add --synthetic-odometry.
 LogStreams PrepareLogStreams(const logs::LogIndex& index, const LogConfig& config,
                              bool synthetic_odometry,
                              const std::optional<std::filesystem::path>& reference_file);

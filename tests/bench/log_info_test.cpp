@@ -10,6 +10,7 @@
 #include "logs/mcap_writer.hpp"
 #include "logs/ros_messages.hpp"
 #include "logs/sensor_log.hpp"
+#include "tests/support/mocap_bag.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
@@ -71,6 +72,38 @@ TEST(LogInfo, DescribesEveryScanTopicAndNamesTheChoiceTheOtherCommandsNeed) {
   const std::string chosen = DescribeLog(logs::IndexLog(tmp.path() / "neato.mcap", choice));
   EXPECT_NE(chosen.find("scans:      /stable_scan (used): 20 scans"), std::string::npos) << chosen;
   EXPECT_EQ(chosen.find("choose:"), std::string::npos) << chosen;
+}
+
+// A bag recorded under motion capture has no odometry: log-info describes it as any other and
+// names what stands in, instead of ending with "no odometry".
+TEST(LogInfo, DescribesABagWithoutOdometryAndNamesWhatWouldDrawIt) {
+  testing::TempDir tmp;
+  const fs::path bag = testing::WriteMocapBag(tmp.path() / "mocap.mcap");
+  const std::string text = DescribeLog(logs::IndexLog(bag));
+  EXPECT_NE(text.find("  /scan       sensor_msgs/msg/LaserScan             61       0.00       "
+                      "6.00    10.00"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  /pose       geometry_msgs/msg/PoseStamped        301       0.00       "
+                      "6.00    50.00"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("scans:      /scan: 61 scans of 360 beams"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nodometry:   none (no nav_msgs/msg/Odometry topic, no tf from 'odom'): "
+                      "log-teach and log-localize draw it from the reference '/pose' with "
+                      "--synthetic-odometry\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("mount:      X_RL (0.100 m, 0.000 m, 0.0 deg) from tf_static base_link -> "
+                      "laser"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("reference:  /pose (geometry_msgs/msg/PoseStamped): 301 poses, 6.0 m"),
+            std::string::npos)
+      << text;
+  LogInfoOptions options;
+  options.log = bag;
+  EXPECT_EQ(RunLogInfoCommand(options), 0);
 }
 
 }  // namespace log_info_test

@@ -8,9 +8,13 @@
 #include <numeric>
 #include <vector>
 
+#include "bench/cli/log_localize_command.hpp"
+#include "bench/cli/log_teach_command.hpp"
 #include "logs/carmen_writer.hpp"
 #include "logs/sensor_log.hpp"
 #include "tests/support/fake_scan.hpp"
+#include "tests/support/io_error_of.hpp"
+#include "tests/support/mocap_bag.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace retrace::bench {
@@ -60,6 +64,51 @@ TEST(LogTeach, ScanMatchedCountsIncludeTheKeyframesFinishMatches) {
   // A keyframe every 0.5 m of the 6 m: 13, each with a verdict.
   EXPECT_GE(total, 12);
   EXPECT_GT(counts[0], 0);  // matched
+}
+
+// A bag recorded under motion capture (scans and a PoseStamped topic, no odometry) drives on
+// its own odometry only with --synthetic-odometry: without, one line says what is missing and
+// what stands in.
+TEST(LogTeach, ABagWithoutOdometryIsRefusedInOneLineNamingTheFix) {
+  testing::TempDir tmp;
+  const fs::path bag = testing::WriteMocapBag(tmp.path() / "mocap.mcap");
+  const logs::LogIndex index = logs::IndexLog(bag);
+  const std::string error =
+      testing::IoErrorOf([&] { PrepareLogStreams(index, LogConfig{}, false, std::nullopt); });
+  EXPECT_EQ(error, bag.string() +
+                       ": no odometry (no nav_msgs/msg/Odometry topic, no tf from 'odom'); its "
+                       "reference '/pose' can stand in: add --synthetic-odometry");
+  // Without a reference either, there is nothing to draw odometry from.
+  logs::LogIndex bare = index;
+  bare.reference.clear();
+  bare.reference_topic.clear();
+  bare.reference_source.clear();
+  EXPECT_EQ(testing::IoErrorOf([&] { PrepareLogStreams(bare, LogConfig{}, true, std::nullopt); }),
+            bag.string() +
+                ": no odometry (no nav_msgs/msg/Odometry topic, no tf from 'odom') and no "
+                "reference to draw it from: give one with --reference FILE.tum");
+}
+
+// ... and with --synthetic-odometry, log-teach teaches it and log-localize localizes it.
+TEST(LogTeach, ABagWithoutOdometryTeachesAndLocalizesOnSyntheticOdometry) {
+  testing::TempDir tmp;
+  LogTeachOptions teach;
+  teach.run.log = testing::WriteMocapBag(tmp.path() / "mocap.mcap");
+  teach.run.out = tmp.path() / "taught";
+  teach.run.synthetic_odometry = true;
+  teach.run.figures = false;
+  teach.modes = {"partial"};
+  ASSERT_EQ(RunLogTeachCommand(teach, "log-teach"), 0);
+  EXPECT_TRUE(fs::exists(tmp.path() / "taught/partial/teach/sub_map_num.txt"));
+  EXPECT_NE(tmp.Read("taught/partial/manifest.yaml").find("synthetic, drawn from /pose"),
+            std::string::npos);
+
+  LogLocalizeOptions localize;
+  localize.run = teach.run;
+  localize.run.out = tmp.path() / "localized";
+  localize.teach_dir = tmp.path() / "taught/partial/teach";
+  ASSERT_EQ(RunLogLocalizeCommand(localize, "log-localize"), 0);
+  EXPECT_TRUE(fs::exists(tmp.path() / "localized/metrics.json"));
 }
 
 }  // namespace log_teach_test

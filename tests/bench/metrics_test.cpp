@@ -633,7 +633,9 @@ TEST(Metrics, AggregateJsonHasTheDocumentedKeys) {
   ExpectKeys(a["tracking_error_m"]["pooled"], {"mean", "rms", "p95", "max", "count"});
   ExpectKeys(a["lost_fraction"], {"pooled", "run_mean"});
   ExpectKeys(a["localizer"],
-             {"lost_time_s", "lost_spells", "reacquisitions", "max_jump_m", "max_jump_time_s"});
+             {"lost_time_s", "lost_spells", "reacquisitions", "max_jump_m", "max_jump_time_s",
+              "max_error_increase_m", "max_error_increase_time_s", "reacquisitions_closer",
+              "reacquisitions_wrong"});
   ExpectKeys(a["switch_error"], {"count", "mean_m", "max_m", "mean_rad", "max_rad"});
   ExpectKeys(a["collisions"],
              {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",

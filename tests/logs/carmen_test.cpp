@@ -336,7 +336,48 @@ TEST(CarmenParse, ParamsOverrideTheOldLaserGeometry) {
   EXPECT_NE(bad_fov.find("laser_front_laser_fov"), std::string::npos) << bad_fov;
   EXPECT_NE(IoErrorOf([&] { ApplyCarmenParam("robot_front_laser_max", "nan", d); }), "");
   EXPECT_NE(IoErrorOf([&] { ApplyCarmenParam("robot_front_laser_max", "-1", d); }), "");
-  EXPECT_NE(IoErrorOf([&] { ApplyCarmenParam("laser_front_laser_flipped", "yes", d); }), "");
+}
+
+// laser_*_laser_flipped is information only: read as a boolean however it is spelled, and never
+// a reason to refuse a log when it is not one.
+TEST(CarmenParse, FlippedIsABooleanOfAnySpellingAndNeverAnError) {
+  CarmenLaserDefaults d;
+  for (const char* yes : {"1", "on", "yes", "true", "Yes", "TRUE"}) {
+    d.front.flipped = false;
+    EXPECT_TRUE(ApplyCarmenParam("laser_front_laser_flipped", yes, d));
+    EXPECT_TRUE(d.front.flipped) << yes;
+  }
+  for (const char* no : {"0", "off", "no", "false", "No", "OFF"}) {
+    d.front.flipped = true;
+    EXPECT_TRUE(ApplyCarmenParam("laser_front_laser_flipped", no, d));
+    EXPECT_FALSE(d.front.flipped) << no;
+  }
+  EXPECT_EQ(IoErrorOf([&] { ApplyCarmenParam("laser_front_laser_flipped", "upside down", d); }),
+            "");
+  EXPECT_FALSE(d.front.flipped);  // unchanged
+}
+
+// A PARAM line retrace does not read is skipped whatever it holds; one it reads is applied, and
+// refused when malformed.
+TEST(CarmenParse, ParamLinesRetraceDoesNotReadAreSkipped) {
+  CarmenLaserDefaults d;
+  EXPECT_TRUE(ApplyCarmenParamLine("PARAM laser_front_laser_flipped no nohost 0", d));
+  EXPECT_FALSE(d.front.flipped);
+  EXPECT_TRUE(ApplyCarmenParamLine("PARAM laser_rear_laser_flipped on 12.5 host 0.3", d));
+  EXPECT_TRUE(d.rear.flipped);
+  for (const char* line :
+       {"PARAM robot_allow_rear_motion yes nohost 0", "PARAM robot_name the blue pioneer nohost 0",
+        "PARAM lonely", "PARAM", "PARAM laser_front_laser_dev /dev/ttyS0 12.5 host 0.3"}) {
+    EXPECT_EQ(IoErrorOf([&] { EXPECT_FALSE(ApplyCarmenParamLine(line, d)) << line; }), "") << line;
+  }
+  EXPECT_TRUE(ApplyCarmenParamLine("PARAM robot_front_laser_max 49.9 nohost 0", d));
+  EXPECT_EQ(d.front.max_range, 49.9);
+  EXPECT_EQ(IoErrorOf([&] { ApplyCarmenParamLine("PARAM robot_front_laser_max far nohost 0", d); }),
+            "PARAM robot_front_laser_max: 'far' is not a finite number");
+  EXPECT_EQ(IoErrorOf([&] { ApplyCarmenParamLine("PARAM laser_front_laser_fov", d); }),
+            "PARAM laser_front_laser_fov: no value");
+  EXPECT_NE(IoErrorOf([&] { ApplyCarmenParamLine("ODOM 0 0 0 0 0 0 1 h 1", d); }).find("PARAM"),
+            std::string::npos);
 }
 
 TEST(CarmenParse, ParamLinesOfEveryVintage) {

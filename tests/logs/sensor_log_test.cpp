@@ -14,6 +14,7 @@
 #include "logs/log_source.hpp"
 #include "logs/mcap_writer.hpp"
 #include "logs/ros_messages.hpp"
+#include "tests/support/mocap_bag.hpp"
 #include "tests/support/source_dir.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -150,10 +151,58 @@ TEST(SensorLog, McapStreamsMountChainAndTfOdometry) {
   EXPECT_EQ(tf.problem, "");
   EXPECT_EQ(tf.odometry_source, "tf odom -> base_link");
   ExpectNear(tf.odometry[50].pose, Odometry(1.0), 1e-9);
-  // ... from the frame named with --odom-frame only.
+  // ... from the frame named with --odom-frame only: from 'map', the log has no odometry.
   StreamChoice other;
   other.odom_frame = "map";
-  EXPECT_NE(IndexError(tmp.path() / "tf.mcap", other).find("no odometry"), std::string::npos);
+  const LogIndex map = IndexLog(tmp.path() / "tf.mcap", other);
+  EXPECT_TRUE(map.odometry.empty());
+  EXPECT_EQ(map.odometry_missing, "no nav_msgs/msg/Odometry topic, no tf from 'map'");
+}
+
+// A bag recorded under motion capture: scans and a PoseStamped topic, no odometry. It is usable
+// (odometry can be drawn from the reference); the index says what is missing and still finds
+// the mount, from the top of the scans' static chain.
+TEST(SensorLog, ABagWithoutOdometryIsUsableAndSaysWhatIsMissing) {
+  testing::TempDir tmp;
+  const LogIndex index = IndexLog(testing::WriteMocapBag(tmp.path() / "mocap.mcap"));
+  EXPECT_EQ(index.problem, "");
+  EXPECT_NO_THROW(RequireUsable(index));
+  EXPECT_TRUE(index.odometry.empty());
+  EXPECT_EQ(index.odometry_source, "");
+  EXPECT_EQ(index.odometry_missing, "no nav_msgs/msg/Odometry topic, no tf from 'odom'");
+  EXPECT_EQ(index.reference_topic, "/pose");
+  EXPECT_EQ(index.reference.size(), 301U);
+  EXPECT_EQ(index.scan.scans, 61U);
+  EXPECT_EQ(index.base_frame, "base_link");
+  ExpectNear(index.X_RL, testing::kMocapMount, 1e-12);
+  EXPECT_EQ(index.mount_source,
+            "tf_static base_link -> laser (the top of the scans' static chain: no odometry names "
+            "the base; --base-frame chooses another)");
+  EXPECT_TRUE(index.notes.empty());
+}
+
+// A CARMEN log whose laser lines carry no robot pose, without ODOM lines, is the same: usable,
+// its TRUEPOS lines the reference; lines named with --odometry-topic that it lacks are an error.
+TEST(SensorLog, ACarmenLogWithoutOdometryIsUsableAndSaysWhatIsMissing) {
+  testing::TempDir tmp;
+  std::string text;
+  for (int k = 0; k < 20; ++k) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "RAWLASER1 0 -1.5 3.0 1.5 20.0 0.01 0 3 1.0 2.0 3.0 0 %.1f host %.1f\n"
+                  "TRUEPOS %.1f 0 0 0 0 0 %.1f host %.1f\n",
+                  0.1 * k, 0.1 * k, 0.1 * k, 0.1 * k, 0.1 * k);
+    text += line;
+  }
+  const fs::path file = tmp.Write("raw.log", text);
+  const LogIndex index = IndexLog(file);
+  EXPECT_EQ(index.problem, "");
+  EXPECT_TRUE(index.odometry.empty());
+  EXPECT_EQ(index.odometry_missing, "no ODOM lines, RAWLASER1 lines carry no robot pose");
+  EXPECT_EQ(index.reference_topic, "TRUEPOS");
+  StreamChoice odom;
+  odom.odometry_topic = "ODOM";
+  EXPECT_EQ(IndexError(file, odom), file.string() + ": no odometry in 'ODOM' lines");
 }
 
 TEST(SensorLog, SeveralScanTopicsNeedAChoice) {
@@ -255,6 +304,41 @@ TEST(SensorLog, TimesCountFromTheFirstScanAndAnotherClockIsNamed) {
   EXPECT_NE(index.notes[0].find("lie more than 3600 s outside the scans' (0 to 5 s)"),
             std::string::npos)
       << index.notes[0];
+}
+
+// CARMEN PARAM lines retrace does not read never refuse a log, whatever their values say: a
+// boolean written `no`, free text, a name alone. The ones it reads still refuse a malformed
+// value, in one line naming the message and the parameter.
+TEST(SensorLog, CarmenParamsRetraceDoesNotReadNeverRefuseTheLog) {
+  testing::TempDir tmp;
+  const std::string params =
+      "PARAM laser_front_laser_flipped no nohost 0\n"
+      "PARAM robot_front_laser_max 50.0 nohost 0\n"
+      "PARAM robot_allow_rear_motion yes nohost 0\n"
+      "PARAM robot_name the blue pioneer nohost 0\n"
+      "PARAM logger_comment\n";
+  std::string lasers;
+  for (int k = 0; k <= 20; ++k) {
+    char line[256];
+    std::snprintf(line, sizeof line, "FLASER 3 1.0 2.0 60.0 %.1f 0 0 %.1f 0 0 %.1f nohost %.1f\n",
+                  0.1 * k, 0.1 * k, 0.1 * k, 0.1 * k);
+    lasers += line;
+  }
+  const LogIndex index = IndexLog(tmp.Write("params.log", params + lasers));
+  EXPECT_EQ(index.problem, "");
+  EXPECT_EQ(index.scan.scans, 21U);
+  EXPECT_EQ(index.scan.range_max, 50.0);  // the parameter it reads is read
+  std::size_t scans = 0;
+  ReadScans(index, 0.0, 1e9, [&](const ScanMessage& m, double) {
+    EXPECT_TRUE(m.scan.NoReturn(2));  // 60 m beyond robot_front_laser_max
+    ++scans;
+  });
+  EXPECT_EQ(scans, 21U);
+
+  const fs::path bad = tmp.Write("bad.log", "PARAM robot_front_laser_max far nohost 0\n" + lasers);
+  EXPECT_EQ(IndexError(bad), bad.string() +
+                                 ": message 1 on 'PARAM': PARAM robot_front_laser_max: 'far' is "
+                                 "not a finite number");
 }
 
 // The Intel Research Lab log's lines as a logger printing %g would write them: every scan of the
