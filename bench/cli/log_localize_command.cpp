@@ -197,8 +197,9 @@ void AddLogLocalizeOptions(CLI::App* cmd, LogLocalizeOptions* options) {
                   "The teach/ folder to localize in (<mode>/teach of log-teach or run)")
       ->required();
   cmd->add_option("--initial-pose", options->initial_pose,
-                  "Where the robot starts in map 0: x,y,yaw_deg (default: from the reference "
-                  "when there is one, else map 0's origin)");
+                  "Where the robot starts, in map 0's frame: x,y,yaw_deg; it starts in the map "
+                  "whose taught path is nearest (default: the map nearest the reference when "
+                  "there is one, else map 0's origin)");
   cmd->add_flag("--every-odometry-tick", options->every_odometry_tick,
                 "One prediction per odometry message, as the simulator's playback predicts "
                 "(default: the fewest arcs that follow the messages within 1 mm)");
