@@ -30,6 +30,9 @@ std::vector<core::Vec2> CellsNear(const core::OccupancyGrid& grid, const core::V
   return thinned;
 }
 
+// Cells of B scored in the coarse search (the fine one scores all of them).
+constexpr std::size_t kCoarsePoints = 150;
+
 // A candidate transform: the prior turned by dtheta about the place (so that a turn does not
 // also move the place), then shifted by (dx, dy).
 struct Offset {
@@ -74,11 +77,18 @@ std::optional<MapRegistration> RegisterMaps(const LikelihoodField& field_A,
       static_cast<float>(field_A.LogLikelihoodOfDistance(config.inlier_distance));
   const core::Vec2 q_A = (prior_X_AB * core::Pose2(p_B.x(), p_B.y(), 0.0)).translation();
 
-  // Coarse: the whole window; every pose's inlier count is kept for the ambiguity test.
+  // Coarse: the whole window with a subset of the cells, each pose's inliers counted within a
+  // distance widened by half the step's diagonal, so that the best pose of the grid is not
+  // short of inliers only for lying between two steps; they are kept for the ambiguity test.
   struct Tried {
     Offset offset;
     Score score;
   };
+  const std::size_t stride = (points.size() + kCoarsePoints - 1) / kCoarsePoints;
+  std::vector<core::Vec2> subset;
+  for (std::size_t i = 0; i < points.size(); i += stride) subset.push_back(points[i]);
+  const float coarse_inlier_ll = static_cast<float>(field_A.LogLikelihoodOfDistance(
+      config.inlier_distance + config.coarse_xy / std::sqrt(2.0)));
   std::vector<Tried> tried;
   const int nxy = static_cast<int>(std::floor(config.search_xy / config.coarse_xy));
   const int nth = static_cast<int>(std::floor(config.search_theta / config.coarse_theta));
@@ -86,41 +96,50 @@ std::optional<MapRegistration> RegisterMaps(const LikelihoodField& field_A,
     for (int iy = -nxy; iy <= nxy; ++iy) {
       for (int ix = -nxy; ix <= nxy; ++ix) {
         const Offset o{ix * config.coarse_xy, iy * config.coarse_xy, it * config.coarse_theta};
-        tried.push_back({o, ScoreOf(field_A, points, Apply(prior_X_AB, q_A, o), inlier_ll)});
+        tried.push_back(
+            {o, ScoreOf(field_A, subset, Apply(prior_X_AB, q_A, o), coarse_inlier_ll)});
       }
     }
   }
   const auto better = [](const Tried& a, const Tried& b) {
     return a.score.log_likelihood < b.score.log_likelihood;
   };
-  Tried best = *std::max_element(tried.begin(), tried.end(), better);
+  const Tried coarse = *std::max_element(tried.begin(), tried.end(), better);
   int runner_up = 0;
   for (const Tried& t : tried) {
-    if (std::hypot(t.offset.dx - best.offset.dx, t.offset.dy - best.offset.dy) >=
+    if (std::hypot(t.offset.dx - coarse.offset.dx, t.offset.dy - coarse.offset.dy) >=
         config.ambiguity_distance) {
       runner_up = std::max(runner_up, t.score.inliers);
     }
   }
-  // Fine: a fifth of the coarse steps, one coarse step around the best.
-  const Offset centre = best.offset;
-  for (int it = -5; it <= 5; ++it) {
-    for (int iy = -5; iy <= 5; ++iy) {
-      for (int ix = -5; ix <= 5; ++ix) {
-        const Offset o{centre.dx + ix * config.coarse_xy / 5.0,
-                       centre.dy + iy * config.coarse_xy / 5.0,
-                       centre.dtheta + it * config.coarse_theta / 5.0};
-        const Tried t{o, ScoreOf(field_A, points, Apply(prior_X_AB, q_A, o), inlier_ll)};
-        if (better(best, t)) best = t;
+  // Fine: every cell, one coarse step around the best in quarter steps, then one quarter step
+  // around that in twentieths (1 cm and 0.001 rad by default).
+  Tried best{coarse.offset, ScoreOf(field_A, points, Apply(prior_X_AB, q_A, coarse.offset),
+                                    inlier_ll)};
+  for (const double step : {0.25, 0.05}) {
+    const Offset centre = best.offset;
+    const int n = step == 0.25 ? 4 : 5;
+    for (int it = -n; it <= n; ++it) {
+      for (int iy = -n; iy <= n; ++iy) {
+        for (int ix = -n; ix <= n; ++ix) {
+          const Offset o{centre.dx + ix * step * config.coarse_xy,
+                         centre.dy + iy * step * config.coarse_xy,
+                         centre.dtheta + it * step * config.coarse_theta};
+          const Tried t{o, ScoreOf(field_A, points, Apply(prior_X_AB, q_A, o), inlier_ll)};
+          if (better(best, t)) best = t;
+        }
       }
     }
   }
   const double n = static_cast<double>(points.size());
+  const double n_coarse = static_cast<double>(subset.size());
   MapRegistration r;
   r.X_AB = Apply(prior_X_AB, q_A, best.offset);
   r.inliers = best.score.inliers / n;
-  r.runner_up = runner_up / n;
+  r.runner_up = runner_up / n_coarse;
   r.points = static_cast<int>(points.size());
-  if (r.inliers < config.min_inliers || r.runner_up > r.inliers - config.ambiguity_margin) {
+  if (r.inliers < config.min_inliers ||
+      r.runner_up > coarse.score.inliers / n_coarse - config.ambiguity_margin) {
     return std::nullopt;
   }
   return r;

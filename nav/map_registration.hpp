@@ -8,8 +8,9 @@
 // The occupied cells of map B within `radius` of the place (at most max_points of them, evenly
 // thinned) are scored against map A's likelihood field (the localizer's own measurement model,
 // nav/likelihood_field.hpp): a correlative search over a window around the chain's prior
-// (translation and heading, coarse then fine), then the best pose's share of cells that land
-// within inlier_distance of A's walls. A match is refused when too few cells land on walls, or when a
+// (translation and heading; coarse with 150 of the cells, then fine with all of them around the
+// coarse best), then the best pose's share of cells that land within inlier_distance of A's
+// walls. A match is refused when too few cells land on walls, or when a
 // pose more than `ambiguity_distance` away scores nearly as well (a corridor seen along its
 // axis, a row of identical rooms): a wrong edge would carry the robot to a wrong place, which is
 // worse than no edge.
@@ -28,8 +29,8 @@ struct MapRegistrationConfig {
   int min_points = 40;            ///< fewer occupied cells near the place: no registration
   double search_xy = 1.5;         ///< m: half-width of the translation window around the prior
   double search_theta = 0.1;      ///< rad: half-width of the heading window
-  double coarse_xy = 0.1;         ///< m: coarse step
-  double coarse_theta = 0.01;     ///< rad: coarse step
+  double coarse_xy = 0.2;         ///< m: coarse step (the fine search takes a quarter of it)
+  double coarse_theta = 0.02;     ///< rad: coarse step
   double inlier_distance = 0.15;  ///< m: a cell of B this close to a wall of A is an inlier
   double min_inliers = 0.5;       ///< share of B's cells that must be inliers
   double ambiguity_distance = 1.0;  ///< m: another pose this far away ...
@@ -40,7 +41,9 @@ struct MapRegistrationConfig {
 struct MapRegistration {
   core::Pose2 X_AB;        ///< map B's frame in map A's
   double inliers = 0.0;    ///< share of B's cells within inlier_distance of A's walls
-  double runner_up = 0.0;  ///< the best inlier share of poses ambiguity_distance or more away
+  /// the best inlier share of poses ambiguity_distance or more away, in the coarse search
+  /// (inliers within inlier_distance + coarse_xy / √2, against the coarse best's)
+  double runner_up = 0.0;
   int points = 0;          ///< B's cells used
 };
 

@@ -156,7 +156,7 @@ void LinkRoute(TeachBundle& bundle, const RouteLinkConfig& config) {
         const std::optional<MapRegistration> r =
             RegisterMaps(*fields[a], map_b.grid, p_b, X_ab, registration);
         if (!r) {
-          next_s = s_b + config.spacing / 4.0;  // the place did not register: try a little on
+          next_s = s_b + config.spacing / 2.0;  // the place did not register: try farther on
           continue;
         }
         const core::Vec2 q_a = (r->X_AB * core::Pose2(p_b.x(), p_b.y(), 0.0)).translation();
