@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/engine/scenario.hpp"
@@ -73,6 +74,43 @@ TEST(ScenarioSwitchPoints, TheDriftBudgetIsOneRouteKeyCheckedByName) {
     }
   }
   EXPECT_NO_THROW(SmallWith("route.online_drift_budget=0"));  // no budget
+}
+
+TEST(ScenarioSwitchPoints, TheRevisitToleranceIsARouteKeyCheckedByName) {
+  const Scenario scenario = SmallWith("route.revisit_tolerance=0.3");
+  EXPECT_EQ(scenario.config.route.OnlineSwitching().tolerance, 0.3);
+  EXPECT_DOUBLE_EQ(scenario.config.route.OnlineSwitching().MinMapLength(), 10.0);
+  // Negative, or a loop that would be consistent beyond the drift budget's longest map.
+  for (const char* bad : {"route.revisit_tolerance=-0.1", "route.revisit_tolerance=13"}) {
+    try {
+      SmallWith(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const core::ConfigError& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("route.revisit_tolerance")) << bad;
+    }
+  }
+}
+
+TEST(ScenarioEvents, ATakeoverDrivesInPlaybackThroughItsPoints) {
+  const Scenario scenario =
+      SmallWith("events=[{action: takeover, at_route_s: 5, drive: [[5, 1], [8, 4]]}]");
+  ASSERT_EQ(scenario.config.events.size(), 1u);
+  EXPECT_EQ(scenario.config.events[0].drive.size(), 2u);
+  const std::pair<const char*, const char*> bad[] = {
+      {"events=[{action: takeover, at_route_s: 5}]", "a takeover needs at least one point"},
+      {"events=[{action: takeover, phase: teach, at_route_s: 5, drive: [[5, 1]]}]",
+       "a takeover happens in playback only"},
+      {"events=[{action: crossing, at_route_s: 5, drive: [[5, 1]], crossing: {from: [2, 2], "
+       "to: [5, 5]}}]",
+       "only a takeover drives the robot"}};
+  for (const auto& [text, want] : bad) {
+    try {
+      SmallWith(text);
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const core::ConfigError& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr(want)) << text;
+    }
+  }
 }
 
 TEST(ScenarioSwitchPoints, AScanAlongACorridorConstrainsLittleARoomMuch) {
