@@ -38,8 +38,9 @@ void OnlineSwitchingConfig::Validate() const {
   }
   // A loop the tolerance calls consistent must fit in a map.
   if (std::isfinite(MaxMapLength()) && !(MaxMapLength() > MinMapLength())) {
+    const double shortest = std::round(MinMapLength() * 10.0) / 10.0;
     throw core::ConfigError("tolerance", "must be below the drift budget: loops up to " +
-                                             core::FormatNumber(MinMapLength()) +
+                                             core::FormatNumber(shortest) +
                                              " m would be consistent, but maps end after " +
                                              core::FormatNumber(MaxMapLength()) + " m");
   }

@@ -143,7 +143,8 @@ void LinkRoute(TeachBundle& bundle, const RouteLinkConfig& config) {
       for (double s_b = 0.0; s_b <= map_b.path.Length(); s_b += step) {
         if (s_b < next_s) continue;
         const core::Vec2 p_b = map_b.path.AtArcLength(s_b).translation();
-        const core::PathProjection on_a = Project(map_a.path, (X_ab * core::Pose2(p_b.x(), p_b.y(), 0.0)).translation());
+        const core::Vec2 q_a = (X_ab * core::Pose2(p_b.x(), p_b.y(), 0.0)).translation();
+        const core::PathProjection on_a = Project(map_a.path, q_a);
         const double driven = std::abs(graph.Offset(b) + s_b - graph.Offset(a) - on_a.s);
         const double drift = config.drift * driven;
         if (drift < config.min_drift || on_a.distance > config.revisit_radius + drift) continue;
@@ -159,8 +160,8 @@ void LinkRoute(TeachBundle& bundle, const RouteLinkConfig& config) {
           next_s = s_b + config.spacing / 2.0;  // the place did not register: try farther on
           continue;
         }
-        const core::Vec2 q_a = (r->X_AB * core::Pose2(p_b.x(), p_b.y(), 0.0)).translation();
-        bundle.revisits.push_back({a, b, Project(map_a.path, q_a).s, s_b, r->X_AB});
+        const core::Vec2 registered = (r->X_AB * core::Pose2(p_b.x(), p_b.y(), 0.0)).translation();
+        bundle.revisits.push_back({a, b, Project(map_a.path, registered).s, s_b, r->X_AB});
         next_s = s_b + config.spacing;
       }
     }

@@ -72,13 +72,14 @@ void RouteConfig::Validate() const {
   }
   core::RequireNonNegative("revisit_tolerance", revisit_tolerance);
   const nav::OnlineSwitchingConfig online = OnlineSwitching();
-  if (std::isfinite(online.MaxMapLength()) && !(online.MaxMapLength() > online.MinMapLength())) {
+  const double shortest = online.MinMapLength(), longest = online.MaxMapLength();
+  if (std::isfinite(longest) && !(longest > shortest)) {
     throw core::ConfigError("revisit_tolerance",
                             "must be below online_drift_budget (" +
                                 core::FormatNumber(online_drift_budget) + " m): a loop of " +
-                                core::FormatNumber(online.MinMapLength()) +
+                                core::FormatNumber(std::round(shortest * 10.0) / 10.0) +
                                 " m would be consistent, but maps end after " +
-                                core::FormatNumber(online.MaxMapLength()) + " m");
+                                core::FormatNumber(std::round(longest * 10.0) / 10.0) + " m");
   }
   const std::vector<double>& points_at = switch_points.value;
   for (std::size_t i = 0; i < points_at.size(); ++i) {

@@ -28,8 +28,8 @@ struct Revisit {
 
 // The first sample of the stretch [s_start, s_end] that comes within revisit_radius of an
 // earlier part of the same stretch lying more than nav::RevisitLag(revisit_radius), and more than
-// min_loop, of travel behind. Samples are s_start + i·step and s_end, so CheckSwitchPoints and SuggestSwitchPoints
-// see the same points.
+// min_loop, of travel behind. Samples are s_start + i·step and s_end, so CheckSwitchPoints and
+// SuggestSwitchPoints see the same points.
 std::optional<Revisit> FirstRevisit(const std::vector<Vec2>& route, const std::vector<double>& cum,
                                     const core::PathIndex& index, double s_start, double s_end,
                                     double revisit_radius, double min_loop) {
