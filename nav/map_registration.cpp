@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace retrace::nav {
@@ -63,6 +64,90 @@ Score ScoreOf(const LikelihoodField& field, const std::vector<core::Vec2>& point
   return s;
 }
 
+struct Tried {
+  Offset offset;
+  Score score;
+};
+
+bool Better(const Tried& a, const Tried& b) {
+  return a.score.log_likelihood < b.score.log_likelihood;
+}
+
+// Scores offsets of the prior X_AB, turned about the place q_A (in A).
+struct Scorer {
+  const LikelihoodField& field;
+  const core::Pose2& prior;
+  core::Vec2 q_A;
+
+  Tried operator()(const std::vector<core::Vec2>& points, const Offset& o,
+                   float inlier_ll) const {
+    return {o, ScoreOf(field, points, Apply(prior, q_A, o), inlier_ll)};
+  }
+};
+
+// The coarse search: the whole window with a subset of the cells, each pose's inliers counted
+// within a distance widened by half the step's diagonal, so that the grid's best pose is not
+// short of inliers only for lying between two steps. The best pose, the best inlier count of
+// the poses ambiguity_distance or more away from it, and the subset's size.
+struct Coarse {
+  Tried best;
+  int runner_up = 0;
+  int points = 0;
+};
+
+Coarse CoarseSearch(const Scorer& score, const std::vector<core::Vec2>& points,
+                    const MapRegistrationConfig& config) {
+  const std::size_t stride = (points.size() + kCoarsePoints - 1) / kCoarsePoints;
+  std::vector<core::Vec2> subset;
+  for (std::size_t i = 0; i < points.size(); i += stride) subset.push_back(points[i]);
+  const float inlier_ll = static_cast<float>(score.field.LogLikelihoodOfDistance(
+      config.inlier_distance + config.coarse_xy / std::sqrt(2.0)));
+  std::vector<Tried> tried;
+  const int nxy = static_cast<int>(std::floor(config.search_xy / config.coarse_xy));
+  const int nth = static_cast<int>(std::floor(config.search_theta / config.coarse_theta));
+  for (int it = -nth; it <= nth; ++it) {
+    for (int iy = -nxy; iy <= nxy; ++iy) {
+      for (int ix = -nxy; ix <= nxy; ++ix) {
+        tried.push_back(score(
+            subset, {ix * config.coarse_xy, iy * config.coarse_xy, it * config.coarse_theta},
+            inlier_ll));
+      }
+    }
+  }
+  Coarse c{*std::max_element(tried.begin(), tried.end(), Better), 0,
+           static_cast<int>(subset.size())};
+  for (const Tried& t : tried) {
+    if (std::hypot(t.offset.dx - c.best.offset.dx, t.offset.dy - c.best.offset.dy) >=
+        config.ambiguity_distance) {
+      c.runner_up = std::max(c.runner_up, t.score.inliers);
+    }
+  }
+  return c;
+}
+
+// The fine search: every cell, one coarse step around `start` in quarter steps, then one
+// quarter step around that in twentieths (1 cm and 0.001 rad by default).
+Tried Refine(const Scorer& score, const std::vector<core::Vec2>& points, const Offset& start,
+             float inlier_ll, const MapRegistrationConfig& config) {
+  Tried best = score(points, start, inlier_ll);
+  for (const auto& [step, n] : {std::pair{0.25, 4}, std::pair{0.05, 5}}) {
+    const Offset centre = best.offset;
+    for (int it = -n; it <= n; ++it) {
+      for (int iy = -n; iy <= n; ++iy) {
+        for (int ix = -n; ix <= n; ++ix) {
+          const Tried t = score(points,
+                                {centre.dx + ix * step * config.coarse_xy,
+                                 centre.dy + iy * step * config.coarse_xy,
+                                 centre.dtheta + it * step * config.coarse_theta},
+                                inlier_ll);
+          if (Better(best, t)) best = t;
+        }
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 std::optional<MapRegistration> RegisterMaps(const LikelihoodField& field_A,
@@ -73,75 +158,22 @@ std::optional<MapRegistration> RegisterMaps(const LikelihoodField& field_A,
       CellsNear(grid_B, p_B, config.radius, field_A.config().occupied_threshold,
                 config.max_points);
   if (static_cast<int>(points.size()) < config.min_points) return std::nullopt;
+  const Scorer score{field_A, prior_X_AB,
+                     (prior_X_AB * core::Pose2(p_B.x(), p_B.y(), 0.0)).translation()};
+  const Coarse coarse = CoarseSearch(score, points, config);
   const float inlier_ll =
       static_cast<float>(field_A.LogLikelihoodOfDistance(config.inlier_distance));
-  const core::Vec2 q_A = (prior_X_AB * core::Pose2(p_B.x(), p_B.y(), 0.0)).translation();
-
-  // Coarse: the whole window with a subset of the cells, each pose's inliers counted within a
-  // distance widened by half the step's diagonal, so that the best pose of the grid is not
-  // short of inliers only for lying between two steps; they are kept for the ambiguity test.
-  struct Tried {
-    Offset offset;
-    Score score;
-  };
-  const std::size_t stride = (points.size() + kCoarsePoints - 1) / kCoarsePoints;
-  std::vector<core::Vec2> subset;
-  for (std::size_t i = 0; i < points.size(); i += stride) subset.push_back(points[i]);
-  const float coarse_inlier_ll = static_cast<float>(field_A.LogLikelihoodOfDistance(
-      config.inlier_distance + config.coarse_xy / std::sqrt(2.0)));
-  std::vector<Tried> tried;
-  const int nxy = static_cast<int>(std::floor(config.search_xy / config.coarse_xy));
-  const int nth = static_cast<int>(std::floor(config.search_theta / config.coarse_theta));
-  for (int it = -nth; it <= nth; ++it) {
-    for (int iy = -nxy; iy <= nxy; ++iy) {
-      for (int ix = -nxy; ix <= nxy; ++ix) {
-        const Offset o{ix * config.coarse_xy, iy * config.coarse_xy, it * config.coarse_theta};
-        tried.push_back(
-            {o, ScoreOf(field_A, subset, Apply(prior_X_AB, q_A, o), coarse_inlier_ll)});
-      }
-    }
-  }
-  const auto better = [](const Tried& a, const Tried& b) {
-    return a.score.log_likelihood < b.score.log_likelihood;
-  };
-  const Tried coarse = *std::max_element(tried.begin(), tried.end(), better);
-  int runner_up = 0;
-  for (const Tried& t : tried) {
-    if (std::hypot(t.offset.dx - coarse.offset.dx, t.offset.dy - coarse.offset.dy) >=
-        config.ambiguity_distance) {
-      runner_up = std::max(runner_up, t.score.inliers);
-    }
-  }
-  // Fine: every cell, one coarse step around the best in quarter steps, then one quarter step
-  // around that in twentieths (1 cm and 0.001 rad by default).
-  Tried best{coarse.offset, ScoreOf(field_A, points, Apply(prior_X_AB, q_A, coarse.offset),
-                                    inlier_ll)};
-  for (const double step : {0.25, 0.05}) {
-    const Offset centre = best.offset;
-    const int n = step == 0.25 ? 4 : 5;
-    for (int it = -n; it <= n; ++it) {
-      for (int iy = -n; iy <= n; ++iy) {
-        for (int ix = -n; ix <= n; ++ix) {
-          const Offset o{centre.dx + ix * step * config.coarse_xy,
-                         centre.dy + iy * step * config.coarse_xy,
-                         centre.dtheta + it * step * config.coarse_theta};
-          const Tried t{o, ScoreOf(field_A, points, Apply(prior_X_AB, q_A, o), inlier_ll)};
-          if (better(best, t)) best = t;
-        }
-      }
-    }
-  }
-  const double n = static_cast<double>(points.size());
-  const double n_coarse = static_cast<double>(subset.size());
+  const Tried best = Refine(score, points, coarse.best.offset, inlier_ll, config);
   MapRegistration r;
-  r.X_AB = Apply(prior_X_AB, q_A, best.offset);
-  r.inliers = best.score.inliers / n;
-  r.runner_up = runner_up / n_coarse;
+  r.X_AB = Apply(prior_X_AB, score.q_A, best.offset);
+  r.inliers = best.score.inliers / static_cast<double>(points.size());
+  r.runner_up = coarse.runner_up / static_cast<double>(coarse.points);
   r.points = static_cast<int>(points.size());
-  if (r.inliers < config.min_inliers ||
-      r.runner_up > coarse.score.inliers / n_coarse - config.ambiguity_margin) {
+  const double coarse_inliers = coarse.best.score.inliers / static_cast<double>(coarse.points);
+  if (r.inliers < config.min_inliers || r.runner_up > coarse_inliers - config.ambiguity_margin) {
     return std::nullopt;
   }
   return r;
 }
+
 }  // namespace retrace::nav

@@ -7,7 +7,6 @@
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
-#include "core/path_projection.hpp"
 
 namespace retrace::nav {
 namespace {
@@ -22,12 +21,6 @@ std::shared_ptr<const TeachBundle> Linked(TeachBundle bundle, const MapServerCon
     LinkRoute(bundle, link);
   }
   return std::make_shared<const TeachBundle>(std::move(bundle));
-}
-
-// Arc length of p's projection onto the path (0 for a path of fewer than two poses).
-double ArcOf(const core::Path& path, const core::Vec2& p) {
-  if (path.size() < 2) return 0.0;
-  return core::ProjectOntoPath(path.positions(), path.arc_lengths(), p, 0.0, path.Length()).s;
 }
 
 }  // namespace
@@ -61,7 +54,7 @@ void MapServer::Start(Localizer& localizer, PathFollower& follower, std::size_t 
   RETRACE_CHECK(map < size());
   index_ = map;
   localizer.SetMap(current().grid);
-  HandOver(localizer, follower, ArcOf(current().path, X_MR.translation()));
+  HandOver(localizer, follower, Project(current().path, X_MR.translation()).s);
 }
 
 MapDecision MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,

@@ -16,6 +16,11 @@ namespace {
 // m: the expected error of a registered revisit edge at its place (about a cell of the maps).
 constexpr double kRevisitSigma = 0.1;
 
+// m of route between the route arc length u and the nearest point of the interval [lo, hi].
+double GapTo(double u, double lo, double hi) { return std::max({0.0, lo - u, u - hi}); }
+
+}  // namespace
+
 core::PathProjection Project(const core::Path& path, const core::Vec2& p) {
   if (path.size() < 2) {
     core::PathProjection one;
@@ -24,11 +29,6 @@ core::PathProjection Project(const core::Path& path, const core::Vec2& p) {
   }
   return core::ProjectOntoPath(path.positions(), path.arc_lengths(), p, 0.0, path.Length());
 }
-
-// m of route between the route arc length u and the nearest point of the interval [lo, hi].
-double GapTo(double u, double lo, double hi) { return std::max({0.0, lo - u, u - hi}); }
-
-}  // namespace
 
 RouteGraph::RouteGraph(std::shared_ptr<const TeachBundle> bundle, double drift)
     : bundle_(std::move(bundle)), drift_(drift) {

@@ -19,11 +19,17 @@
 #include <memory>
 #include <vector>
 
+#include "core/path.hpp"
+#include "core/path_projection.hpp"
 #include "core/pose2.hpp"
 #include "nav/map_registration.hpp"
 #include "nav/teach_bundle.hpp"
 
 namespace retrace::nav {
+
+/// Where p lies on a taught path, over its whole length (a path of one pose: s = 0 and the
+/// distance to it; none: s = 0, distance +inf).
+core::PathProjection Project(const core::Path& path, const core::Vec2& p);
 
 /// A robot pose carried into one map of the route.
 struct RoutePlace {

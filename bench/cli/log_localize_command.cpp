@@ -153,6 +153,14 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
           std::to_string(h.lost_spells) + (h.lost_spells == 1 ? " spell" : " spells") + ", " +
           std::to_string(h.reacquisitions) + " re-acquisitions; largest single-update jump " +
           FixedText(h.max_jump_m, 2) + " m (at " + FixedText(h.max_jump_time_s, 1) + " s)\n";
+  if (m.has_truth) {
+    text += "  against the reference: " + std::to_string(h.reacquisitions_closer) +
+            " re-acquisitions brought the estimate closer, " +
+            std::to_string(h.reacquisitions_wrong) +
+            " took it more than 0.5 m farther; largest single-update error increase " +
+            FixedText(h.max_error_increase_m, 2) + " m (at " +
+            FixedText(h.max_error_increase_time_s, 1) + " s)\n";
+  }
   text += "  beams rejected as dynamic: " + FixedText(100.0 * m.rejected_fraction, 2) +
           " %; update time mean " + FixedText(m.update_time_ms.mean, 2) + " ms, p95 " +
           FixedText(m.update_time_ms.p95, 2) + " ms; " + FixedText(m.real_time_factor, 0) +

@@ -89,6 +89,47 @@ void Localize(const sim::SimStep& s, const sim::Simulator& simulator, nav::Navig
   feed.OnScan(*s.lidar, update);
 }
 
+// A map switch (or a takeover's hand-back into another map) goes to the run and the observer.
+void RecordSwitch(double time, const nav::MapSwitch& sw, const core::Pose2& X_WR,
+                  RunRecorder& recorder, ObserverFeed& feed) {
+  recorder.OnSwitch(time, sw, X_WR);
+  feed.OnSwitch(time);
+}
+
+// A scripted takeover (EventAction::kTakeover): from the tick its event fires, an operator drives
+// the robot from where it is through the event's points, as the teacher drives a route; its
+// command replaces the navigator's. When it hands the robot back, the navigator resumes by place
+// (nav::Navigator::Resume).
+class OperatorTakeover {
+ public:
+  OperatorTakeover(const sim::TeacherConfig& teacher, core::Rng rng)
+      : teacher_(teacher), rng_(rng) {}
+
+  bool driving() const { return driver_.has_value(); }
+
+  // A takeover event fired (its points, W) with the robot at p_W.
+  void Begin(std::vector<core::Vec2> drive, const core::Vec2& p_W) {
+    drive.insert(drive.begin(), p_W);
+    driver_.emplace(std::move(drive), teacher_, rng_);
+  }
+
+  // While driving: the operator's command into *avoid (nothing of the navigator's is applied);
+  // returns the navigator's switch when the robot is handed back into another map.
+  std::optional<nav::MapSwitch> Drive(const core::Pose2& X_WR, double dt, nav::Navigator& nav,
+                                      nav::AvoidanceOutput* avoid) {
+    if (!driver_) return std::nullopt;
+    *avoid = {.command = driver_->Command(X_WR, dt)};
+    if (!driver_->Done()) return std::nullopt;
+    driver_.reset();
+    return nav.Resume();
+  }
+
+ private:
+  sim::TeacherConfig teacher_;
+  core::Rng rng_;
+  std::optional<sim::Teacher> driver_;
+};
+
 }  // namespace
 
 core::Rng PlaybackRng(const ScenarioConfig& config, int run) {
@@ -115,7 +156,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
   std::optional<core::LaserScan> latest_scan;
   core::Twist command;
   std::optional<Outcome> outcome;
-  std::optional<sim::Teacher> operator_drive;  // a takeover in progress
+  OperatorTakeover takeover(config.teach.teacher, rng.Split("operator"));
 
   while (!outcome) {
     // 1. Step the world; the sensors that came due.
@@ -126,25 +167,14 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
     const core::Pose2 X_WR = simulator.RobotPose();
     // 3. Follow the taught path; at its end, map k+1 and the pose carried over by eq. (1).
     const nav::NavigatorTick tick = nav.OnControlTick(stepper.control_dt());
-    if (tick.map_switch) {
-      recorder.OnSwitch(s.time, *tick.map_switch, X_WR);
-      feed.OnSwitch(s.time);
-    }
+    if (tick.map_switch) RecordSwitch(s.time, *tick.map_switch, X_WR, recorder, feed);
     // 4. Avoid on the latest scan, command the robot (an operator who took it over drives it).
     nav::AvoidanceOutput avoid{.command = tick.follow.command};
     if (latest_scan) avoid = avoidance.Filter(tick.follow.command, *latest_scan);
-    command = avoid.command;
-    if (operator_drive) {
-      command = avoid.command = operator_drive->Command(X_WR, stepper.control_dt());
-      avoid.modified = avoid.blocked = false;
-      if (operator_drive->Done()) {  // handed back: the navigator resumes where the robot is
-        operator_drive.reset();
-        if (const std::optional<nav::MapSwitch> sw = nav.Resume()) {
-          recorder.OnSwitch(s.time, *sw, X_WR);
-          feed.OnSwitch(s.time);
-        }
-      }
+    if (const auto sw = takeover.Drive(X_WR, stepper.control_dt(), nav, &avoid)) {
+      RecordSwitch(s.time, *sw, X_WR, recorder, feed);
     }
+    command = avoid.command;
     // 5. Record; scripted events; check the end.
     const core::Pose2 X_MR = nav.Estimate();
     const core::Pose2 X_MR_truth = recorder.OnControlTick(
@@ -153,12 +183,11 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
     recorder.OnEvents(s.time,
                       events.Fire(s.time, route_progress.Update(X_WR.translation()), simulator));
     if (std::vector<core::Vec2> drive = events.TakeOver(); !drive.empty()) {
-      drive.insert(drive.begin(), X_WR.translation());
-      operator_drive.emplace(std::move(drive), config.teach.teacher, rng.Split("operator"));
+      takeover.Begin(std::move(drive), X_WR.translation());
     }
-    outcome = end.Check({s.time, tick.route_done && !operator_drive, nav.server().IsLast(),
+    outcome = end.Check({s.time, tick.route_done && !takeover.driving(), nav.server().IsLast(),
                          !stepper.collisions().empty(), Compare(X_MR, X_MR_truth).distance,
-                         nav.server().index(), tick.follow.remaining, operator_drive.has_value()});
+                         nav.server().index(), tick.follow.remaining, takeover.driving()});
   }
   feed.OnEnd();
   if (tap != nullptr) tap->OnEnd();

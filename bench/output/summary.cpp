@@ -100,8 +100,10 @@ std::string LocalizerLines(const std::vector<ModeSummary>& modes) {
     const LocalizerHealth& h = m.aggregate.localizer;
     text += std::string(core::EnumName(m.mode)) + ": localizer lost " +
             Cell(h.lost_time_s, "%.1f") + " s in " + std::to_string(h.lost_spells) + " spells, " +
-            std::to_string(h.reacquisitions) + " re-acquisitions; largest single-tick jump " +
-            Cell(h.max_jump_m, "%.2f") + " m\n";
+            std::to_string(h.reacquisitions) + " re-acquisitions (" +
+            std::to_string(h.reacquisitions_wrong) +
+            " wrong); largest single-tick jump " + Cell(h.max_jump_m, "%.2f") +
+            " m, error increase " + Cell(h.max_error_increase_m, "%.2f") + " m\n";
   }
   return text;
 }

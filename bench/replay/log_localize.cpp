@@ -210,6 +210,10 @@ class LogReplay {
     const double sigma_theta = core::DegToRad(config_.playback.initial_sigma_yaw_deg);
     if (options_.initial) {
       nav_.StartNearest(*options_.initial, sigma_xy, sigma_theta);
+      if (local_ && X_WR) {  // the local truth in the map the navigator chose
+        local_->Enter(nav_.server().index());
+        *X_MR_truth = local_->InMap(*X_WR);
+      }
     } else if (local_ && X_WR) {
       const std::size_t map = local_->NearestMap(*X_WR);
       local_->Enter(map);
@@ -217,10 +221,6 @@ class LogReplay {
       nav_.Start(map, **X_MR_truth, sigma_xy, sigma_theta);
     } else {
       nav_.Start(0, core::Pose2::Identity(), sigma_xy, sigma_theta);
-    }
-    if (local_ && nav_.server().index() != 0 && options_.initial) {
-      local_->Enter(nav_.server().index());
-      if (X_WR) *X_MR_truth = local_->InMap(*X_WR);
     }
     feed_.Start(nav_, stamp, X_OR, from_log_start_);
   }

@@ -90,6 +90,70 @@ core::LaserScan TestScan() {
   return scan;
 }
 
+// The written file's first bytes: gzip's magic, or CARMEN's header comments.
+void ExpectHeader(const fs::path& file, const std::string& bytes) {
+  if (file.extension() == ".gz") {
+    ASSERT_GE(bytes.size(), 2U);
+    EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x1f);  // gzip magic
+    EXPECT_EQ(static_cast<unsigned char>(bytes[1]), 0x8b);
+  } else {
+    EXPECT_EQ(bytes.rfind("# CARMEN Logfile\n", 0), 0U) << bytes.substr(0, 100);
+    EXPECT_NE(bytes.find("# ROBOTLASER1 laser_type start_angle"), std::string::npos);
+    EXPECT_NE(bytes.find(" retrace "), std::string::npos);
+  }
+}
+
+// The ranges read back: bit for bit, the special readings as CARMEN can say them.
+void ExpectRanges(const core::LaserScan& back, const core::LaserScan& scan) {
+  ASSERT_EQ(back.size(), scan.size());
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (i >= 3 && i <= 8) continue;
+    EXPECT_EQ(back.ranges[i], scan.ranges[i]) << i;  // bit for bit
+    EXPECT_TRUE(back.Valid(i)) << i;
+  }
+  EXPECT_EQ(back.ranges[3], static_cast<float>(kInf));
+  EXPECT_TRUE(back.NoReturn(3));
+  EXPECT_EQ(back.ranges[4], static_cast<float>(-kInf));
+  EXPECT_EQ(back.ranges[5], static_cast<float>(-kInf));
+  EXPECT_EQ(back.ranges[6], static_cast<float>(kInf));
+  EXPECT_EQ(back.ranges[7], 29.9996f);
+  EXPECT_EQ(back.ranges[8], 0.01f);  // kept: CARMEN has no range_min, the reader's robot applies it
+  for (std::size_t i = 3; i <= 8; ++i) EXPECT_FALSE(std::isnan(back.ranges[i])) << i;
+}
+
+// The laser line read back with the PARAM lines before it: its scan and its two poses.
+void ExpectLaser(const std::vector<Line>& lines, const core::LaserScan& scan,
+                 const core::Pose2& X_OR, const core::Pose2& X_RL) {
+  CarmenLaserDefaults defaults;
+  for (std::size_t i = 1; i <= 7; ++i) {
+    const auto [name, value] = ParseCarmenParam(lines[i].text);
+    ApplyCarmenParam(name, value, defaults);
+  }
+  EXPECT_DOUBLE_EQ(defaults.front.max_range, 30.0);
+  ASSERT_TRUE(defaults.front.resolution_deg.has_value());
+  EXPECT_DOUBLE_EQ(*defaults.front.resolution_deg, core::RadToDeg(scan.angle_increment));
+  EXPECT_DOUBLE_EQ(defaults.front.fov_deg, core::RadToDeg(682 * scan.angle_increment));
+
+  const CarmenLaser laser = ParseCarmenLaser(lines[8].text, defaults);
+  EXPECT_EQ(laser.scan.frame_id, "front_laser");
+  const core::LaserScan& back = laser.scan.scan;
+  EXPECT_EQ(back.angle_min, scan.angle_min);  // exact
+  EXPECT_EQ(back.angle_increment, scan.angle_increment);
+  EXPECT_EQ(back.range_max, scan.range_max);
+  EXPECT_DOUBLE_EQ(back.stamp, scan.stamp);
+  ExpectRanges(back, scan);
+
+  ASSERT_TRUE(laser.X_OR.has_value());
+  ASSERT_TRUE(laser.X_OL.has_value());
+  EXPECT_NEAR(laser.X_OR->x, X_OR.x, 1e-6);
+  EXPECT_NEAR(laser.X_OR->y, X_OR.y, 1e-6);
+  EXPECT_NEAR(laser.X_OR->theta, X_OR.theta, 1e-6);
+  const core::Pose2 X_OL = X_OR * X_RL;
+  EXPECT_NEAR(laser.X_OL->x, X_OL.x, 1e-6);
+  EXPECT_NEAR(laser.X_OL->y, X_OL.y, 1e-6);
+  EXPECT_NEAR(core::AngleDiff(laser.X_OL->theta, X_OL.theta), 0.0, 1e-6);
+}
+
 TEST_P(CarmenRoundTrip, KeepsPosesRangesAnglesAndNoReturns) {
   const core::LaserScan scan = TestScan();
   const core::Pose2 X_RL(0.2, -0.015, 0.01);
@@ -102,16 +166,7 @@ TEST_P(CarmenRoundTrip, KeepsPosesRangesAnglesAndNoReturns) {
     writer.WriteTruePose(1700000000.2, X_WR, X_OR);
     writer.Close();
   }
-  const std::string bytes = tmp_.Read(File());
-  if (File().extension() == ".gz") {
-    ASSERT_GE(bytes.size(), 2U);
-    EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x1f);  // gzip magic
-    EXPECT_EQ(static_cast<unsigned char>(bytes[1]), 0x8b);
-  } else {
-    EXPECT_EQ(bytes.rfind("# CARMEN Logfile\n", 0), 0U) << bytes.substr(0, 100);
-    EXPECT_NE(bytes.find("# ROBOTLASER1 laser_type start_angle"), std::string::npos);
-    EXPECT_NE(bytes.find(" retrace "), std::string::npos);
-  }
+  ExpectHeader(File(), tmp_.Read(File()));
 
   const std::vector<Line> lines = ReadAll(File());
   ASSERT_EQ(lines.size(), 10U);  // 7 PARAMs before the first laser line, ODOM, laser, TRUEPOS
@@ -131,47 +186,7 @@ TEST_P(CarmenRoundTrip, KeepsPosesRangesAnglesAndNoReturns) {
   EXPECT_NEAR(odom.pose.theta, X_OR.theta, 1e-6);
   EXPECT_DOUBLE_EQ(odom.stamp, 1700000000.1);
 
-  CarmenLaserDefaults defaults;
-  for (std::size_t i = 1; i <= 7; ++i) {
-    const auto [name, value] = ParseCarmenParam(lines[i].text);
-    ApplyCarmenParam(name, value, defaults);
-  }
-  EXPECT_DOUBLE_EQ(defaults.front.max_range, 30.0);
-  ASSERT_TRUE(defaults.front.resolution_deg.has_value());
-  EXPECT_DOUBLE_EQ(*defaults.front.resolution_deg, core::RadToDeg(scan.angle_increment));
-  EXPECT_DOUBLE_EQ(defaults.front.fov_deg, core::RadToDeg(682 * scan.angle_increment));
-
-  const CarmenLaser laser = ParseCarmenLaser(lines[8].text, defaults);
-  EXPECT_EQ(laser.scan.frame_id, "front_laser");
-  const core::LaserScan& back = laser.scan.scan;
-  EXPECT_EQ(back.angle_min, scan.angle_min);  // exact
-  EXPECT_EQ(back.angle_increment, scan.angle_increment);
-  EXPECT_EQ(back.range_max, scan.range_max);
-  EXPECT_DOUBLE_EQ(back.stamp, scan.stamp);
-  ASSERT_EQ(back.size(), scan.size());
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    if (i >= 3 && i <= 8) continue;
-    EXPECT_EQ(back.ranges[i], scan.ranges[i]) << i;  // bit for bit
-    EXPECT_TRUE(back.Valid(i)) << i;
-  }
-  EXPECT_EQ(back.ranges[3], static_cast<float>(kInf));
-  EXPECT_TRUE(back.NoReturn(3));
-  EXPECT_EQ(back.ranges[4], static_cast<float>(-kInf));
-  EXPECT_EQ(back.ranges[5], static_cast<float>(-kInf));
-  EXPECT_EQ(back.ranges[6], static_cast<float>(kInf));
-  EXPECT_EQ(back.ranges[7], 29.9996f);
-  EXPECT_EQ(back.ranges[8], 0.01f);  // kept: CARMEN has no range_min, the reader's robot applies it
-  for (std::size_t i = 3; i <= 8; ++i) EXPECT_FALSE(std::isnan(back.ranges[i])) << i;
-
-  ASSERT_TRUE(laser.X_OR.has_value());
-  ASSERT_TRUE(laser.X_OL.has_value());
-  EXPECT_NEAR(laser.X_OR->x, X_OR.x, 1e-6);
-  EXPECT_NEAR(laser.X_OR->y, X_OR.y, 1e-6);
-  EXPECT_NEAR(laser.X_OR->theta, X_OR.theta, 1e-6);
-  const core::Pose2 X_OL = X_OR * X_RL;
-  EXPECT_NEAR(laser.X_OL->x, X_OL.x, 1e-6);
-  EXPECT_NEAR(laser.X_OL->y, X_OL.y, 1e-6);
-  EXPECT_NEAR(core::AngleDiff(laser.X_OL->theta, X_OL.theta), 0.0, 1e-6);
+  ExpectLaser(lines, scan, X_OR, X_RL);
 
   const PoseStampedMessage truth = ParseCarmenTruePose(lines[9].text);
   EXPECT_EQ(truth.frame_id, "world");
