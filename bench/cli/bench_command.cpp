@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/bench_command.hpp"
 
 #include <unistd.h>
@@ -235,11 +236,9 @@ void AddBenchOptions(CLI::App* command, BenchOptions* options) {
                       "Baseline file (default: results/baselines/<suite name>.json)");
   command->add_flag("--update-baseline", options->update_baseline,
                     "Record the results as the suite's baseline instead of judging them");
-  command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
-      ->check(kNonNegative);
-  command->add_option("--out", options->out, "Report folder (default: results/bench/<suite name>)");
-  command->add_option("--set", options->overrides,
-                      "Override a scenario key in every entry: a.b.c=value (repeatable)");
+  AddJobsOption(command, &options->jobs);
+  AddOutOption(command, &options->out, "Report folder (default: results/bench/<suite name>)");
+  AddSetOption(command, &options->overrides, "a scenario key in every entry: a.b.c=value");
   command->add_option("--only", options->only,
                       "Run and judge only these entries or modes: <entry>[.<mode>] (repeatable)");
   command->add_option("--junit", options->junit,
@@ -248,7 +247,7 @@ void AddBenchOptions(CLI::App* command, BenchOptions* options) {
   command->add_option("--trend", options->trend,
                       "Write every metric of the run to FILE as Bencher Metric Format JSON, "
                       "for trend charts across commits");
-  command->add_flag("!--no-report", options->report,
+  AddNoReportFlag(command, &options->report,
                     "Do not write report.html, the report's page with the regressions in red, "
                     "also written on a regression (retrace report does it later)");
 }

@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/calibrate_lidar_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -175,11 +176,11 @@ void AddCalibrateLidarOptions(CLI::App* cmd, CalibrateLidarOptions* options) {
   cmd->add_option("--teach", options->teach_dir,
                   "The consistent teach folder of the same place (log-teach's consistent/teach)")
       ->required();
-  cmd->add_option("--out,-o", options->out, "The YAML file to write (a sim.lidar.noise block)")
+  AddOutOption(cmd, &options->out, "The YAML file to write (a sim.lidar.noise block)")
       ->required();
   cmd->add_option("--figure", options->figure,
                   "The range error figure (PNG; default: --out with the extension .png)");
-  cmd->add_flag("!--no-figures", options->figures, "Do not render the figure");
+  AddNoFiguresFlag(cmd, &options->figures, "Do not render the figure");
   AddWindowOptions(cmd, &options->window);
   AddReferenceOption(cmd, &options->reference);
   cmd->add_flag("--synthetic-odometry", options->synthetic_odometry,
@@ -192,11 +193,10 @@ void AddCalibrateLidarOptions(CLI::App* cmd, CalibrateLidarOptions* options) {
                   "Beams with an expected range the map knows needed in each half of the "
                   "window (default 1000)")
       ->check(CLI::Range(1, 1000000000));
-  cmd->add_option("--config", options->config,
+  AddConfigOption(cmd, &options->config,
                   "Settings file (YAML), as for log-simulate: the clutter block's band, clearance "
                   "and kinds define where and what the density is measured as");
-  cmd->add_option("--set", options->overrides,
-                  "Override a setting, e.g. clutter.band=2 (repeatable)");
+  AddSetOption(cmd, &options->overrides, "a setting, e.g. clutter.band=2");
   AddStreamOptions(cmd, &options->streams);
 }
 

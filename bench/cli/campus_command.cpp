@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/campus_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -129,15 +130,12 @@ void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options) {
   cmd->add_option("route", options->route_file,
                   "Route file: one waypoint `x y` per line (W, m), or an AutoNavi path")
       ->required();
-  cmd->add_option("--out,-o", options->out, "World file to write (YAML)")->required();
-  cmd->add_option("--seed", options->seed,
-                  "Seed of the placement: the same route, settings and seed give the same world")
-      ->check(kSeed);
-  cmd->add_option(
-      "--config", options->config_file,
+  AddOutOption(cmd, &options->out, "World file to write (YAML)")->required();
+  AddSeedOption(cmd, &options->seed, "of the placement: the same route, settings and seed give the same world");
+  AddConfigOption(
+      cmd, &options->config_file,
       "YAML file with generator settings (CampusConfig in bench/worldgen/campus_generator.hpp)");
-  cmd->add_option("--set", options->overrides,
-                  "Override a generator setting: key=value, value in YAML (repeatable)")
+  AddSetOption(cmd, &options->overrides, "a generator setting: key=value, value in YAML")
       ->allow_extra_args(false);  // one value per --set, so that a positional may follow
   cmd->add_option(
          "--pedestrians", options->pedestrians,

@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/compare_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -120,13 +121,11 @@ void AddCompareOptions(CLI::App* command, CompareOptions* options) {
       ->add_option("--repeats", options->repeats,
                    "Playback runs per mode and seed (default: the scenario's)")
       ->check(kPositive);
-  command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
-      ->check(kNonNegative);
-  command->add_option("--out", options->out,
+  AddJobsOption(command, &options->jobs);
+  AddOutOption(command, &options->out,
                       "Output folder (default: results/compare/<scenario name>)");
-  command->add_option("--set", options->overrides,
-                      "Override a scenario key: a.b.c=value (repeatable)");
-  command->add_flag("!--no-report", options->report,
+  AddSetOption(command, &options->overrides, "a scenario key: a.b.c=value");
+  AddNoReportFlag(command, &options->report,
                     "Do not write report.html, the study's page of tables and figures (retrace "
                     "report does it later)");
 }

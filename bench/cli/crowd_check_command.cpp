@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/crowd_check_command.hpp"
 
 #include <unistd.h>
@@ -177,20 +178,19 @@ std::vector<double> ParseDensityList(const std::string& text) {
 }
 
 void AddCrowdCheckOptions(CLI::App* cmd, CrowdCheckOptions* options) {
-  cmd->add_option("--out", options->out, "Output folder")->capture_default_str();
+  AddOutOption(cmd, &options->out, "Output folder")->capture_default_str();
   cmd->add_option("--densities", options->densities,
                   "Densities (persons/m^2), comma-separated, each > 0 and < 5.4")
       ->capture_default_str();
-  cmd->add_option("--seed", options->seed, "Seed of the start points and desired speeds")
-      ->check(kSeed)
+  AddSeedOption(cmd, &options->seed, "of the start points and desired speeds")
       ->capture_default_str();
   cmd->add_option("--duration", options->duration, "Seconds of measurement (default 40)")
       ->check(kPositive);
   cmd->add_option("--warmup", options->warmup, "Seconds before measuring (default 20)")
       ->check(kNonNegative);
-  cmd->add_option("--set", options->overrides,
-                  "Override a key: ring/body/timing keys (width=3, pedestrian_radius=0.25) or the "
-                  "crowd's (sim.crowd.social_force.relaxation_time=0.4) (repeatable)");
+  AddSetOption(cmd, &options->overrides,
+               "a key: ring/body/timing keys (width=3, pedestrian_radius=0.25) or the crowd's "
+               "(sim.crowd.social_force.relaxation_time=0.4)");
 }
 
 int RunCrowdCheckCommand(const CrowdCheckOptions& options) {

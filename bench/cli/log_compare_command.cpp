@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/log_compare_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -15,7 +16,7 @@ void AddLogCompareOptions(CLI::App* cmd, LogCompareOptions* options) {
       ->required();
   cmd->add_option("--labels", options->labels, "Their names in the table and the figure")
       ->delimiter(',');
-  cmd->add_option("--out,-o", options->out, "Folder to write")->required();
+  AddOutOption(cmd, &options->out, "Folder to write")->required();
 }
 
 int RunLogCompareCommand(const LogCompareOptions& options) {

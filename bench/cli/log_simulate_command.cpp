@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/log_simulate_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -18,17 +19,15 @@ void AddLogSimulateOptions(CLI::App* cmd, LogSimulateOptions* options) {
   cmd->add_option("--teach", options->teach_dir,
                   "The consistent map's teach folder (log-teach's consistent/teach): the world")
       ->required();
-  cmd->add_option("--out,-o", run.out, "The simulated log to write (MCAP)")->required();
+  AddOutOption(cmd, &run.out, "The simulated log to write (MCAP)")->required();
   cmd->add_option("--from", run.window.from_s, "Start: s since the log's first message");
   cmd->add_option("--to", run.window.to_s, "End: s since the log's first message");
   cmd->add_flag("--synthetic-odometry", run.synthetic_odometry,
                 "Drifting odometry drawn from the reference, as for log-teach and log-localize");
   cmd->add_option("--reference", run.reference, "TUM file with a reference trajectory");
-  cmd->add_option("--config", run.config, "Settings file (YAML), as for log-teach");
-  cmd->add_option("--set", run.overrides,
-                  "Override a setting, e.g. sim.lidar.noise.sigma0=0.02 (repeatable)");
-  cmd->add_option("--seed", run.seed, "Seed of the LiDAR noise and the synthetic odometry")
-      ->check(kSeed);
+  AddConfigOption(cmd, &run.config, "Settings file (YAML), as for log-teach");
+  AddSetOption(cmd, &run.overrides, "a setting, e.g. sim.lidar.noise.sigma0=0.02");
+  AddSeedOption(cmd, &run.seed, "of the LiDAR noise and the synthetic odometry");
   AddStreamOptions(cmd, &run.streams);
 }
 

@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/log_teach_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -122,18 +123,17 @@ void PrintTeachSummary(const logs::LogIndex& index, const LogStreams& streams,
 
 void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options) {
   AddLogArgument(cmd, &options->log);
-  cmd->add_option("--out,-o", options->out, "Results folder to write")->required();
+  AddOutOption(cmd, &options->out, "Results folder to write")->required();
   AddWindowOptions(cmd, &options->window);
   cmd->add_flag("--synthetic-odometry", options->synthetic_odometry,
                 "Draw drifting odometry from the reference (or from the log's odometry, which "
                 "then becomes the reference) with the simulator's model: sim.odometry, seed");
   AddReferenceOption(cmd, &options->reference);
-  cmd->add_option("--config", options->config,
+  AddConfigOption(cmd, &options->config,
                   "Settings file (YAML): seed, modes, route, sim.odometry, nav, playback, metrics");
-  cmd->add_option("--set", options->overrides, "Override a setting: a.b.c=value (repeatable)");
-  cmd->add_option("--seed", options->seed, "Seed of the synthetic odometry and the localizer")
-      ->check(kSeed);
-  cmd->add_flag("!--no-figures", options->figures, "Do not render the figures");
+  AddSetOption(cmd, &options->overrides, "a setting: a.b.c=value");
+  AddSeedOption(cmd, &options->seed, "of the synthetic odometry and the localizer");
+  AddNoFiguresFlag(cmd, &options->figures);
   AddStreamOptions(cmd, &options->streams);
 }
 

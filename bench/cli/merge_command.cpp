@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/merge_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -182,7 +183,7 @@ void AddMergeOptions(CLI::App* command, MergeOptions* options) {
       ->add_option("shards", options->inputs,
                    "The results folders of the shards (retrace sweep --shard i/N)")
       ->required();
-  command->add_option("--out", options->out, "Folder for the joined results")->required();
+  AddOutOption(command, &options->out, "Folder for the joined results")->required();
   command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
 }
 

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "bench/output/html_report.hpp"
+#include "bench/output/render_results.hpp"
 #include "core/errors.hpp"
 
 namespace retrace::bench {
@@ -14,6 +15,18 @@ void AddReportOptions(CLI::App* command, ReportOptions* options) {
                    "Results folder of run, playback, bench, sweep, compare, log-localize or "
                    "log-compare (any folder: the page lists what it holds)")
       ->required();
+}
+
+void AddRenderOptions(CLI::App* command, RenderOptions* options) {
+  command
+      ->add_option("results", options->dir, "Results folder of `retrace run` (results/<scenario>)")
+      ->required();
+}
+
+int RunRenderCommand(const RenderOptions& options) {
+  const auto files = RenderResults(options.dir);
+  std::cout << files.size() << " figures in " << options.dir.string() << "\n";
+  return 0;
 }
 
 int RunReportCommand(const ReportOptions& options) {

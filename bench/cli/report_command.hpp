@@ -20,6 +20,13 @@ struct ReportOptions {
 /// Adds the command's arguments to a CLI11 subcommand.
 void AddReportOptions(CLI::App* command, ReportOptions* options);
 
+/// `retrace render <dir>`: the figures of a results folder again.
+struct RenderOptions {
+  std::filesystem::path dir;
+};
+void AddRenderOptions(CLI::App* command, RenderOptions* options);
+int RunRenderCommand(const RenderOptions& options);
+
 /// Writes the page and prints "report: <file> (<n> figures)" on stdout. Returns 0. Throws
 /// core::IoError (nothing written) when the folder does not exist, is not a folder, or holds an
 /// unreadable manifest or results file.

@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/run_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -206,23 +207,20 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   }
   if (phases != RunPhases::kTeachOnly) {
     command->add_option("--repeats", options->repeats, "Playback runs per mode")->check(kPositive);
-    command->add_option("--jobs", options->jobs, "Worker threads (default: one per core)")
-        ->check(kNonNegative);
+    AddJobsOption(command, &options->jobs);
   }
-  command->add_option("--seed", options->seed, "Scenario seed (overrides the file's)")
-      ->check(kSeed);
-  command->add_option("--out", options->out, "Results folder (default: results/<scenario name>)");
-  command->add_option("--set", options->overrides,
-                      "Override a scenario key: a.b.c=value (repeatable)");
+  AddSeedOption(command, &options->seed, "of the scenario (overrides the file's)");
+  AddOutOption(command, &options->out, "Results folder (default: results/<scenario name>)");
+  AddSetOption(command, &options->overrides, "a scenario key: a.b.c=value");
   if (phases != RunPhases::kPlaybackOnly) {
     command->add_option("--record-log", options->record_log,
                         "Also write every drive as a CARMEN log and an MCAP bag into this folder: "
                         "teach.log.gz, teach.mcap, <mode>/run_<i>.log.gz, <mode>/run_<i>.mcap");
   }
   if (phases != RunPhases::kTeachOnly) {
-    command->add_flag("!--no-figures", options->figures,
+    AddNoFiguresFlag(command, &options->figures,
                       "Do not render the figures (retrace render does it later)");
-    command->add_flag("!--no-report", options->report,
+    AddNoReportFlag(command, &options->report,
                       "Do not write report.html, the results folder's page of tables, figures "
                       "and manifests (retrace report does it later)");
     command->add_flag("--video", options->video,

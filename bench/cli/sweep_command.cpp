@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/sweep_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -270,20 +271,15 @@ void PrintSweepSummary(const SweepSpec& spec, const SweepShard& shard, std::size
 
 void AddSweepOptions(CLI::App* command, SweepOptions* options) {
   command->add_option("file", options->file, "Sweep file (YAML, see sweeps/)")->required();
-  command
-      ->add_option("--jobs", options->jobs,
-                   "Cases run at once, one thread each (default: one per core)")
-      ->check(kNonNegative);
-  command->add_option(
-      "--out", options->out,
-      "Results folder (default: results/sweeps/<name>, or .../<name>/shard-<i>-of-<N>)");
+  AddJobsOption(command, &options->jobs, "Cases run at once, one thread each");
+  AddOutOption(command, &options->out,
+               "Results folder (default: results/sweeps/<name>, or .../<name>/shard-<i>-of-<N>)");
   command->add_option("--shard", options->shard,
                       "Run only shard i of N: the cases with case % N == i - 1");
-  command->add_option("--set", options->overrides,
-                      "Override a scenario key in every case: a.b.c=value (repeatable)");
+  AddSetOption(command, &options->overrides, "a scenario key in every case: a.b.c=value");
   command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
-  command->add_flag("!--no-report", options->report,
-                    "Do not write report.html, the sweep's page of its plot and results table "
+  AddNoReportFlag(command, &options->report,
+                  "Do not write report.html, the sweep's page of its plot and results table "
                     "(retrace report does it later)");
 }
 

@@ -1,3 +1,4 @@
+#include "bench/cli/shared_options.hpp"
 #include "bench/cli/tour_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -76,12 +77,12 @@ std::string ScenarioText(const std::string& name, std::uint64_t seed, const std:
 }  // namespace
 
 void AddGenerateTourOptions(CLI::App* cmd, GenerateTourOptions* options) {
-  cmd->add_option("--out,-o", options->out, "Folder to write: route.txt, world.yaml, scenario.yaml")
+  AddOutOption(cmd, &options->out, "Folder to write: route.txt, world.yaml, scenario.yaml")
       ->required();
-  cmd->add_option("--seed", options->seed, "Seed of the tour and its world")->check(kSeed);
-  cmd->add_option("--set", options->overrides,
-                  "Override a tour setting: key=value (length, columns, rows, block_size, "
-                  "max_loop_blocks, max_transfer; repeatable)");
+  AddSeedOption(cmd, &options->seed, "of the tour and its world");
+  AddSetOption(cmd, &options->overrides,
+               "a tour setting: key=value (length, columns, rows, block_size, max_loop_blocks, "
+               "max_transfer)");
   cmd->add_option("--pedestrians", options->pedestrians, "Pedestrians in the world (default 20)")
       ->check(kNonNegative);
   AddClutterOptions(cmd, &options->clutter);

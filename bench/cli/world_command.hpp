@@ -5,6 +5,10 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}  // namespace CLI
+
 namespace retrace::bench {
 
 struct WorldCommandOptions {
@@ -15,6 +19,8 @@ struct WorldCommandOptions {
   double pixels_per_meter = 0.0;  ///< 0: a figure 1600 px wide
   std::uint64_t seed = 1;         ///< seed of the pedestrians' spawn points
 };
+
+void AddWorldOptions(CLI::App* cmd, WorldCommandOptions* options);
 
 /// `retrace world`: loads and validates a world file and renders it to a PNG.
 /// Returns a one-line summary; throws core::Error on bad input.
