@@ -4,7 +4,7 @@
 # sim, nav and viz, and that CLI11 lives only in the command line. The layers, bottom up:
 #
 #   core → io → sim, nav, viz, logs → bench/engine → bench/metrics → bench/output, bench/suite,
-#   bench/sweep, bench/compare, bench/replay → bench/cli   (bench/worldgen and bench/crowd: on
+#   bench/sweep, bench/compare → bench/replay (on output) → bench/cli   (bench/worldgen and bench/crowd: on
 #   core, io and sim only; logs: only bench/replay and bench/cli read logs)
 #
 # The table of docs/DESIGN.md §1 checks every library's CMake links (parsed from the document
@@ -48,8 +48,8 @@ check bench/compare '*' 'bench/(output|suite|sweep|replay|cli|worldgen|crowd)/|l
   "the comparison study depends on metrics and viz only"
 check bench/worldgen '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli|crowd)/|nav/|viz/|logs/|CLI/" "world generation depends on core, io and sim only"
 check bench/crowd '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli|worldgen)/|nav/|viz/|logs/|CLI/" "the crowd check depends on core, io and sim only"
-check bench/replay '*' 'bench/(output|suite|sweep|compare|cli|worldgen|crowd)/|CLI/' \
-  "replay depends on the engine, metrics, logs and viz only"
+check bench/replay '*' 'bench/(suite|sweep|compare|cli|worldgen|crowd)/|CLI/' \
+  "replay depends on the engine, metrics, output, logs and viz only"
 check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim, nav and logs kernels only"
 # The CMake links against the table of docs/DESIGN.md §1 ("The dependency picture"): each
 # row's target may link the targets its row lists, what those may use in turn, and core and io.

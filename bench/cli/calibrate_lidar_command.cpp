@@ -15,6 +15,7 @@
 #include "bench/replay/lidar_calibration.hpp"
 #include "bench/replay/lidar_calibration_figure.hpp"
 #include "bench/replay/log_streams.hpp"
+#include "core/format.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "viz/render_error.hpp"
@@ -38,9 +39,9 @@ std::string HalvesSpread(const LidarCalibration& c) {
   const nav::BeamMixture& a = c.first_half.result.mixture;
   const nav::BeamMixture& b = c.second_half.result.mixture;
   const nav::BeamMixture& w = c.whole.result.mixture;
-  const auto points = [](double x, double y) { return FixedText(100.0 * std::abs(x - y), 2); };
+  const auto points = [](double x, double y) { return core::FixedText(100.0 * std::abs(x - y), 2); };
   const auto percent = [](double x, double y, double whole) {
-    return whole > 0.0 ? FixedText(100.0 * std::abs(x - y) / whole, 1) + " %" : "-";
+    return whole > 0.0 ? core::FixedText(100.0 * std::abs(x - y) / whole, 1) + " %" : "-";
   };
   return "halves differ by: z_hit " + points(a.z_hit, b.z_hit) + ", z_short " +
          points(a.z_short, b.z_short) + ", z_max " + points(a.z_max, b.z_max) + ", z_rand " +
@@ -50,7 +51,7 @@ std::string HalvesSpread(const LidarCalibration& c) {
               ? std::string("0 %")
               : percent(a.lambda_short, b.lambda_short, w.lambda_short)) +
          " of the whole's; hit offset " +
-         FixedText(100.0 * std::abs(a.hit_offset - b.hit_offset), 1) + " cm";
+         core::FixedText(100.0 * std::abs(a.hit_offset - b.hit_offset), 1) + " cm";
 }
 
 double Share(std::size_t part, std::size_t whole) {
@@ -81,7 +82,7 @@ std::vector<std::string> UnmappedReport(const LidarCalibration& c) {
       "(exposure: m of the rays in unknown cells and in the clutter's band; band: readings "
       "ending short in it, static: of those on something that stays; free_path in m, "
       "density of static objects per m^2, of mean width " +
-          FixedText(c.unmapped_whole.fit.mean_width_m, 2) + " m)"};
+          core::FixedText(c.unmapped_whole.fit.mean_width_m, 2) + " m)"};
 }
 
 // The simulated world that reproduces the real estimates, and how close its scans came.
@@ -89,20 +90,20 @@ std::string WorldLine(const UnmappedFit& real, const WorldInference& inference) 
   const UnmappedFit& sim = inference.simulated;
   const std::string unknown =
       inference.free_path > 0.0
-          ? "unknown cells filled at a free path of " + FixedText(inference.free_path, 2) + " m"
+          ? "unknown cells filled at a free path of " + core::FixedText(inference.free_path, 2) + " m"
       : inference.unknown_hits_enough
           ? std::string("unknown cells left open (rays cross them farther than the LiDAR reaches)")
           : "unknown cells left open (fewer than " + std::to_string(kMinUnknownHitsPerHalf) +
                 " readings end in them in a half of the window)";
-  return "simulated world: " + unknown + ", static clutter " + FixedText(inference.density, 4) +
+  return "simulated world: " + unknown + ", static clutter " + core::FixedText(inference.density, 4) +
          " per m^2 (" + std::to_string(inference.simulations) +
          (inference.simulations == 1 ? " simulation" : " simulations") +
          (inference.converged ? "" : ", not within 5 % and 10 %") +
-         "); its scans estimate a free path of " + FixedText(sim.unknown_free_path, 2) + " m and " +
-         FixedText(sim.density, 4) + " per m^2 (real " + FixedText(real.unknown_free_path, 2) +
-         " m, " + FixedText(real.density, 4) + "), short readings " +
-         FixedText(100.0 * Share(sim.short_readings, sim.beams), 1) + " % (real " +
-         FixedText(100.0 * Share(real.short_readings, real.beams), 1) + " %)";
+         "); its scans estimate a free path of " + core::FixedText(sim.unknown_free_path, 2) + " m and " +
+         core::FixedText(sim.density, 4) + " per m^2 (real " + core::FixedText(real.unknown_free_path, 2) +
+         " m, " + core::FixedText(real.density, 4) + "), short readings " +
+         core::FixedText(100.0 * Share(sim.short_readings, sim.beams), 1) + " % (real " +
+         core::FixedText(100.0 * Share(real.short_readings, real.beams), 1) + " %)";
 }
 
 // The fit report: what was used, then one row per part and the halves' spread.
@@ -110,13 +111,13 @@ std::vector<std::string> FitReport(const LidarCalibration& c, const std::string&
                                    const std::filesystem::path& teach_dir) {
   const CalibrationBeams& b = c.beams;
   std::vector<std::string> lines = {
-      log_name + ": " + std::to_string(b.scans) + " scans (" + FixedText(b.first_s, 1) + " to " +
-          FixedText(b.last_s, 1) + " s of log time, as --from/--to), " + std::to_string(b.beams) +
+      log_name + ": " + std::to_string(b.scans) + " scans (" + core::FixedText(b.first_s, 1) + " to " +
+          core::FixedText(b.last_s, 1) + " s of log time, as --from/--to), " + std::to_string(b.beams) +
           " beams",
       "map: " + teach_dir.string() + "; expected range known for " +
           std::to_string(b.samples.size() + b.invalid) + " beams (" + std::to_string(b.unknown) +
           " unknown, " + std::to_string(b.invalid) + " of the known below range_min and left out)",
-      "LiDAR range " + FixedText(b.range_min, 2) + " to " + FixedText(b.range_max, 2) +
+      "LiDAR range " + core::FixedText(b.range_min, 2) + " to " + core::FixedText(b.range_max, 2) +
           " m; EM of Probabilistic Robotics Table 6.2",
       "part         from (s)   to (s)    beams   z_hit z_short   z_max  z_rand sigma_hit "
       "lambda_sh  offset  iter",
@@ -127,7 +128,7 @@ std::vector<std::string> FitReport(const LidarCalibration& c, const std::string&
       "(sigma_hit and the hit offset in m, lambda_short in 1/m; times: s since the log's first "
       "scan)",
       "hit offset: the readings' Gaussian is centred " +
-          FixedText(c.whole.result.mixture.hit_offset, 3) +
+          core::FixedText(c.whole.result.mixture.hit_offset, 3) +
           " m beyond the cast range z*, a property of the grid map (the cast stops at the face "
           "of the first occupied cell), not of the sensor: not part of sim.lidar.noise"};
   for (const std::string& line : UnmappedReport(c)) lines.push_back(line);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "bench/cli/log_options.hpp"
+#include "core/format.hpp"
 #include "core/config.hpp"
 
 namespace retrace::bench {
@@ -16,12 +17,12 @@ namespace retrace::bench {
 namespace {
 
 std::string Degrees(double rad, int digits) {
-  return FixedText(rad * 180.0 / std::numbers::pi, digits);
+  return core::FixedText(rad * 180.0 / std::numbers::pi, digits);
 }
 
 std::string Duration(double s) {
   const long total = std::lround(s);
-  std::string text = FixedText(s, 1) + " s";
+  std::string text = core::FixedText(s, 1) + " s";
   if (total >= 3600) {
     text += " (" + std::to_string(total / 3600) + " h " + std::to_string(total / 60 % 60) + " min)";
   } else if (total >= 60) {
@@ -32,11 +33,11 @@ std::string Duration(double s) {
 
 std::string Rate(std::uint64_t messages, double span_s) {
   if (messages < 2 || span_s <= 0.0) return "";
-  return FixedText(static_cast<double>(messages - 1) / span_s, 2);
+  return core::FixedText(static_cast<double>(messages - 1) / span_s, 2);
 }
 
 std::string Pose(const core::Pose2& p) {
-  return "(" + FixedText(p.x, 3) + " m, " + FixedText(p.y, 3) + " m, " + Degrees(p.theta, 1) +
+  return "(" + core::FixedText(p.x, 3) + " m, " + core::FixedText(p.y, 3) + " m, " + Degrees(p.theta, 1) +
          " deg)";
 }
 
@@ -72,7 +73,7 @@ void WriteScanStreams(std::ostream& out, const logs::LogIndex& index) {
         << (used && index.scan_streams.size() > 1 ? " (used)" : "") << ": " << s.scans
         << " scans of " << s.beams << " beams over " << Degrees(s.field_of_view(), 1)
         << " deg from " << Degrees(s.angle_min, 1) << " deg, " << Degrees(s.angle_increment, 3)
-        << " deg apart; ranges " << FixedText(s.range_min, 2) << " to " << FixedText(s.range_max, 2)
+        << " deg apart; ranges " << core::FixedText(s.range_min, 2) << " to " << core::FixedText(s.range_max, 2)
         << " m; frame " << (stream.frame.empty() ? "-" : stream.frame) << "\n";
   }
 }
@@ -93,8 +94,8 @@ void WriteOdometryAndMount(std::ostream& out, const logs::LogIndex& index) {
   if (!index.odometry_missing.empty()) out << NoOdometryLine(index) << "\n";
   if (!index.odometry_source.empty() && !index.odometry.empty()) {
     out << "odometry:   " << index.odometry_source << ": " << index.odometry.size() << " poses, "
-        << FixedText(logs::PathLength(index.odometry), 1) << " m driven over "
-        << FixedText(index.odometry.back().t - index.odometry.front().t, 1) << " s; base frame "
+        << core::FixedText(logs::PathLength(index.odometry), 1) << " m driven over "
+        << core::FixedText(index.odometry.back().t - index.odometry.front().t, 1) << " s; base frame "
         << (index.base_frame.empty() ? "-" : index.base_frame) << "\n";
   }
   if (!index.mount_source.empty())
@@ -109,7 +110,7 @@ void WriteReference(std::ostream& out, const logs::LogIndex& index) {
            "--synthetic-odometry draws drifting odometry from it)\n";
   } else if (!index.reference.empty()) {
     out << "reference:  " << index.reference_source << ": " << index.reference.size() << " poses, "
-        << FixedText(logs::PathLength(index.reference), 1) << " m\n";
+        << core::FixedText(logs::PathLength(index.reference), 1) << " m\n";
   }
 }
 

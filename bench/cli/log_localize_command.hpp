@@ -1,12 +1,12 @@
 #pragma once
-// `retrace log-localize <log> --teach DIR --out DIR`: the localizer and the map server of
-// playback run through a recorded log in the maps of a teach folder (bench/replay/
-// log_localize.hpp); writes the estimate, the metrics against the reference and the figures.
+// `retrace log-localize <log> --teach DIR --out DIR`: the options of
+// bench/replay/log_localize_run.hpp's LocalizeLog, which it calls; prints its summary.
 
 #include <filesystem>
 #include <string>
 
 #include "bench/cli/log_teach_command.hpp"
+#include "bench/replay/log_localize_run.hpp"
 
 namespace CLI {
 class App;
@@ -15,10 +15,8 @@ class App;
 namespace retrace::bench {
 
 struct LogLocalizeOptions {
-  LogRunOptions run;
-  std::filesystem::path teach_dir;
-  std::string initial_pose;  ///< x,y,yaw_deg in map 0; empty: automatic
-  bool every_odometry_tick = false;  ///< one prediction per odometry message
+  LogLocalizeRequest request;
+  std::string initial_pose;  ///< --initial-pose x,y,yaw_deg in map 0; empty: automatic
 };
 
 void AddLogLocalizeOptions(CLI::App* cmd, LogLocalizeOptions* options);

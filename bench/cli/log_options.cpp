@@ -8,12 +8,6 @@
 
 namespace retrace::bench {
 
-std::string FixedText(double v, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
-  return buffer;
-}
-
 void AddLogArgument(CLI::App* cmd, std::filesystem::path* log) {
   cmd->add_option("log", *log,
                   "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
@@ -26,15 +20,6 @@ void AddWindowOptions(CLI::App* cmd, LogWindow* window) {
                   "Start of the part to use: s since the log's first message (default 0)");
   cmd->add_option("--to", window->to_s,
                   "End of the part to use: s since the log's first message (default: the end)");
-}
-
-void RequireWindow(const LogWindow& window) {
-  if (!(window.from_s >= 0.0) || !std::isfinite(window.from_s))
-    throw core::ConfigError("--from",
-                            "must be a time >= 0 s, got " + core::FormatNumber(window.from_s));
-  if (!(window.to_s > window.from_s))
-    throw core::ConfigError(
-        "--to", "must be later than --from (" + core::FormatNumber(window.from_s) + " s)");
 }
 
 void AddReferenceOption(CLI::App* cmd, std::optional<std::filesystem::path>* reference) {

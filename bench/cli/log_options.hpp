@@ -16,17 +16,11 @@ class App;
 
 namespace retrace::bench {
 
-/// `v` with `digits` digits after the point ("12.30"), for the log commands' summaries.
-std::string FixedText(double v, int digits);
-
 /// Adds the required positional `log` (a CARMEN log, an MCAP or SQLite file, a rosbag2 folder).
 void AddLogArgument(CLI::App* cmd, std::filesystem::path* log);
 
 /// Adds --from and --to (s since the log's first scan).
 void AddWindowOptions(CLI::App* cmd, LogWindow* window);
-
-/// Throws core::ConfigError("--from" or "--to") unless 0 <= from < to.
-void RequireWindow(const LogWindow& window);
 
 /// Adds --reference (a TUM file with a reference trajectory on the log's clock).
 void AddReferenceOption(CLI::App* cmd, std::optional<std::filesystem::path>* reference);

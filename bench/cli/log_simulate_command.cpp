@@ -9,6 +9,7 @@
 #include "bench/cli/log_options.hpp"
 #include "bench/output/results_io.hpp"
 #include "bench/replay/log_simulate.hpp"
+#include "core/format.hpp"
 #include "core/errors.hpp"
 
 namespace retrace::bench {
@@ -51,8 +52,8 @@ int RunLogSimulateCommand(const LogSimulateOptions& options) {
     throw;
   }
   std::cout << out.string() << ": " << simulation.scans << " simulated scans of "
-            << index.scan.beams << " beams from " << FixedText(simulation.first_stamp, 1) << " to "
-            << FixedText(simulation.last_stamp, 1) << " s along " << streams.reference_source
+            << index.scan.beams << " beams from " << core::FixedText(simulation.first_stamp, 1) << " to "
+            << core::FixedText(simulation.last_stamp, 1) << " s along " << streams.reference_source
             << ", in the map of " << options.teach_dir.string()
             << "\nlocalize it as the log itself: retrace log-localize " << out.string()
             << " --teach <teach folder> --out <dir>\n";

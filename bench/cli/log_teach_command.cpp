@@ -15,6 +15,7 @@
 #include "bench/output/render_results.hpp"
 #include "bench/output/results_io.hpp"
 #include "bench/output/staged_folder.hpp"
+#include "core/format.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_override.hpp"
@@ -39,7 +40,7 @@ std::string ModeLine(const ModeTeach& teach) {
     line += ", switched online after";
     for (std::size_t i = 0; i < teach.online_switches.size(); ++i) {
       const nav::OnlineSwitch& s = teach.online_switches[i];
-      line += (i ? ", " : " ") + FixedText(s.travelled, 1) + " m (" +
+      line += (i ? ", " : " ") + core::FixedText(s.travelled, 1) + " m (" +
               std::string(core::EnumName(s.reason)) + ")";
     }
     line += " of odometry";
@@ -96,10 +97,10 @@ std::vector<std::string> RenderTeachFigures(const std::filesystem::path& folder,
 
 void PrintTeachSummary(const logs::LogIndex& index, const LogStreams& streams,
                        const LogTeachResult& result, const std::vector<std::string>& figure_notes) {
-  std::cout << index.name << ": taught " << FixedText(result.last_s - result.first_s, 1)
-            << " s of the log (" << FixedText(result.first_s, 1) << " to "
-            << FixedText(result.last_s, 1) << " s), " << result.scans << " scans, "
-            << FixedText(result.driven_m, 1) << " m driven";
+  std::cout << index.name << ": taught " << core::FixedText(result.last_s - result.first_s, 1)
+            << " s of the log (" << core::FixedText(result.first_s, 1) << " to "
+            << core::FixedText(result.last_s, 1) << " s), " << result.scans << " scans, "
+            << core::FixedText(result.driven_m, 1) << " m driven";
   if (result.scans_outside > 0)
     std::cout << "; " << result.scans_outside << " scans without odometry or reference skipped";
   std::cout << "\n  odometry:  " << streams.odometry_source << "\n  reference: "
@@ -113,9 +114,9 @@ void PrintTeachSummary(const logs::LogIndex& index, const LogStreams& streams,
   for (const std::string& note : index.notes) std::cout << "  note: " << note << "\n";
   for (const std::string& note : figure_notes) std::cout << "  " << note << "\n";
   const double log_s = result.last_s - result.first_s;
-  std::cout << "teaching: " << FixedText(log_s, 1) << " s of log in "
-            << FixedText(result.cpu_time_s, 2) << " s of CPU ("
-            << FixedText(result.cpu_time_s > 0 ? log_s / result.cpu_time_s : 0.0, 0)
+  std::cout << "teaching: " << core::FixedText(log_s, 1) << " s of log in "
+            << core::FixedText(result.cpu_time_s, 2) << " s of CPU ("
+            << core::FixedText(result.cpu_time_s > 0 ? log_s / result.cpu_time_s : 0.0, 0)
             << "x real time)\n";
 }
 
@@ -146,15 +147,6 @@ void AddLogTeachOptions(CLI::App* cmd, LogTeachOptions* options) {
                   "Map modes: partial|single|consistent|scan_matched, comma-separated (default: "
                   "partial, scan_matched and, with a reference, consistent)")
       ->delimiter(',');
-}
-
-LogConfig LoadLogRunConfig(const LogRunOptions& options, const std::vector<std::string>& extra) {
-  RequireWindow(options.window);
-  std::vector<io::ConfigOverride> overrides;
-  for (const std::string& text : options.overrides) overrides.push_back(io::ParseOverride(text));
-  if (options.seed) overrides.push_back(io::ParseOverride("seed=" + std::to_string(*options.seed)));
-  for (const std::string& text : extra) overrides.push_back(io::ParseOverride(text));
-  return LoadLogConfig(options.config, overrides);
 }
 
 int RunLogTeachCommand(const LogTeachOptions& options, const std::string& command_line) {

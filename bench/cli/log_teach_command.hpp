@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/replay/log_run_options.hpp"
 #include "bench/replay/log_teach.hpp"
 #include "logs/sensor_log.hpp"
 
@@ -18,19 +19,6 @@ class App;
 namespace retrace::bench {
 
 /// The options log-teach and log-localize share: the log, its streams and part, the config.
-struct LogRunOptions {
-  std::filesystem::path log;
-  std::filesystem::path out;
-  logs::StreamChoice streams;
-  LogWindow window;
-  bool synthetic_odometry = false;
-  std::optional<std::filesystem::path> reference;  ///< TUM file
-  std::optional<std::filesystem::path> config;     ///< --config FILE
-  std::vector<std::string> overrides;              ///< --set key=value
-  std::optional<std::uint64_t> seed;
-  bool figures = true;
-};
-
 struct LogTeachOptions {
   LogRunOptions run;
   std::string switch_points;       ///< auto, online or s1,s2,... (empty: the config's)
@@ -41,9 +29,6 @@ struct LogTeachOptions {
 void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options);
 void AddLogTeachOptions(CLI::App* cmd, LogTeachOptions* options);
 
-/// The config of a log command: --config, then --set, then the options that stand for keys
-/// (`extra`, key=value). Throws core::ConfigError naming the option or key.
-LogConfig LoadLogRunConfig(const LogRunOptions& options, const std::vector<std::string>& extra);
 
 /// Runs log-teach; returns the exit code (0). Throws core::Error for bad input, before anything
 /// is written.

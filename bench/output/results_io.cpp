@@ -171,39 +171,57 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
   return teach;
 }
 
-void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,
-                    const MetricsConfig& metrics) {
-  std::vector<io::StampedPose> gt, est, odom;
+void WriteEstimateFiles(const std::filesystem::path& dir, const TeachTrace& teach,
+                        const std::vector<EstimateRow>& rows, const MetricsConfig& metrics,
+                        const std::string& reference_file) {
   io::CsvWriter est_map(dir / "est_map.csv", {"time", "map", "x", "y", "theta"});
+  std::vector<io::StampedPose> est, reference;
   std::optional<LocalTruth> local;
   int local_map = -1;
-  for (const PlaybackSample& s : run.samples) {
-    if (s.map_index != local_map) {
-      local.emplace(teach.maps.at(static_cast<std::size_t>(s.map_index)), metrics.match_window,
+  for (const EstimateRow& r : rows) {
+    est_map.AddRow({r.time, r.map, r.X_MR.x, r.X_MR.y, r.X_MR.theta});
+    if (!r.X_WR) continue;
+    if (r.map != local_map) {
+      local.emplace(teach.maps.at(static_cast<std::size_t>(r.map)), metrics.match_window,
                     metrics.match_fallback_distance);
-      local_map = s.map_index;
+      local_map = r.map;
     }
-    local->InMap(s.X_WR);
-    gt.push_back({s.time, s.X_WR});
-    est.push_back({s.time, local->X_WM() * s.X_MR});
-    odom.push_back({s.time, s.X_OR});
-    est_map.AddRow({s.time, s.map_index, s.X_MR.x, s.X_MR.y, s.X_MR.theta});
+    local->InMap(*r.X_WR);
+    est.push_back({r.time, local->X_WM() * r.X_MR});
+    reference.push_back({r.time, *r.X_WR});
   }
-  io::WriteTum(dir / "gt.tum", gt);
-  io::WriteTum(dir / "est.tum", est);
-  io::WriteTum(dir / "odom.tum", odom);
   est_map.Commit();
+  if (est.empty()) return;
+  io::WriteTum(dir / "est.tum", est);
+  io::WriteTum(dir / reference_file, reference);
+}
 
-  io::CsvWriter events(dir / "events.csv", {"time", "event", "detail"});
-  // Merged in time order: switches, collisions and scripted events are each already sorted.
-  struct Row {
-    double time;
-    std::string event, detail;
-  };
-  std::vector<Row> rows;
-  for (const SwitchRecord& sw : run.switches) {
+std::vector<EventRow> SwitchEvents(const std::vector<SwitchRecord>& switches) {
+  std::vector<EventRow> rows;
+  for (const SwitchRecord& sw : switches)
     rows.push_back({sw.time, "map_switch", std::to_string(sw.from) + "->" + std::to_string(sw.to)});
+  return rows;
+}
+
+void WriteEventsCsv(const std::filesystem::path& path, const std::vector<EventRow>& rows) {
+  io::CsvWriter events(path, {"time", "event", "detail"});
+  for (const EventRow& r : rows) events.AddRow({r.time, r.event, r.detail});
+  events.Commit();
+}
+
+void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,
+                    const MetricsConfig& metrics) {
+  std::vector<EstimateRow> estimates;
+  std::vector<io::StampedPose> odom;
+  for (const PlaybackSample& s : run.samples) {
+    estimates.push_back({s.time, s.map_index, s.X_MR, s.X_WR});
+    odom.push_back({s.time, s.X_OR});
   }
+  WriteEstimateFiles(dir, teach, estimates, metrics, "gt.tum");
+  io::WriteTum(dir / "odom.tum", odom);
+
+  // Merged in time order: switches, collisions and scripted events are each already sorted.
+  std::vector<EventRow> rows = SwitchEvents(run.switches);
   for (const sim::CollisionEvent& c : run.collisions) {
     rows.push_back({c.time, "collision",
                     c.kind == sim::CollisionKind::kStatic
@@ -212,10 +230,9 @@ void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, c
   }
   for (const EventRecord& e : run.events) rows.push_back({e.time, "scripted", e.name});
   std::stable_sort(rows.begin(), rows.end(),
-                   [](const Row& a, const Row& b) { return a.time < b.time; });
-  for (const Row& r : rows) events.AddRow({r.time, r.event, r.detail});
-  events.AddRow({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});
-  events.Commit();
+                   [](const EventRow& a, const EventRow& b) { return a.time < b.time; });
+  rows.push_back({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});
+  WriteEventsCsv(dir / "events.csv", rows);
   if (run.snapshot) WriteSnapshot(dir / "snapshot.json", *run.snapshot);
 
   // The errors along the route, per control tick, for plots (errors.png) and the user's own.

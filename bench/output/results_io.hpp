@@ -25,6 +25,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "bench/engine/snapshot.hpp"
@@ -48,6 +49,32 @@ std::optional<MapMode> TeachFolderMode(const std::filesystem::path& dir);
 /// Reads a folder written by WriteTeachFolder (`retrace playback --teach DIR`). Throws
 /// core::IoError naming the folder and the missing or malformed file.
 ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode);
+
+/// One row of est_map.csv and, with a reference, of est.tum and the reference's TUM file.
+struct EstimateRow {
+  double time = 0.0;
+  int map = 0;
+  core::Pose2 X_MR;                 ///< the estimate in map `map`
+  std::optional<core::Pose2> X_WR;  ///< the ground truth or reference (none: no TUM rows)
+};
+
+/// The estimate files of a run, simulated or replayed (docs/FORMATS.md): est_map.csv (every
+/// row: time, map, x, y, theta) and, when any row has a reference, est.tum (the estimate carried
+/// into W by the local alignment of its map's nearest teaching sample, so that evo's APE against
+/// the reference is the localization error) and `reference_file` (the reference).
+void WriteEstimateFiles(const std::filesystem::path& dir, const TeachTrace& teach,
+                        const std::vector<EstimateRow>& rows, const MetricsConfig& metrics,
+                        const std::string& reference_file);
+
+/// One row of events.csv: time, event, detail.
+struct EventRow {
+  double time = 0.0;
+  std::string event, detail;
+};
+/// The map switches as events.csv rows ("map_switch", "k->l").
+std::vector<EventRow> SwitchEvents(const std::vector<SwitchRecord>& switches);
+/// Writes events.csv (the rows as given).
+void WriteEventsCsv(const std::filesystem::path& path, const std::vector<EventRow>& rows);
 
 /// Writes one run's trajectories and events into `dir`; `metrics` sets the local-truth matching.
 void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, const RunTrace& run,

@@ -8,8 +8,8 @@
 #include <numeric>
 #include <vector>
 
-#include "bench/cli/log_localize_command.hpp"
 #include "bench/cli/log_teach_command.hpp"
+#include "bench/replay/log_localize_run.hpp"
 #include "logs/carmen_writer.hpp"
 #include "logs/sensor_log.hpp"
 #include "tests/support/fake_scan.hpp"
@@ -103,11 +103,12 @@ TEST(LogTeach, ABagWithoutOdometryTeachesAndLocalizesOnSyntheticOdometry) {
   EXPECT_NE(tmp.Read("taught/partial/manifest.yaml").find("synthetic, drawn from /pose"),
             std::string::npos);
 
-  LogLocalizeOptions localize;
+  LogLocalizeRequest localize;
   localize.run = teach.run;
-  localize.run.out = tmp.path() / "localized";
   localize.teach_dir = tmp.path() / "taught/partial/teach";
-  ASSERT_EQ(RunLogLocalizeCommand(localize, "log-localize"), 0);
+  const LogLocalization localized = LocalizeLog(localize);
+  EXPECT_GT(localized.metrics.scans, 0);
+  WriteLogLocalizeFolder(tmp.path() / "localized", localized, localize, "log-localize", 0.0);
   EXPECT_TRUE(fs::exists(tmp.path() / "localized/metrics.json"));
 }
 

@@ -2,47 +2,21 @@
 # Bad input to the retrace program: each case must print exactly one line on stderr that names
 # the problem, exit with code 2, and leave no output file behind.
 # Usage: bad_input_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "$(dirname "$0")/lib.sh" || exit 1
 
-expect_bad() {  # expect_bad <name> <expected substring> <args...>
-  local name="$1" want="$2"
-  shift 2
-  rm -rf "$tmp/out.png" "$tmp/results"
-  "$retrace" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" && [ ! -e "$tmp/out.png" ] && [ ! -e "$tmp/results" ]; then
-    pass=$((pass + 1))
-  else
-    fail=$((fail + 1))
-    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
-    cat "$tmp/stderr"
-  fi
-}
-
-world() { printf '%b' "$2" >"$tmp/$1"; }
-
-world malformed.yaml 'name: x\nboxes: [{center: [1, 2}\n'
-world unknown.yaml 'name: x\nbox: []\n'
-world nan.yaml 'name: x\ncircles: [{center: [0, .nan], radius: 1}]\n'
-world negative.yaml 'name: x\ncircles: [{center: [0, 0], radius: -1}]\n'
-world empty.yaml 'name: nothing\n'
-printf 'P5\n100 80\n255\n' >"$tmp/short.pgm"
-head -c 7000 /dev/zero >>"$tmp/short.pgm"
-world short.yaml 'image: short.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n'
-world pgm_world.yaml 'name: x\nmaps: [{file: short.yaml}]\n'
-world yaw.yaml 'image: short.pgm\nresolution: 0.05\norigin: [0, 0, 0.3]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n'
-world yaw_world.yaml 'name: x\nmaps: [{file: yaw.yaml}]\n'
+make_file malformed.yaml 'name: x\nboxes: [{center: [1, 2}\n'
+make_file unknown.yaml 'name: x\nbox: []\n'
+make_file nan.yaml 'name: x\ncircles: [{center: [0, .nan], radius: 1}]\n'
+make_file negative.yaml 'name: x\ncircles: [{center: [0, 0], radius: -1}]\n'
+make_file empty.yaml 'name: nothing\n'
+pnm_file short.pgm 'P5\n100 80\n255\n' 7000
+ros_map short.yaml short.pgm '[0, 0, 0]'
+make_file pgm_world.yaml 'name: x\nmaps: [{file: short.yaml}]\n'
+ros_map yaw.yaml short.pgm '[0, 0, 0.3]'
+make_file yaw_world.yaml 'name: x\nmaps: [{file: yaw.yaml}]\n'
 printf '0 0\n20 0\n' >"$tmp/through_wall.txt"
 printf '8 6.25\n9 abc\n' >"$tmp/garbage_route.txt"
-world crowded.yaml 'name: x\nboxes: [{center: [0, 0], size: [1, 1]}]\npedestrians: [{count: 50, region_min: [2, 2], region_max: [3, 3]}]\n'
+make_file crowded.yaml 'name: x\nboxes: [{center: [0, 0], size: [1, 1]}]\npedestrians: [{count: 50, region_min: [2, 2], region_max: [3, 3]}]\n'
 
 expect_bad missing-file "missing.yaml: cannot open file" world "$tmp/missing.yaml" --png "$tmp/out.png"
 expect_bad malformed-yaml "malformed.yaml:2: invalid YAML" world "$tmp/malformed.yaml" --png "$tmp/out.png"
@@ -61,10 +35,11 @@ expect_bad unwritable-output "cannot create folder" world "$src/worlds/office.ya
 expect_bad no-subcommand "A subcommand is required" 
 expect_bad unknown-option "--bogus" world "$src/worlds/office.yaml" --png "$tmp/out.png" --bogus
 
-# Scenarios (`retrace run`, `teach`, `playback`): nothing may be written under $tmp/results.
+# Scenarios (`retrace run`, `teach`, `playback`): nothing may be written, as $tmp/results or
+# anywhere else.
 cp "$src/worlds/test_room.yaml" "$tmp/room.yaml"
 scenario() {  # scenario <file> <route/extra yaml>
-  printf 'name: bad\nworld: room.yaml\n%b' "$2" >"$tmp/$1"
+  make_file "$1" "name: bad\nworld: room.yaml\n$2"
 }
 scenario unknown_key.yaml 'route: {points: [[1, 1], [9, 1]]}\nplayback: {repeat: 2}\n'
 scenario through_box.yaml 'route: {points: [[1, 3.8], [9, 3.8]]}\n'
@@ -106,11 +81,9 @@ expect_bad playback-broken-bundle "teach_broken" playback "$src/scenarios/small.
 # And the good case writes the image.
 if "$retrace" world "$src/worlds/office.yaml" --route "$src/worlds/routes/office_loop.txt" --png "$tmp/ok.png" >/dev/null &&
    [ -s "$tmp/ok.png" ]; then
-  pass=$((pass + 1))
+  passed
 else
-  fail=$((fail + 1))
-  echo "FAIL good-world: no image written"
+  failed "good-world: no image written"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

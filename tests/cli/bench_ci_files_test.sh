@@ -14,19 +14,11 @@
 # Each reader is first shown a broken file, to prove it rejects one. The missing packages are a
 # failure, not a skip: CI installs them (scripts/install_deps.sh --test).
 # Usage: bench_ci_files_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() {
-  echo "FAIL: $*"
-  exit 1
-}
+. "$(dirname "$0")/lib.sh" || exit 1
 # The system's Python, where Debian's packages are (a `python3` on PATH may be another one).
 py=/usr/bin/python3
 "$py" -c 'import junitparser, jsonschema' 2>/dev/null ||
-  fail "python3-junitparser and python3-jsonschema are not installed (scripts/install_deps.sh --test installs them)"
+  die "python3-junitparser and python3-jsonschema are not installed (scripts/install_deps.sh --test installs them)"
 
 cd "$src" || exit 1
 bench() {  # bench <name> <expected exit code> <extra args...>
@@ -36,8 +28,8 @@ bench() {  # bench <name> <expected exit code> <extra args...>
     --out "$tmp/$name" --junit "$tmp/$name.xml" --trend "$tmp/$name.json" "$@" \
     >"$tmp/$name.out" 2>"$tmp/$name.err"
   local code=$?
-  [ "$code" -eq "$want" ] || fail "$name: exit $code, expected $want: $(cat "$tmp/$name.out" "$tmp/$name.err")"
-  [ ! -s "$tmp/$name.err" ] || fail "$name: stderr: $(cat "$tmp/$name.err")"
+  [ "$code" -eq "$want" ] || die "$name: exit $code, expected $want: $(cat "$tmp/$name.out" "$tmp/$name.err")"
+  [ ! -s "$tmp/$name.err" ] || die "$name: stderr: $(cat "$tmp/$name.err")"
 }
 bench record 0 --update-baseline
 bench pass 0

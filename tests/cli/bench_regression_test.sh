@@ -7,11 +7,7 @@
 # what the rejection protects, so `--only` runs just them: lost runs end early, about 25 s of
 # CPU instead of the whole suite's 600 (system tier all the same).
 # Usage: bench_regression_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/lib.sh" || exit 1
 cd "$src" || exit 1
 baseline="results/baselines/ci.json"
 before=$(cksum <"$baseline")
@@ -21,15 +17,6 @@ before=$(cksum <"$baseline")
   >"$tmp/stdout" 2>"$tmp/stderr"
 code=$?
 
-ok=1
-check() {  # check <description> <condition...>
-  local what="$1"
-  shift
-  if ! "$@"; then
-    echo "FAIL: $what"
-    ok=0
-  fi
-}
 check "exit code 1 (got $code)" [ "$code" -eq 1 ]
 # Not only the dynamic-point statistics (trivially 0 without rejection): the robot gets lost.
 check "office partial success FAIL" grep -qE '^office\.partial\.success_rate .* FAIL ' "$tmp/stdout"
@@ -41,8 +28,9 @@ check "report.md written" grep -q '^# Suite ci: FAIL' "$tmp/report/report.md"
 check "report.md says what ran" grep -qF -- '- `--only office.partial`' "$tmp/report/report.md"
 check "the baseline untouched" [ "$(cksum <"$baseline")" = "$before" ]
 check "nothing on stderr" [ ! -s "$tmp/stderr" ]
-if [ "$ok" -ne 1 ]; then
+if [ "$fail" -ne 0 ]; then
   cat "$tmp/stdout" "$tmp/stderr"
-  exit 1
+  finish
 fi
-grep -E ' FAIL |^suite ' "$tmp/stdout"
+check "the FAIL rows and the verdict line printed" grep -E ' FAIL |^suite ' "$tmp/stdout"
+finish

@@ -5,35 +5,15 @@
 # teach folder, a log the map does not cover, a fit that does not converge, no reference) prints
 # exactly one line on stderr, exits with code 2 and writes neither the YAML nor the figure.
 # Usage: calibrate_lidar_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "$(dirname "$0")/lib.sh" || exit 1
 
-expect_bad() {  # expect_bad <name> <expected substring> <args...>
-  local name="$1" want="$2"
-  shift 2
-  "$retrace" calibrate-lidar "$@" --out "$tmp/bad.yaml" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" &&
-    [ ! -e "$tmp/bad.yaml" ] && [ ! -e "$tmp/bad.png" ]; then
-    pass=$((pass + 1))
-  else
-    fail=$((fail + 1))
-    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
-    cat "$tmp/stderr"
-  fi
-}
+# Every bad case: `retrace calibrate-lidar <args> --out $tmp/bad.yaml` (and nothing written: no
+# bad.yaml, no bad.png).
+bad_command=(calibrate-lidar)
+bad_suffix=(--out "$tmp/bad.yaml")
 
 # A recorded drive of the small scenario, shortened to 12 m, and its consistent and partial maps.
-"$retrace" teach "$src/scenarios/small.yaml" --mode consistent,partial --out "$tmp/sim" \
-  --set 'route.points=[[1, 1], [9, 1], [9, 5]]' --set 'route.switch_points=[6]' \
-  --record-log "$tmp/logs" >/dev/null 2>&1 || { echo "FAIL: could not record a log"; exit 1; }
+run record "${short_teach[@]}" --mode consistent,partial --out "$tmp/sim" --record-log "$tmp/logs"
 mcap="$tmp/logs/teach.mcap"
 consistent="$tmp/sim/consistent/teach"
 
@@ -44,11 +24,9 @@ if "$retrace" calibrate-lidar "$mcap" --teach "$consistent" --out "$tmp/noise.ya
   grep -q '^simulated world: ' "$tmp/stdout" &&
   "$retrace" log-simulate "$mcap" --teach "$consistent" --config "$tmp/noise.yaml" \
     --out "$tmp/simulated.mcap" >/dev/null 2>&1; then
-  pass=$((pass + 1))
+  passed
 else
-  fail=$((fail + 1))
-  echo "FAIL calibrate: the fit or its use by log-simulate --config failed:"
-  cat "$tmp/stdout"
+  failed "calibrate: the fit or its use by log-simulate --config failed:" "$tmp/stdout"
 fi
 
 # The reference moved 1 km away: no beam of the log has an expected range in the map.
@@ -65,5 +43,4 @@ expect_bad window "--to: must be later than --from" "$mcap" --teach "$consistent
 expect_bad band "clutter.band: must be wider than the corridor" "$mcap" --teach "$consistent" \
   --set clutter.band=0.2
 
-echo "calibrate-lidar: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish calibrate-lidar

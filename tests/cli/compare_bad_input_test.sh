@@ -2,31 +2,13 @@
 # `retrace compare` on bad input: each case must print exactly one line on stderr that names the
 # problem, exit with code 2 and leave no output folder (nor its staging folder) behind.
 # Usage: compare_bad_input_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/lib.sh" || exit 1
 small="$src/scenarios/small.yaml"
-pass=0
-fail=0
 
-expect_bad() {  # expect_bad <name> <expected substring> <compare args...>
-  local name="$1" want="$2"
-  shift 2
-  "$retrace" compare "$@" --out "$tmp/study" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" &&
-    [ ! -e "$tmp/study" ] && [ ! -e "$tmp/study.tmp" ] && [ ! -s "$tmp/stdout" ]; then
-    pass=$((pass + 1))
-  else
-    fail=$((fail + 1))
-    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
-    cat "$tmp/stderr"
-  fi
-}
+# Every case: `retrace compare <args> --out $tmp/study` (and nothing written: neither the study
+# nor its staging folder study.tmp, nothing on stdout).
+bad_command=(compare)
+bad_suffix=(--out "$tmp/study")
 
 expect_bad unknown-mode "--modes: unknown mode 'perfect'" "$small" --modes partial,perfect --seeds 2
 expect_bad one-mode "--modes: a comparison needs at least two modes" "$small" --modes partial --reference partial
@@ -43,15 +25,7 @@ expect_bad online-no-switching "\`online\` switching needs a map mode that switc
 expect_bad missing-scenario "missing.yaml" "$tmp/missing.yaml"
 
 # An output folder that cannot be created fails before any run (the staging folder comes first).
-"$retrace" compare "$small" --seeds 2 --out /proc/retrace/study >"$tmp/stdout" 2>"$tmp/stderr"
-code=$?
-if [ "$code" -eq 2 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -qF "/proc/retrace/study.tmp" "$tmp/stderr"; then
-  pass=$((pass + 1))
-else
-  fail=$((fail + 1))
-  echo "FAIL unwritable-output: exit $code:"
-  cat "$tmp/stderr"
-fi
+bad_suffix=()
+expect_bad unwritable-output "/proc/retrace/study.tmp" "$small" --seeds 2 --out /proc/retrace/study
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

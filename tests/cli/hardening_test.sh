@@ -3,93 +3,62 @@
 # must exit 2 with exactly one stderr line naming the file and key, write nothing, and answer
 # within a second (checked here at 2 s: test machines are shared).
 # Usage: hardening_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "$(dirname "$0")/lib.sh" || exit 1
 
-expect_bad() {  # expect_bad <name> <expected substring> <args...> (the output goes to $tmp/out)
-  local name="$1" want="$2"
-  shift 2
-  rm -rf "$tmp/out" "$tmp/out.png"
-  local start end
-  start=$(date +%s%N)
-  timeout 10 "$retrace" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  end=$(date +%s%N)
-  local ms=$(((end - start) / 1000000))
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" &&
-    [ ! -e "$tmp/out" ] && [ ! -e "$tmp/out.tmp" ] && [ ! -e "$tmp/out.png" ] && [ "$ms" -lt 2000 ]; then
-    pass=$((pass + 1))
-    echo "ok   $name (${ms} ms): $(cat "$tmp/stderr")"
-  else
-    fail=$((fail + 1))
-    echo "FAIL $name: exit $code, $lines stderr lines, ${ms} ms, wanted '$want':"
-    cat "$tmp/stderr"
-  fi
-}
+# Each case answers within 2 s (a hang is killed at 10 s) and writes nothing under $tmp: not the
+# output $tmp/out (nor its staging folder $tmp/out.tmp) or $tmp/out.png the cases ask for.
+bad_timeout=10
+bad_max_ms=2000
 
-file() { printf '%b' "$2" >"$tmp/$1"; }
 scenario() {  # scenario <file> <world file>: a short route in that world
-  file "$1" "name: s\nworld: $2\nroute:\n  points: [[1, 1], [9, 1]]\nseed: 1\nmodes: [partial]\n"
-}
-ros_map() {  # ros_map <yaml> <image> <origin>
-  file "$1" "image: $2\nresolution: 0.05\norigin: $3\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+  make_file "$1" "name: s\nworld: $2\nroute:\n  points: [[1, 1], [9, 1]]\nseed: 1\nmodes: [partial]\n"
 }
 out=(--out "$tmp/out")
 
 # 1. A binary PPM declaring 25554 x 25425 pixels, then 64 zero bytes: OpenCV allocated 3.9 GB.
-printf 'P6\n25554 25425\n65535\n' >"$tmp/huge.ppm"
-head -c 64 /dev/zero >>"$tmp/huge.ppm"
+pnm_file huge.ppm 'P6\n25554 25425\n65535\n' 64
 ros_map huge.yaml huge.ppm '[0, 0, 0]'
-file w_huge.yaml 'name: w\nmaps:\n  - {file: huge.yaml}\n'
+make_file w_huge.yaml 'name: w\nmaps:\n  - {file: huge.yaml}\n'
 scenario s_huge.yaml w_huge.yaml
 expect_bad huge-ppm "huge.ppm: PPM header declares 25554 x 25425 pixels; retrace's limit" teach "$tmp/s_huge.yaml" "${out[@]}"
 # A small PPM whose data is cut short, and a PNG cut in the middle (libpng printed a line).
-printf 'P6\n40 40\n255\n' >"$tmp/short.ppm"
-head -c 100 /dev/zero >>"$tmp/short.ppm"
+pnm_file short.ppm 'P6\n40 40\n255\n' 100
 ros_map short.yaml short.ppm '[0, 0, 0]'
-file w_short.yaml 'name: w\nmaps:\n  - {file: short.yaml}\n'
+make_file w_short.yaml 'name: w\nmaps:\n  - {file: short.yaml}\n'
 expect_bad short-ppm "short.ppm: PPM has the wrong size" world "$tmp/w_short.yaml" --png "$tmp/out.png"
 png="$src/docs/campus_maps.png"
 head -c $(($(stat -c %s "$png") / 2)) "$png" >"$tmp/cut.png"
 ros_map cut.yaml cut.png '[0, 0, 0]'
-file w_cut.yaml 'name: w\nmaps:\n  - {file: cut.yaml}\n'
+make_file w_cut.yaml 'name: w\nmaps:\n  - {file: cut.yaml}\n'
 expect_bad truncated-png "cut.png: truncated PNG" world "$tmp/w_cut.yaml" --png "$tmp/out.png"
 # Found by fuzz_map_image: OpenCV's PBM/PPM decoder and libpng printed their own lines.
 for f in "$src"/tests/data/fuzz_findings/map-image-print-*; do
   name=$(basename "$f")
   cp "$f" "$tmp/$name"
   ros_map "m_$name.yaml" "$name" '[0, 0, 0]'
-  file "w_$name.yaml" "name: w\nmaps:\n  - {file: m_$name.yaml}\n"
+  make_file "w_$name.yaml" "name: w\nmaps:\n  - {file: m_$name.yaml}\n"
   expect_bad "$name" "$name: " world "$tmp/w_$name.yaml" --png "$tmp/out.png"
 done
 
 # 2. A world far from the origin: a bucket per metre of 1e9 m (std::length_error), or 10 GB.
-file w_far.yaml 'name: w\nboxes: [{center: [1e9, 1e9], size: [1, 1]}, {center: [0, 0], size: [1, 1]}]\n'
+make_file w_far.yaml 'name: w\nboxes: [{center: [1e9, 1e9], size: [1, 1]}, {center: [0, 0], size: [1, 1]}]\n'
 scenario s_far.yaml w_far.yaml
 expect_bad far-box "w_far.yaml:2: boxes[0].center: must be a finite coordinate within ±10000 m" teach "$tmp/s_far.yaml" "${out[@]}"
-file w_far2.yaml 'name: w\nboxes: [{center: [20000, 20000], size: [1, 1]}, {center: [0, 0], size: [1, 1]}]\n'
+make_file w_far2.yaml 'name: w\nboxes: [{center: [20000, 20000], size: [1, 1]}, {center: [0, 0], size: [1, 1]}]\n'
 expect_bad far-box-20km "boxes[0].center: must be a finite coordinate within ±10000 m" world "$tmp/w_far2.yaml" --png "$tmp/out.png"
-printf 'P5\n20 20\n255\n' >"$tmp/ok.pgm"
-head -c 400 /dev/zero >>"$tmp/ok.pgm"
+pnm_file ok.pgm 'P5\n20 20\n255\n' 400
 ros_map far_map.yaml ok.pgm '[1e9, 1e9, 0]'
-file w_far_map.yaml 'name: w\nmaps:\n  - {file: far_map.yaml}\n'
+make_file w_far_map.yaml 'name: w\nmaps:\n  - {file: far_map.yaml}\n'
 expect_bad far-map-origin "far_map.yaml:3: origin: must be a finite coordinate within ±10000 m" world "$tmp/w_far_map.yaml" --png "$tmp/out.png"
 
 # 3. Huge sizes: a float-to-int overflow in the geometry index, then Box2D's assertions.
-file w_wall.yaml 'name: w\nwalls: [{points: [[0, 0], [1e300, 0]], thickness: 0.2}]\n'
+make_file w_wall.yaml 'name: w\nwalls: [{points: [[0, 0], [1e300, 0]], thickness: 0.2}]\n'
 scenario s_wall.yaml w_wall.yaml
 expect_bad wall-1e300 "w_wall.yaml:2: walls[0].points[1]: must be a finite coordinate" teach "$tmp/s_wall.yaml" "${out[@]}"
-file w_box.yaml 'name: w\nboxes: [{center: [0, 0], size: [1e308, 1]}]\n'
+make_file w_box.yaml 'name: w\nboxes: [{center: [0, 0], size: [1e308, 1]}]\n'
 scenario s_box.yaml w_box.yaml
 expect_bad box-size-1e308 "w_box.yaml:2: boxes[0].size: must be at most 20000 m" teach "$tmp/s_box.yaml" "${out[@]}"
-file w_circle.yaml 'name: w\ncircles: [{center: [0, 0], radius: 1e308}]\n'
+make_file w_circle.yaml 'name: w\ncircles: [{center: [0, 0], radius: 1e308}]\n'
 expect_bad circle-radius-1e308 "w_circle.yaml:2: circles[0].radius: must be at most 20000 m" world "$tmp/w_circle.yaml" --png "$tmp/out.png"
 
 # 4. Long routes: a clearance query every 2 cm over 1e7 m hung; 1e10 overflowed first.
@@ -112,5 +81,4 @@ expect_bad seed-2-63 "--seed: must be an integer from 0 to 9223372036854775807" 
 : >"$tmp/afile"
 expect_bad out-is-a-file "afile: exists and is not a folder" run "$src/scenarios/small.yaml" --mode partial --out "$tmp/afile"
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -3,44 +3,15 @@
 # exactly one line on stderr that names the file (and the record) or the option, exit with code 2
 # and leave no output folder (nor its staging folder) behind.
 # Usage: log_bad_input_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-
-expect_bad() {  # expect_bad <name> <expected substring> <command> <args...>
-  local name="$1" want="$2" command="$3"
-  shift 3
-  local out=()
-  [ "$command" != log-info ] && out=(--out "$tmp/out")
-  "$retrace" "$command" "$@" "${out[@]}" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" &&
-    [ ! -e "$tmp/out" ] && [ ! -e "$tmp/out.tmp" ]; then
-    pass=$((pass + 1))
-  else
-    fail=$((fail + 1))
-    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
-    cat "$tmp/stderr"
-  fi
-}
+. "$(dirname "$0")/lib.sh" || exit 1
 
 # A real recorded drive to damage: the small scenario's teaching drive, shortened to 12 m.
-"$retrace" teach "$src/scenarios/small.yaml" --mode partial --out "$tmp/sim" \
-  --set 'route.points=[[1, 1], [9, 1], [9, 5]]' --set 'route.switch_points=[6]' \
-  --record-log "$tmp/logs" >/dev/null 2>&1 || { echo "FAIL: could not record a log"; exit 1; }
+run record "${short_teach[@]}" --mode partial --out "$tmp/sim" --record-log "$tmp/logs"
 mcap="$tmp/logs/teach.mcap"
 carmen="$tmp/logs/teach.log.gz"
-"$retrace" log-teach "$mcap" --mode partial --switch-points 6 --out "$tmp/taught" >/dev/null ||
-  { echo "FAIL: could not teach the recorded log"; exit 1; }
+run taught log-teach "$mcap" --mode partial --switch-points 6 --out "$tmp/taught"
 teach="$tmp/taught/partial/teach"
-"$retrace" log-teach "$mcap" --mode consistent --switch-points auto --out "$tmp/taught_c" >/dev/null ||
-  { echo "FAIL: could not teach the consistent map"; exit 1; }
+run taught_c log-teach "$mcap" --mode consistent --switch-points auto --out "$tmp/taught_c"
 
 size=$(stat -c %s "$mcap")
 head -c $((size / 2)) "$mcap" >"$tmp/truncated.mcap"
@@ -62,9 +33,14 @@ printf 'PARAM robot_front_laser_max far nohost 0\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0
 printf '\x00\x01\x02binary' >"$tmp/binary.bin"
 : >"$tmp/empty.log"
 
+# log-info writes nothing, and takes no --out; the other commands write to $tmp/out. Nothing may
+# be written under $tmp in any case (no $tmp/out, no staging folder $tmp/out.tmp).
 expect_bad missing "$tmp/missing.mcap: no such file" log-info "$tmp/missing.mcap"
 expect_bad empty "empty file" log-info "$tmp/empty.log"
 expect_bad binary "not a log retrace reads" log-info "$tmp/binary.bin"
+expect_bad nan-range "nan.log" log-info "$tmp/nan.log"
+expect_bad bad-param "badparam.log: message 1 on 'PARAM': PARAM robot_front_laser_max: 'far' is not a finite number" log-info "$tmp/badparam.log"
+bad_suffix=(--out "$tmp/out")
 expect_bad truncated "truncated.mcap" log-teach "$tmp/truncated.mcap"
 expect_bad corrupt-chunk "corrupt.mcap" log-teach "$tmp/corrupt.mcap"
 expect_bad reference-topic "--reference-topic '/nope' is not in the log" log-teach "$mcap" --reference-topic /nope
@@ -73,7 +49,6 @@ expect_bad no-scan-topic "no sensor_msgs/msg/LaserScan topic" log-teach "$src/te
 expect_bad not-a-scan-topic "--scan-topic '/odom' holds no laser scans" log-teach "$mcap" --scan-topic /odom
 expect_bad unknown-topic "--scan-topic '/front' is not in the log" log-localize "$mcap" --teach "$teach" --scan-topic /front
 expect_bad backwards "backwards.log: message 3 on 'ODOM'" log-teach "$tmp/backwards.log" --odometry-topic ODOM
-expect_bad nan-range "nan.log" log-info "$tmp/nan.log"
 expect_bad consistent-without-reference "consistent needs a reference" log-teach "$tmp/noreference.log" --mode consistent
 expect_bad switch-beyond "beyond the driven path" log-teach "$mcap" --mode partial --switch-points 6,500
 expect_bad switch-order "must be strictly increasing" log-teach "$mcap" --switch-points 8,6
@@ -95,38 +70,30 @@ expect_bad simulate-partial-world "--teach: the world is the map of a teach fold
 expect_bad simulate-no-reference "no reference to drive" log-simulate "$tmp/noreference.log" --teach "$tmp/taught_c/consistent/teach"
 expect_bad no-odometry "noodometry.log: no odometry (no ODOM lines, RAWLASER1 lines carry no robot pose); its reference 'TRUEPOS' can stand in: add --synthetic-odometry" log-teach "$tmp/noodometry.log"
 expect_bad no-odometry-localize "noodometry.log: no odometry (no ODOM lines" log-localize "$tmp/noodometry.log" --teach "$teach"
-expect_bad bad-param "badparam.log: message 1 on 'PARAM': PARAM robot_front_laser_max: 'far' is not a finite number" log-info "$tmp/badparam.log"
 
 # A log without odometry is described by log-info (exit 0), which names what would draw it.
 if "$retrace" log-info "$tmp/noodometry.log" >"$tmp/stdout" 2>"$tmp/stderr" &&
   grep -qF "odometry:   none (no ODOM lines, RAWLASER1 lines carry no robot pose): log-teach and log-localize draw it from the reference 'TRUEPOS' with --synthetic-odometry" "$tmp/stdout"; then
-  pass=$((pass + 1))
+  passed
 else
-  fail=$((fail + 1))
-  echo "FAIL no-odometry-info: log-info on a log without odometry:"
-  cat "$tmp/stdout" "$tmp/stderr"
+  failed "no-odometry-info: log-info on a log without odometry:" "$tmp/stdout" "$tmp/stderr"
 fi
 
 # A PARAM retrace does not read never refuses a log, whatever its value.
 printf 'PARAM laser_front_laser_flipped no nohost 0\nPARAM robot_name the blue pioneer nohost 0\n' >"$tmp/params.log"
 cat "$tmp/noreference.log" >>"$tmp/params.log"
 if "$retrace" log-info "$tmp/params.log" >"$tmp/stdout" 2>"$tmp/stderr"; then
-  pass=$((pass + 1))
+  passed
 else
-  fail=$((fail + 1))
-  echo "FAIL unread-params: log-info on a log with PARAM laser_front_laser_flipped no:"
-  cat "$tmp/stderr"
+  failed "unread-params: log-info on a log with PARAM laser_front_laser_flipped no:" "$tmp/stderr"
 fi
 
 # The default (online) switching fits the modes asked for: a consistent map alone is taught.
 if "$retrace" log-teach "$mcap" --mode consistent --no-figures --out "$tmp/consistent_only" >/dev/null 2>"$tmp/stderr" &&
   [ -f "$tmp/consistent_only/consistent/teach/sub_map_num.txt" ]; then
-  pass=$((pass + 1))
+  passed
 else
-  fail=$((fail + 1))
-  echo "FAIL consistent-only: log-teach --mode consistent under the default switching:"
-  cat "$tmp/stderr"
+  failed "consistent-only: log-teach --mode consistent under the default switching:" "$tmp/stderr"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -11,18 +11,10 @@
 # The page must also be self-contained: no http(s) or file: references in it.
 # Chromium missing is a failure, not a skip: CI installs it (scripts/install_deps.sh --test).
 # Usage: report_browser_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() {
-  echo "FAIL: $*"
-  exit 1
-}
+. "$(dirname "$0")/lib.sh" || exit 1
 
 browser=$(command -v chromium || command -v chromium-browser || true)
-[ -n "$browser" ] || fail "chromium is not installed: apt-get install chromium (scripts/install_deps.sh --test installs it)"
+[ -n "$browser" ] || die "chromium is not installed: apt-get install chromium (scripts/install_deps.sh --test installs it)"
 
 # Headless Chromium, in a profile of its own, with the page's console on stderr.
 chrome() {  # chrome <stderr file> <args...>
@@ -40,44 +32,43 @@ cat >"$tmp/bad.html" <<'EOF'
 EOF
 chrome "$tmp/bad.err" --dump-dom "file://$tmp/bad.html" >/dev/null
 console_lines "$tmp/bad.err" | grep -q 'report test probe' ||
-  fail "the console check does not see console.error (Chromium's log format changed?): $(tail -5 "$tmp/bad.err")"
+  die "the console check does not see console.error (Chromium's log format changed?): $(tail -5 "$tmp/bad.err")"
 console_lines "$tmp/bad.err" | grep -q 'Uncaught' ||
-  fail "the console check does not see uncaught exceptions: $(tail -5 "$tmp/bad.err")"
+  die "the console check does not see uncaught exceptions: $(tail -5 "$tmp/bad.err")"
 
 cd "$src" || exit 1
 out="$tmp/run"
-"$retrace" run scenarios/small.yaml --mode partial --repeats 1 --jobs 2 --out "$out" \
-  >"$tmp/run.out" 2>"$tmp/run.err" || fail "retrace run: $(cat "$tmp/run.out" "$tmp/run.err")"
+run small run scenarios/small.yaml --mode partial --repeats 1 --jobs 2 --out "$out"
 page="$out/report.html"
-[ -s "$page" ] || fail "no $page"
-grep -qF "report: $page" "$tmp/run.out" || fail "retrace run does not say where the report is"
+[ -s "$page" ] || die "no $page"
+grep -qF "report: $page" "$tmp/small.out" || die "retrace run does not say where the report is"
 
 pngs=$(find "$out" -name '*.png' | wc -l)
 embedded=$(grep -o 'src="data:image/png;base64,' "$page" | wc -l)
-[ "$pngs" -gt 0 ] || fail "the run wrote no figures"
-[ "$embedded" -eq "$pngs" ] || fail "$embedded images embedded, $pngs PNGs in the folder"
+[ "$pngs" -gt 0 ] || die "the run wrote no figures"
+[ "$embedded" -eq "$pngs" ] || die "$embedded images embedded, $pngs PNGs in the folder"
 if grep -qiE '(src|href)="(https?:|file:|//)' "$page"; then
-  fail "the page refers to something outside itself: $(grep -oiE '(src|href)="(https?:|file:|//)[^"]{0,60}' "$page" | head -3)"
+  die "the page refers to something outside itself: $(grep -oiE '(src|href)="(https?:|file:|//)[^"]{0,60}' "$page" | head -3)"
 fi
 
 # (a) The screenshot, exactly the window's size.
 chrome "$tmp/shot.err" --window-size=1280,2000 --screenshot="$tmp/shot.png" "file://$page" \
   >/dev/null
-[ -s "$tmp/shot.png" ] || fail "no screenshot: $(tail -5 "$tmp/shot.err")"
+[ -s "$tmp/shot.png" ] || die "no screenshot: $(tail -5 "$tmp/shot.err")"
 read -r w3 w2 w1 w0 h3 h2 h1 h0 < <(od -An -tu1 -j16 -N8 "$tmp/shot.png")
 width=$(((w3 << 24) | (w2 << 16) | (w1 << 8) | w0))
 height=$(((h3 << 24) | (h2 << 16) | (h1 << 8) | h0))
-[ "$width" -eq 1280 ] && [ "$height" -eq 2000 ] || fail "screenshot is ${width}x${height}, not 1280x2000"
+[ "$width" -eq 1280 ] && [ "$height" -eq 2000 ] || die "screenshot is ${width}x${height}, not 1280x2000"
 
 # (b) Every image decoded.
 chrome "$tmp/dom.err" --virtual-time-budget=10000 --dump-dom "file://$page" >"$tmp/dom.html"
 decoded=$(grep -oE '<body[^>]* data-images="[0-9]+/[0-9]+"' "$tmp/dom.html" | grep -oE '[0-9]+/[0-9]+')
-[ -n "$decoded" ] || fail "the body has no data-images attribute (the page's script did not run): $(head -c 300 "$tmp/dom.html")"
-[ "$decoded" = "$pngs/$pngs" ] || fail "images decoded: $decoded, expected $pngs/$pngs"
+[ -n "$decoded" ] || die "the body has no data-images attribute (the page's script did not run): $(head -c 300 "$tmp/dom.html")"
+[ "$decoded" = "$pngs/$pngs" ] || die "images decoded: $decoded, expected $pngs/$pngs"
 
 # (c) Nothing on the console in either load.
 errors=$(console_lines "$tmp/shot.err"; console_lines "$tmp/dom.err")
-[ -z "$errors" ] || fail "console output: $errors"
+[ -z "$errors" ] || die "console output: $errors"
 
 echo "report.html: $embedded images embedded, $decoded decoded, screenshot ${width}x${height}," \
   "no console output ($(wc -c <"$page") bytes)"

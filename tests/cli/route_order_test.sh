@@ -8,33 +8,18 @@
 #  - an operator takeover (scenarios/bypass/takeover.yaml) drives the robot past the bypass and
 #    hands it back on A's last map: every mode reaches the goal.
 # Usage: route_order_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail=0
-check() {  # check <name> <condition as a command...>
-  local name="$1"
-  shift
-  if ! "$@"; then
-    echo "FAIL $name"
-    fail=1
-  fi
-}
+. "$(dirname "$0")/lib.sh" || exit 1
 json() {  # json <file> <python expression over m>
   /usr/bin/python3 -c "import json,sys; m=json.load(open(sys.argv[1])); print($2)" "$1"
 }
 
-"$retrace" teach "$src/scenarios/bypass/teach.yaml" --out "$tmp/a" >/dev/null 2>"$tmp/err" ||
-  { cat "$tmp/err"; exit 1; }
-"$retrace" teach "$src/scenarios/bypass/drive.yaml" --out "$tmp/b" --record-log "$tmp/log" \
-  >/dev/null 2>"$tmp/err" || { cat "$tmp/err"; exit 1; }
+run teach teach "$src/scenarios/bypass/teach.yaml" --out "$tmp/a"
+run drive teach "$src/scenarios/bypass/drive.yaml" --out "$tmp/b" --record-log "$tmp/log"
 for mode in partial scan_matched consistent; do
   for seed in 1 2 3; do
     out="$tmp/loc_${mode}_$seed"
-    "$retrace" log-localize "$tmp/log/teach.mcap" --teach "$tmp/a/$mode/teach" --seed "$seed" \
-      --no-figures --out "$out" >/dev/null 2>"$tmp/err" || { cat "$tmp/err"; exit 1; }
+    run "localize_${mode}_$seed" log-localize "$tmp/log/teach.mcap" --teach "$tmp/a/$mode/teach" \
+      --seed "$seed" --no-figures --out "$out"
     rms=$(json "$out/metrics.json" 'm["localization_error_on_route_m"]["rms"]')
     echo "$mode seed $seed: on-route RMS $rms m"
     check "$mode-$seed-rms" /usr/bin/python3 -c "import sys; sys.exit(0 if $rms < 0.5 else 1)"
@@ -49,11 +34,11 @@ for mode in partial scan_matched consistent; do
   done
 done
 
-"$retrace" run "$src/scenarios/bypass/takeover.yaml" --repeats 1 --no-figures --no-report \
-  --out "$tmp/takeover" >"$tmp/summary" 2>"$tmp/err" || { cat "$tmp/err" "$tmp/summary"; exit 1; }
+run takeover run "$src/scenarios/bypass/takeover.yaml" --repeats 1 --no-figures --no-report \
+  --out "$tmp/takeover"
 for mode in partial scan_matched consistent; do
   ok=$(json "$tmp/takeover/$mode/metrics.json" 'm["aggregate"]["success_rate"]')
   echo "takeover, $mode: success rate $ok"
   check "takeover-$mode" [ "$ok" = 1.0 ]
 done
-exit "$fail"
+finish

@@ -2,32 +2,10 @@
 # `retrace sweep` and `retrace merge` on bad input: exit code 2, exactly one line on stderr
 # naming the problem, and no results folder written (or an existing one left unchanged).
 # Usage: sweep_bad_input_test.sh <retrace binary> <source dir>
-set -uo pipefail
-retrace="$1"
-src="$2"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-
-expect_bad() {  # expect_bad <name> <expected substring> <args...>; nothing may appear in $tmp/out
-  local name="$1" want="$2"
-  shift 2
-  "$retrace" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 2 ] && [ "$lines" -eq 1 ] && grep -qF -- "$want" "$tmp/stderr" && [ ! -e "$tmp/out" ]; then
-    pass=$((pass + 1))
-  else
-    fail=$((fail + 1))
-    echo "FAIL $name: exit $code, $lines stderr lines, wanted '$want':"
-    cat "$tmp/stderr"
-  fi
-}
+. "$(dirname "$0")/lib.sh" || exit 1
 
 scenario="$src/scenarios/small.yaml"
-sweep() { printf 'scenario: %s\n%b' "$scenario" "$2" >"$tmp/$1"; }
+sweep() { make_file "$1" "scenario: $scenario\n$2"; }
 sweep unknown_key.yaml 'repeats: 2\ngrid:\n  nav.localizer.partcles: [100, 200]\n'
 sweep empty_grid.yaml 'grid:\n  nav.localizer.particles: []\n'
 sweep unknown_metric.yaml 'grid:\n  nav.localizer.particles: [100]\nmetrics: [success_rate, tracking_rms]\n'
@@ -36,6 +14,7 @@ sweep bad_value.yaml 'grid:\n  nav.localizer.particles: [100, -5]\n'
 sweep bad_mode.yaml 'grid:\n  mode: [partial, slam]\n'
 sweep good.yaml 'grid:\n  nav.localizer.particles: [100]\n'
 
+# Nothing may appear under $tmp: no $tmp/out (nor $tmp/out.tmp), no other file.
 out=(--out "$tmp/out")
 expect_bad unknown-key "unknown_key.yaml:4: nav.localizer.partcles: unknown key; did you mean 'particles'?" sweep "$tmp/unknown_key.yaml" "${out[@]}"
 expect_bad empty-grid "empty_grid.yaml:3: grid.nav.localizer.particles: empty list" sweep "$tmp/empty_grid.yaml" "${out[@]}"
@@ -55,8 +34,8 @@ expect_bad merge-no-record "not a sweep results folder" merge "$tmp" --out "$tmp
 mkdir -p "$tmp/other"
 printf 'case,x\n0,1\n' >"$tmp/other/results.csv"
 expect_bad foreign-results "holds results of another sweep (a results.csv without sweep.json)" sweep "$tmp/good.yaml" --out "$tmp/other"
-[ "$(cat "$tmp/other/results.csv")" = "$(printf 'case,x\n0,1')" ] || { fail=$((fail + 1)); echo "FAIL: the foreign results.csv was changed"; }
-[ ! -e "$tmp/other/sweep.json" ] || { fail=$((fail + 1)); echo "FAIL: sweep.json written into a foreign folder"; }
+[ "$(cat "$tmp/other/results.csv")" = "$(printf 'case,x\n0,1')" ] || failed "the foreign results.csv was changed"
+[ ! -e "$tmp/other/sweep.json" ] || failed "sweep.json written into a foreign folder"
 
 # fuzz_sweep's finding of 2026-11-26, its exact bytes: a 7-key grid that expanded into 2 GB of
 # strings under the sanitizers before the case limit (then 10^6, now 10^5) refused it. Its
@@ -67,5 +46,4 @@ ln -s "$src/scenarios" "$tmp/fuzz/scenarios"
 ln -s "$src/worlds" "$tmp/fuzz/worlds"
 expect_bad fuzz-sweep-oom "the sweep has more than 100000 cases" sweep "$tmp/fuzz/a/b/sweep-oom-3c0d98a1.yaml" "${out[@]}"
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish
