@@ -108,8 +108,21 @@ struct IsDoubleArray : std::false_type {};
 template <std::size_t N>
 struct IsDoubleArray<std::array<double, N>> : std::true_type {};
 
+/// Whether Read takes T from one YAML scalar: bool, integer, floating point, string or named
+/// enum.
 template <class T>
-void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
+inline constexpr bool kIsScalarField =
+    std::is_same_v<T, bool> || std::is_integral_v<T> || std::is_floating_point_v<T> ||
+    std::is_same_v<T, std::string> || core::NamedEnum<T>;
+
+/// Whether Read takes T from a fixed-size list of numbers: Vec2, Pose2 or std::array<double, N>.
+template <class T>
+inline constexpr bool kIsNumberTuple =
+    std::is_same_v<T, core::Vec2> || std::is_same_v<T, core::Pose2> || IsDoubleArray<T>::value;
+
+/// Reads a bool, integer (range-checked for T), floating point number, string or enum name.
+template <class T>
+void ReadScalar(const YAML::Node& node, T& out, const ReadContext& ctx) {
   if constexpr (std::is_same_v<T, bool>) {
     out = ReadBool(node, ctx);
   } else if constexpr (std::is_integral_v<T>) {
@@ -120,69 +133,107 @@ void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
     out = static_cast<T>(ReadDouble(node, ctx));
   } else if constexpr (std::is_same_v<T, std::string>) {
     out = ReadString(node, ctx);
-  } else if constexpr (core::NamedEnum<T>) {
+  } else {
     const std::string name = ReadString(node, ctx);
     const auto value = core::ParseEnum<T>(name);
     if (!value) {
       Fail(node, ctx, "unknown value '" + name + "'; expected one of: " + core::EnumNameList<T>());
     }
     out = *value;
-  } else if constexpr (std::is_same_v<T, core::Vec2>) {
+  }
+}
+
+/// Reads a Vec2 [x, y], a Pose2 [x, y, theta] or a std::array<double, N> of N numbers.
+template <class T>
+void ReadNumberTuple(const YAML::Node& node, T& out, const ReadContext& ctx) {
+  if constexpr (std::is_same_v<T, core::Vec2>) {
     const auto v = ReadNumbers(node, ctx, 2);
     out = core::Vec2(v[0], v[1]);
   } else if constexpr (std::is_same_v<T, core::Pose2>) {
     const auto v = ReadNumbers(node, ctx, 3);
     out = core::Pose2(v[0], v[1], v[2]);
-  } else if constexpr (IsDoubleArray<T>::value) {
+  } else {
     const auto v = ReadNumbers(node, ctx, out.size());
     std::copy(v.begin(), v.end(), out.begin());
-  } else if constexpr (core::IsWordOr<T>::value) {
-    using Word = typename decltype(out.word)::value_type;
-    if (node.IsScalar()) {
-      if (const auto word = core::ParseEnum<Word>(node.Scalar())) {
-        out.word = word;
-        out.value = {};
-        return;
+  }
+}
+
+/// Reads a core::WordOr: one of its words alone, or else its value (a list naming a word among
+/// other items is refused).
+template <class T>
+void ReadWordOr(const YAML::Node& node, T& out, const ReadContext& ctx) {
+  using Word = typename decltype(out.word)::value_type;
+  if (node.IsScalar()) {
+    if (const auto word = core::ParseEnum<Word>(node.Scalar())) {
+      out.word = word;
+      out.value = {};
+      return;
+    }
+  }
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      if (node[i].IsScalar() && core::ParseEnum<Word>(node[i].Scalar())) {
+        Fail(node, ctx,
+             "`" + node[i].Scalar() + "` stands alone: give either one of " +
+                 core::EnumNameList<Word>() + " or a list, not both");
       }
     }
-    if (node.IsSequence()) {
-      for (std::size_t i = 0; i < node.size(); ++i) {
-        if (node[i].IsScalar() && core::ParseEnum<Word>(node[i].Scalar())) {
-          Fail(node, ctx,
-               "`" + node[i].Scalar() + "` stands alone: give either one of " +
-                   core::EnumNameList<Word>() + " or a list, not both");
-        }
-      }
-    }
-    out.word.reset();
-    Read(node, out.value, ctx);
-  } else if constexpr (IsOptional<T>::value) {
+  }
+  out.word.reset();
+  Read(node, out.value, ctx);
+}
+
+/// Reads an optional (over its current value, if any) or a vector (replacing its elements).
+template <class T>
+void ReadContainer(const YAML::Node& node, T& out, const ReadContext& ctx) {
+  if constexpr (IsOptional<T>::value) {
     typename T::value_type value{};
     if (out) value = *out;
     Read(node, value, ctx);
     out = std::move(value);
-  } else if constexpr (IsVector<T>::value) {
+  } else {
     if (!node.IsSequence()) Fail(node, ctx, "expected a list");
     out.clear();
     out.resize(node.size());
     for (std::size_t i = 0; i < node.size(); ++i) Read(node[i], out[i], ctx.Element(i));
-  } else if constexpr (core::Reflectable<T>) {
-    if (!node.IsMap())
-      Fail(node, ctx, node.IsNull() ? "expected a mapping, got nothing" : "expected a mapping");
-    std::vector<std::string_view> keys;
-    KeyCollector collector{&keys};
-    out.Reflect(collector);
-    CheckKeys(node, ctx, keys);
-    FieldReader reader{&node, &ctx};
-    out.Reflect(reader);
-    if constexpr (core::Validatable<T>) {
-      try {
-        out.Validate();
-      } catch (const core::ConfigError& e) {
-        if (e.located()) throw;
-        FailValidation(node, ctx, e);
-      }
+  }
+}
+
+/// Reads a reflectable struct from a mapping: unknown keys refused, the fields given read, then
+/// the struct validated (its errors located in the node).
+template <class T>
+void ReadStruct(const YAML::Node& node, T& out, const ReadContext& ctx) {
+  if (!node.IsMap())
+    Fail(node, ctx, node.IsNull() ? "expected a mapping, got nothing" : "expected a mapping");
+  std::vector<std::string_view> keys;
+  KeyCollector collector{&keys};
+  out.Reflect(collector);
+  CheckKeys(node, ctx, keys);
+  FieldReader reader{&node, &ctx};
+  out.Reflect(reader);
+  if constexpr (core::Validatable<T>) {
+    try {
+      out.Validate();
+    } catch (const core::ConfigError& e) {
+      if (e.located()) throw;
+      FailValidation(node, ctx, e);
     }
+  }
+}
+
+/// Reads `out` from `node` strictly, by what kind of field T is.
+template <class T>
+void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
+  if constexpr (kIsScalarField<T>) {
+    ReadScalar(node, out, ctx);
+  } else if constexpr (kIsNumberTuple<T>) {
+    ReadNumberTuple(node, out, ctx);
+  } else if constexpr (core::IsWordOr<T>::value) {
+    ReadWordOr(node, out, ctx);
+  } else if constexpr (IsOptional<T>::value || IsVector<T>::value) {
+    ReadContainer(node, out, ctx);
+  } else if constexpr (core::Reflectable<T>) {
+    ReadStruct(node, out, ctx);
   } else {
     static_assert(sizeof(T) == 0, "unsupported config field type");
   }

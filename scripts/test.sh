@@ -29,6 +29,7 @@ stage() {  # stage <title>: closes the previous stage's timing, opens the next
 stage "Packages and include rules"
 scripts/install_deps.sh --test
 scripts/check_includes.sh
+scripts/check_function_length.py core io sim nav viz logs bench fuzz
 
 stage "Release build (program, micro benchmarks, system tests)"
 # Unity builds (CMake batches of 8 files per translation unit): the heavy headers (GoogleTest,

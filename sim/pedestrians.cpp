@@ -499,44 +499,47 @@ void Pedestrians::Update(PhysicsWorld& world) {
 
   new_velocities_.resize(status_.size());
   for (std::size_t i = 0; i < status_.size(); ++i) {
-    PedestrianStatus& s = status_[i];
-    Walker& w = walkers_[i];
     const Vec2 p = agents_[i].position;
-    if (w.mode == PedestrianMode::kStand) {
+    if (walkers_[i].mode == PedestrianMode::kStand) {
       new_velocities_[i] = Vec2::Zero();  // standing still, whatever pushed it
       continue;
     }
-
-    // Waypoints and goals.
-    if (w.idle_until >= 0.0) {
-      if (t >= w.idle_until) {
-        w.idle_until = -1.0;
-        ChooseNextGoal(i, p, t);
-        w.window_start = t;
-        w.window_distance = DistanceToNextWaypoint(s, p);
-      }
-    } else {
-      PassReachedWaypoints(i, p, t);
-      // Pushed off the straight line to the next waypoint (behind a corner, say): re-plan.
-      // Staggered over pedestrians to spread the cost.
-      if (!s.path.empty() && (world.step_count() + i) % check_period == 0) {
-        CheckLineToWaypoint(i, p);
-      }
-      // Progress check: within stuck_time, pass a waypoint or get stuck_progress closer to it.
-      if (t - w.window_start >= config_.stuck_time) CheckProgress(i, p, t);
-    }
-
-    if (w.yield_until >= 0.0 && t >= w.yield_until) {
-      w.yield_until = -1.0;
-      Replan(i, p);
-      w.window_distance = DistanceToNextWaypoint(s, p);
-    }
-
+    // The line to the next waypoint is checked every check_period steps, staggered over
+    // pedestrians to spread the cost.
+    UpdateWaypoints(i, p, t, (world.step_count() + i) % check_period == 0);
     new_velocities_[i] = SocialVelocity(i, dt, robot);
   }
   // Set after computing all, so that the result does not depend on the update order.
   for (std::size_t i = 0; i < status_.size(); ++i) {
     world.SetPedestrianVelocity(status_[i].id, new_velocities_[i]);
+  }
+}
+
+// Waypoints and goals of walking pedestrian i: a new goal when its idle time is over, else the
+// waypoints it passed, its line to the next one (if `check_line`) and its progress; then a new
+// path when it has yielded long enough.
+void Pedestrians::UpdateWaypoints(std::size_t i, const Vec2& p, double t, bool check_line) {
+  PedestrianStatus& s = status_[i];
+  Walker& w = walkers_[i];
+  if (w.idle_until >= 0.0) {
+    if (t >= w.idle_until) {
+      w.idle_until = -1.0;
+      ChooseNextGoal(i, p, t);
+      w.window_start = t;
+      w.window_distance = DistanceToNextWaypoint(s, p);
+    }
+  } else {
+    PassReachedWaypoints(i, p, t);
+    // Pushed off the straight line to the next waypoint (behind a corner, say): re-plan.
+    if (!s.path.empty() && check_line) CheckLineToWaypoint(i, p);
+    // Progress check: within stuck_time, pass a waypoint or get stuck_progress closer to it.
+    if (t - w.window_start >= config_.stuck_time) CheckProgress(i, p, t);
+  }
+
+  if (w.yield_until >= 0.0 && t >= w.yield_until) {
+    w.yield_until = -1.0;
+    Replan(i, p);
+    w.window_distance = DistanceToNextWaypoint(s, p);
   }
 }
 

@@ -149,6 +149,7 @@ class Pedestrians {
   void Replan(std::size_t i, const Vec2& position);
   Vec2 YieldPoint(std::size_t i, const Vec2& position, const Vec2& waypoint) const;
   // Steps of Update for pedestrian i at p (W), at time t (s).
+  void UpdateWaypoints(std::size_t i, const Vec2& p, double t, bool check_line);
   void PassReachedWaypoints(std::size_t i, const Vec2& p, double t);
   void CheckLineToWaypoint(std::size_t i, const Vec2& p);
   void CheckProgress(std::size_t i, const Vec2& p, double t);

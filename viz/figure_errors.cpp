@@ -9,14 +9,11 @@
 #include "viz/style.hpp"
 
 namespace retrace::viz {
+namespace {
 
-FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesystem::path& png,
-                              const FigureOptions& options) {
-  options.Validate();
-  internal::Require(!data.runs.empty(), png, "the errors figure needs at least one run");
-  const int W = options.width;
+// Title, subtitle and the legend: each run (or one entry when colours cycle) and the switches.
+internal::Header ErrorsHeader(const ErrorsFigureData& data, const FigureOptions& options) {
   const std::size_t n = data.runs.size();
-
   internal::Header header;
   header.title = options.title.empty()
                      ? "Errors along the route" +
@@ -38,7 +35,11 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
     header.legend.push_back(
         {"map switch", palette::kSwitch, internal::LegendSymbol::kDashedLine, Marker::kDisc, 2.0});
   }
+  return header;
+}
 
+// The end of the x axis: the farthest finite arc length of a run or a switch (1 if none).
+double MaxArcLength(const ErrorsFigureData& data) {
   double s_max = 0.0;
   for (const auto& r : data.runs) {
     for (double s : r.arc_length) {
@@ -49,6 +50,54 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
     if (std::isfinite(s)) s_max = std::max(s_max, s);
   }
   if (!(s_max > 0.0)) s_max = 1.0;
+  return s_max;
+}
+
+// Panel k (0: tracking, 1: localization error) at y0: axes, switch lines, one line per run and
+// the title (saying when outliers are clipped).
+PanelInfo PlotErrorPanel(cv::Mat& fig, const ErrorsFigureData& data, int k, int y0, int W,
+                         int plot_h, double s_max) {
+  const char* names[2] = {"tracking", "localization"};
+  const std::string titles[2] = {data.top_title,
+                                 "Localization error: estimate vs local ground truth"};
+  const std::string y_labels[2] = {data.top_y_label, "localization error (m)"};
+  const std::size_t n = data.runs.size();
+  std::vector<const std::vector<double>*> series;
+  for (const auto& r : data.runs)
+    series.push_back(k == 0 ? &r.tracking_error : &r.localization_error);
+  bool clipped = false;
+  const double y_max = internal::RobustMax(series, &clipped);
+  const double y_top =
+      internal::NiceStep(y_max, 5) * std::ceil(y_max / internal::NiceStep(y_max, 5) + 1e-9);
+  internal::Chart chart;
+  chart.plot = cv::Rect(internal::kChartLeft, y0 + internal::kChartTop,
+                        W - internal::kChartLeft - internal::kChartRight, plot_h);
+  chart.box = Box2::Of(Vec2(0.0, 0.0), Vec2(s_max, std::max(y_top, 1e-3)));
+  internal::DrawChartAxes(fig, chart, data.x_label, y_labels[k]);
+  for (double s : data.switch_arc_lengths)
+    internal::DrawChartVLine(fig, chart, s, palette::kSwitch);
+  const int thickness = n > 5 ? 1 : 2;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& r = data.runs[i];
+    internal::DrawChartLine(fig, chart, r.arc_length, *series[i], RunColor(static_cast<int>(i)),
+                            thickness);
+  }
+  std::string title = titles[k];
+  if (clipped) title += " (outliers clipped at the top)";
+  internal::PutText(fig, title, cv::Point(chart.plot.x + chart.plot.width / 2, y0 + 8),
+                    internal::Align::kCenter, internal::VAlign::kTop, internal::kPanelTitleText);
+  return chart.Info(names[k]);
+}
+
+}  // namespace
+
+FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesystem::path& png,
+                              const FigureOptions& options) {
+  options.Validate();
+  internal::Require(!data.runs.empty(), png, "the errors figure needs at least one run");
+  const int W = options.width;
+  const internal::Header header = ErrorsHeader(data, options);
+  const double s_max = MaxArcLength(data);
 
   const int top = internal::HeaderHeight(header, W);
   const int plot_h = 340;
@@ -56,39 +105,9 @@ FigureInfo RenderErrorsFigure(const ErrorsFigureData& data, const std::filesyste
   cv::Mat fig = internal::NewFigure(W, top + 2 * tile_h + 8);
   internal::DrawHeader(fig, header);
 
-  const char* names[2] = {"tracking", "localization"};
-  const std::string titles[2] = {data.top_title,
-                                 "Localization error: estimate vs local ground truth"};
-  const std::string y_labels[2] = {data.top_y_label, "localization error (m)"};
   std::vector<PanelInfo> panels;
-  for (int k = 0; k < 2; ++k) {
-    std::vector<const std::vector<double>*> series;
-    for (const auto& r : data.runs)
-      series.push_back(k == 0 ? &r.tracking_error : &r.localization_error);
-    bool clipped = false;
-    const double y_max = internal::RobustMax(series, &clipped);
-    const double y_top =
-        internal::NiceStep(y_max, 5) * std::ceil(y_max / internal::NiceStep(y_max, 5) + 1e-9);
-    internal::Chart chart;
-    const int y0 = top + k * tile_h;
-    chart.plot = cv::Rect(internal::kChartLeft, y0 + internal::kChartTop,
-                          W - internal::kChartLeft - internal::kChartRight, plot_h);
-    chart.box = Box2::Of(Vec2(0.0, 0.0), Vec2(s_max, std::max(y_top, 1e-3)));
-    internal::DrawChartAxes(fig, chart, data.x_label, y_labels[k]);
-    for (double s : data.switch_arc_lengths)
-      internal::DrawChartVLine(fig, chart, s, palette::kSwitch);
-    const int thickness = n > 5 ? 1 : 2;
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto& r = data.runs[i];
-      internal::DrawChartLine(fig, chart, r.arc_length, *series[i], RunColor(static_cast<int>(i)),
-                              thickness);
-    }
-    std::string title = titles[k];
-    if (clipped) title += " (outliers clipped at the top)";
-    internal::PutText(fig, title, cv::Point(chart.plot.x + chart.plot.width / 2, y0 + 8),
-                      internal::Align::kCenter, internal::VAlign::kTop, internal::kPanelTitleText);
-    panels.push_back(chart.Info(names[k]));
-  }
+  for (int k = 0; k < 2; ++k)
+    panels.push_back(PlotErrorPanel(fig, data, k, top + k * tile_h, W, plot_h, s_max));
   return internal::FinishFigure(fig, png, std::move(panels));
 }
 

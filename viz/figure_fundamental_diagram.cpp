@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "viz/fundamental_diagram_figure.hpp"
 #include "viz/internal/chart.hpp"
@@ -17,20 +18,9 @@ constexpr Rgba kFdBand{214, 230, 245};
 constexpr Rgba kFdCurve{0, 0, 0};
 constexpr Rgba kFdPoint{213, 94, 0};
 
-}  // namespace
-
-FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& data,
-                                          const std::filesystem::path& png,
-                                          const FigureOptions& options) {
-  options.Validate();
-  const std::size_t n = data.curve_density.size();
-  internal::Require(n >= 2, png, "the fundamental diagram needs a reference curve");
-  internal::Require(
-      data.curve_speed.size() == n && data.band_low.size() == n && data.band_high.size() == n, png,
-      "the curve and its band must have one value per density");
-  internal::Require(!data.points.empty(), png, "the fundamental diagram needs a simulated point");
-
-  const int W = options.width;
+// Title, subtitle and the legend: reference curve, its band and the simulated points.
+internal::Header DiagramHeader(const FundamentalDiagramFigureData& data,
+                               const FigureOptions& options) {
   internal::Header header;
   header.title = options.title.empty() ? "Fundamental diagram" : options.title;
   header.subtitle = data.subtitle;
@@ -40,7 +30,13 @@ FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& da
       {data.band_label, kFdBand, internal::LegendSymbol::kPatch, Marker::kDisc, 2.0});
   header.legend.push_back(
       {data.points_label, kFdPoint, internal::LegendSymbol::kMarker, Marker::kDisc, 3.0, true});
+  return header;
+}
 
+// The largest density (curve or point) and the top of the speed axis: a round value above the
+// band and every point's mean + sd.
+std::pair<double, double> DiagramExtent(const FundamentalDiagramFigureData& data) {
+  const std::size_t n = data.curve_density.size();
   double x_max = data.curve_density.back();
   double y_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -52,19 +48,13 @@ FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& da
   }
   const double y_step = internal::NiceStep(std::max(y_max, 0.1), 6);
   const double y_top = y_step * std::ceil(std::max(y_max, 0.1) / y_step + 1e-9);
+  return {x_max, y_top};
+}
 
-  const int top = internal::HeaderHeight(header, W);
-  const int plot_w = W - internal::kChartLeft - internal::kChartRight;
-  const int plot_h = std::clamp(plot_w * 3 / 5, 200, 900);
-  cv::Mat fig =
-      internal::NewFigure(W, top + internal::kChartTop + plot_h + internal::kChartBottom + 8);
-  internal::DrawHeader(fig, header);
-
-  internal::Chart chart;
-  chart.plot = cv::Rect(internal::kChartLeft, top + internal::kChartTop, plot_w, plot_h);
-  chart.box = Box2::Of(Vec2(0.0, 0.0), Vec2(x_max * 1.04, y_top));
-
-  // The band as one filled polygon: along the upper edge, back along the lower one.
+// The band as one filled polygon: along the upper edge, back along the lower one.
+void DrawBand(cv::Mat& fig, const internal::Chart& chart, const FundamentalDiagramFigureData& data,
+              double y_top) {
+  const std::size_t n = data.curve_density.size();
   std::vector<cv::Point> band;
   for (std::size_t i = 0; i < n; ++i) {
     const double y = std::clamp(data.band_high[i], 0.0, y_top);
@@ -76,9 +66,11 @@ FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& da
   }
   cv::fillPoly(fig, std::vector<std::vector<cv::Point>>{band}, internal::ToScalar(kFdBand),
                cv::LINE_AA, internal::kSubPixelBits);
-  internal::DrawChartAxes(fig, chart, "density (persons/m^2)", "speed along the corridor (m/s)");
-  internal::DrawChartLine(fig, chart, data.curve_density, data.curve_speed, kFdCurve, 2);
+}
 
+// Each simulated point as a disc at its mean speed with a capped bar of +- one sd.
+void DrawSimulatedPoints(cv::Mat& fig, const internal::Chart& chart,
+                         const FundamentalDiagramFigureData& data, double y_top) {
   for (const SpeedAtDensity& p : data.points) {
     if (!std::isfinite(p.density) || !std::isfinite(p.mean)) continue;
     const double sd = std::isfinite(p.sd) ? p.sd : 0.0;
@@ -97,6 +89,39 @@ FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& da
     cv::circle(fig, c, 6 << internal::kSubPixelBits, internal::ToScalar(palette::kText), 1,
                cv::LINE_AA, internal::kSubPixelBits);
   }
+}
+
+}  // namespace
+
+FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& data,
+                                          const std::filesystem::path& png,
+                                          const FigureOptions& options) {
+  options.Validate();
+  const std::size_t n = data.curve_density.size();
+  internal::Require(n >= 2, png, "the fundamental diagram needs a reference curve");
+  internal::Require(
+      data.curve_speed.size() == n && data.band_low.size() == n && data.band_high.size() == n, png,
+      "the curve and its band must have one value per density");
+  internal::Require(!data.points.empty(), png, "the fundamental diagram needs a simulated point");
+
+  const int W = options.width;
+  const internal::Header header = DiagramHeader(data, options);
+  const int top = internal::HeaderHeight(header, W);
+  const int plot_w = W - internal::kChartLeft - internal::kChartRight;
+  const int plot_h = std::clamp(plot_w * 3 / 5, 200, 900);
+  cv::Mat fig =
+      internal::NewFigure(W, top + internal::kChartTop + plot_h + internal::kChartBottom + 8);
+  internal::DrawHeader(fig, header);
+
+  internal::Chart chart;
+  chart.plot = cv::Rect(internal::kChartLeft, top + internal::kChartTop, plot_w, plot_h);
+  const auto [x_max, y_top] = DiagramExtent(data);
+  chart.box = Box2::Of(Vec2(0.0, 0.0), Vec2(x_max * 1.04, y_top));
+
+  DrawBand(fig, chart, data, y_top);
+  internal::DrawChartAxes(fig, chart, "density (persons/m^2)", "speed along the corridor (m/s)");
+  internal::DrawChartLine(fig, chart, data.curve_density, data.curve_speed, kFdCurve, 2);
+  DrawSimulatedPoints(fig, chart, data, y_top);
   return internal::FinishFigure(fig, png, {chart.Info("speed")});
 }
 

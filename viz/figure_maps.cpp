@@ -17,12 +17,14 @@ using internal::Header;
 using internal::LegendEntry;
 using internal::LegendSymbol;
 
+// `fmt` filled with up to three numbers.
 std::string Format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
   char buf[160];
   std::snprintf(buf, sizeof(buf), fmt, a, b, c);
   return buf;
 }
 
+// A map panel's title: its label, the size of its known cells and its path length.
 std::string MapTitle(const PartialMapView& m, int k) {
   const std::string label = m.label.empty() ? "map " + std::to_string(k) : m.label;
   const Box2 known = internal::KnownCellsBox(m.grid);
@@ -56,19 +58,14 @@ int MapColumns(std::size_t n) {
   return n == 4 ? 2 : 3;
 }
 
-}  // namespace
-
-FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::path& png,
-                            const FigureOptions& options) {
-  options.Validate();
-  internal::Require(!data.maps.empty(), png, "the maps figure needs at least one partial map");
-  const int W = options.width;
+// Title, subtitle (map count, route length, what the two rows show) and the legend: each
+// map's path colour (up to six), start, switches, world (if any) and map cells.
+Header MapsHeader(const MapsFigureData& data, const FigureOptions& options,
+                  const std::string& route_title) {
   const std::size_t n = data.maps.size();
-
   Header header;
   header.title = options.title.empty() ? "Teaching: the route in the world and its partial maps"
                                        : options.title;
-  const std::string route_title = MapsRouteTitle(data.route_source);
   std::string top_title = route_title;
   top_title[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(top_title[0])));
   header.subtitle = std::to_string(n) + " partial map" + (n == 1 ? "" : "s") +
@@ -82,18 +79,66 @@ FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::p
   if (!data.switch_poses.empty()) header.legend.push_back(internal::SwitchLegend());
   // A log's figure has no world to draw: no buildings, walls or trees to explain.
   if (!data.world.empty()) header.legend.push_back(internal::WorldLegend());
-  header.legend.push_back({"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch});
+  header.legend.push_back(
+      {"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch});
+  return header;
+}
 
-  // Top: the world around the route.
+// The top panel's box: the route and switch poses, grown to show the world around them.
+Box2 RouteViewBox(const MapsFigureData& data) {
   Box2 world_box;
   for (const auto& p : data.route) world_box.Extend(p.translation());
   for (const auto& p : data.switch_poses) world_box.Extend(p.translation());
-  world_box = internal::WorldViewBox(world_box, data.world);
+  return internal::WorldViewBox(world_box, data.world);
+}
+
+// The world, the route in the colour of the map each part of it went into, start and switches.
+void DrawRouteLayers(GlCanvas& c, const MapsFigureData& data,
+                     const std::vector<std::pair<std::size_t, std::size_t>>& splits) {
+  internal::DrawWorld(c, data.world);
+  for (std::size_t k = 0; k < splits.size(); ++k) {
+    const auto [b, e] = splits[k];
+    if (e <= b) continue;
+    const std::vector<core::Pose2> part(data.route.begin() + static_cast<std::ptrdiff_t>(b),
+                                        data.route.begin() + static_cast<std::ptrdiff_t>(e));
+    c.DrawPolyline(internal::Positions(part), 3.0, MapColor(static_cast<int>(k)));
+  }
+  if (!data.route.empty()) internal::DrawStart(c, data.route.front().translation());
+  internal::DrawSwitches(c, internal::Positions(data.switch_poses));
+}
+
+// Labels the switch points on the world panel with the map they open.
+void LabelSwitches(cv::Mat& fig, const PanelInfo& w, const MapsFigureData& data) {
+  for (std::size_t k = 0; k < data.switch_poses.size(); ++k) {
+    const cv::Point p = internal::FigurePoint(w, data.switch_poses[k].translation());
+    // On the side of the panel with more room, so that labels at the edge stay whole.
+    const bool left = p.x > w.x + w.width / 2;
+    internal::PutLabel(fig, "-> map " + std::to_string(k + 1), p + cv::Point(left ? -12 : 12, -10),
+                       left ? internal::Align::kRight : internal::Align::kLeft,
+                       internal::VAlign::kBottom, internal::kSmallText,
+                       palette::kBackground.WithAlpha(210), 2);
+  }
+}
+
+}  // namespace
+
+FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::path& png,
+                            const FigureOptions& options) {
+  options.Validate();
+  internal::Require(!data.maps.empty(), png, "the maps figure needs at least one partial map");
+  const int W = options.width;
+  const std::size_t n = data.maps.size();
+  const std::string route_title = MapsRouteTitle(data.route_source);
+  const Header header = MapsHeader(data, options, route_title);
+
+  // Top: the world around the route.
+  const Box2 world_box = RouteViewBox(data);
   const int plot_w = W - internal::kPanelLeft - internal::kPanelRight;
   const int world_plot_h = internal::PlotHeightFor(world_box, plot_w, 0.35, 0.9);
 
   const int cols = MapColumns(n);
-  const int rows = static_cast<int>((n + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
+  const int rows =
+      static_cast<int>((n + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
   const int tile_w = W / cols;
   double aspect = 0.6;
   std::vector<Box2> boxes;
@@ -116,29 +161,8 @@ FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::p
   const auto splits = internal::SplitAtSwitches(data.route, data.switch_poses);
   panels.push_back(internal::RenderMapPanel(
       fig, world_rect, world_box, "world", route_title, options.supersample,
-      [&](GlCanvas& c) {
-        internal::DrawWorld(c, data.world);
-        for (std::size_t k = 0; k < splits.size(); ++k) {
-          const auto [b, e] = splits[k];
-          if (e <= b) continue;
-          const std::vector<core::Pose2> part(data.route.begin() + static_cast<std::ptrdiff_t>(b),
-                                              data.route.begin() + static_cast<std::ptrdiff_t>(e));
-          c.DrawPolyline(internal::Positions(part), 3.0, MapColor(static_cast<int>(k)));
-        }
-        if (!data.route.empty()) internal::DrawStart(c, data.route.front().translation());
-        internal::DrawSwitches(c, internal::Positions(data.switch_poses));
-      }));
-  // Label the switch points with the map they open.
-  for (std::size_t k = 0; k < data.switch_poses.size(); ++k) {
-    const cv::Point p = internal::FigurePoint(panels.back(), data.switch_poses[k].translation());
-    // On the side of the panel with more room, so that labels at the edge stay whole.
-    const PanelInfo& w = panels.back();
-    const bool left = p.x > w.x + w.width / 2;
-    internal::PutLabel(fig, "-> map " + std::to_string(k + 1), p + cv::Point(left ? -12 : 12, -10),
-                       left ? internal::Align::kRight : internal::Align::kLeft,
-                       internal::VAlign::kBottom, internal::kSmallText,
-                       palette::kBackground.WithAlpha(210), 2);
-  }
+      [&](GlCanvas& c) { DrawRouteLayers(c, data, splits); }));
+  LabelSwitches(fig, panels.back(), data);
 
   for (std::size_t k = 0; k < n; ++k) {
     const int col = static_cast<int>(k) % cols;
@@ -149,8 +173,7 @@ FigureInfo RenderMapsFigure(const MapsFigureData& data, const std::filesystem::p
     const int ki = static_cast<int>(k);
     panels.push_back(internal::RenderMapPanel(
         fig, rect, boxes[k], "map" + std::to_string(k), MapTitle(m, ki), options.supersample,
-        [&](GlCanvas& c) { DrawMapLayers(c, m, MapColor(ki)); },
-        internal::MapFrameStyle(ki)));
+        [&](GlCanvas& c) { DrawMapLayers(c, m, MapColor(ki)); }, internal::MapFrameStyle(ki)));
   }
   FigureInfo info = internal::FinishFigure(fig, png, std::move(panels));
   for (const LegendEntry& entry : header.legend) info.legend.push_back(entry.label);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "viz/internal/annotate.hpp"
 #include "viz/internal/chart.hpp"
@@ -42,12 +43,14 @@ struct SeriesPoint {
   double max = 0.0;
 };
 
+// `parts` joined with `sep` between them.
 std::string Join(const std::vector<std::string>& parts, const std::string& sep) {
   std::string out;
   for (std::size_t i = 0; i < parts.size(); ++i) out += (i ? sep : "") + parts[i];
   return out;
 }
 
+// Whether `s` names a map mode.
 bool IsModeName(const std::string& s) {
   return s == "partial" || s == "single" || s == "consistent" || s == "scan_matched";
 }
@@ -110,11 +113,11 @@ internal::TextStyle Fit(const std::string& text, internal::TextStyle style, int 
   return style;
 }
 
-ColumnPlan PlanColumn(const SweepFigureData& data, const std::vector<SweepAxis>& axes,
-                      std::size_t p) {
-  ColumnPlan plan;
+// The combinations grouped into the series of parameter p's column, keyed by the axis ranks
+// of the other parameters so that series sort like the axes.
+std::map<std::vector<int>, std::vector<std::size_t>> SeriesGroups(
+    const SweepFigureData& data, const std::vector<SweepAxis>& axes, std::size_t p) {
   const std::size_t n_params = data.parameters.size();
-  // Series key: the axis ranks of the other parameters, so that series sort like the axes.
   std::map<std::vector<int>, std::vector<std::size_t>> groups;
   for (std::size_t c = 0; c < data.combinations.size(); ++c) {
     std::vector<int> key;
@@ -123,50 +126,56 @@ ColumnPlan PlanColumn(const SweepFigureData& data, const std::vector<SweepAxis>&
     }
     groups[key].push_back(c);
   }
-  std::vector<std::string> others;
-  for (std::size_t q = 0; q < n_params; ++q) {
-    if (q != p) others.push_back(data.parameters[q]);
-  }
-  bool lines = false;  // some series has two x values or more
+  return groups;
+}
+
+// Whether some series has two x values or more.
+bool AnySeriesHasLine(const SweepFigureData& data, const std::vector<SweepAxis>& axes,
+                      std::size_t p,
+                      const std::map<std::vector<int>, std::vector<std::size_t>>& groups) {
+  bool lines = false;
   for (const auto& [key, members] : groups) {
     std::vector<int> xs;
     for (std::size_t c : members) xs.push_back(axes[p].Index(data.combinations[c].values[p]));
     std::sort(xs.begin(), xs.end());
     lines |= std::unique(xs.begin(), xs.end()) - xs.begin() >= 2;
   }
-  const int n_series = static_cast<int>(groups.size());
-  // Random sampling: most combinations have a value of this parameter of their own. (In a
-  // grid every value is shared by all combinations of the others, at least two of them.)
+  return lines;
+}
+
+// Random sampling: most combinations have a value of parameter p of their own. (In a grid
+// every value is shared by all combinations of the others, at least two of them.)
+bool IsSampled(const SweepFigureData& data, const std::vector<SweepAxis>& axes, std::size_t p) {
   std::vector<int> xs;
   for (const auto& c : data.combinations) xs.push_back(axes[p].Index(c.values[p]));
   std::sort(xs.begin(), xs.end());
   const auto n_x = static_cast<std::size_t>(std::unique(xs.begin(), xs.end()) - xs.begin());
-  const bool sampled = 2 * n_x > data.combinations.size();
-  if (n_series > 1 && (!lines || sampled)) {
-    plan.mode = PanelMode::kScatter;
-    plan.members.emplace_back();
-    for (std::size_t c = 0; c < data.combinations.size(); ++c) plan.members.back().push_back(c);
-    plan.colors.push_back(RunColor(0));
-    plan.note = sampled ? "Most combinations have a value of their own here (random sampling): "
-                          "one dot per case, no lines."
-                        : "No two combinations share the values of " + Join(others, ", ") +
-                              " (random sampling): one dot per case, no lines.";
-    return plan;
-  }
-  if (n_series > kMaxSweepSeries) {
-    plan.mode = PanelMode::kPooled;
-    plan.members.emplace_back();
-    for (std::size_t c = 0; c < data.combinations.size(); ++c) plan.members.back().push_back(c);
-    plan.colors.push_back(RunColor(0));
-    plan.note = "The " + std::to_string(n_series) + " combinations of " + Join(others, ", ") +
-                " are pooled: point = mean, bar = min to max over every case at that value.";
-    return plan;
-  }
+  return 2 * n_x > data.combinations.size();
+}
+
+// A plan with every combination in one series of the first run colour, explained by `note`.
+ColumnPlan SingleSeriesPlan(const SweepFigureData& data, PanelMode mode, std::string note) {
+  ColumnPlan plan;
+  plan.mode = mode;
+  plan.members.emplace_back();
+  for (std::size_t c = 0; c < data.combinations.size(); ++c) plan.members.back().push_back(c);
+  plan.colors.push_back(RunColor(0));
+  plan.note = std::move(note);
+  return plan;
+}
+
+// A plan with one coloured, labelled series per group (mode colours when the one other
+// parameter names map modes).
+ColumnPlan SeriesPlan(const SweepFigureData& data, const std::vector<SweepAxis>& axes,
+                      std::size_t p,
+                      const std::map<std::vector<int>, std::vector<std::size_t>>& groups,
+                      const std::vector<std::string>& others) {
+  ColumnPlan plan;
   bool modes = others.size() == 1;
   for (const auto& [key, members] : groups) {
     std::vector<std::string> parts;
     std::size_t k = 0;
-    for (std::size_t q = 0; q < n_params; ++q) {
+    for (std::size_t q = 0; q < data.parameters.size(); ++q) {
       if (q == p) continue;
       parts.push_back(axes[q].labels[static_cast<std::size_t>(key[k++])]);
     }
@@ -180,6 +189,35 @@ ColumnPlan PlanColumn(const SweepFigureData& data, const std::vector<SweepAxis>&
   }
   if (!others.empty()) plan.heading = "Colour: " + Join(others, ", ");
   return plan;
+}
+
+// How parameter p's column shows its series: scattered, pooled or one line per series.
+ColumnPlan PlanColumn(const SweepFigureData& data, const std::vector<SweepAxis>& axes,
+                      std::size_t p) {
+  const std::size_t n_params = data.parameters.size();
+  const auto groups = SeriesGroups(data, axes, p);
+  std::vector<std::string> others;
+  for (std::size_t q = 0; q < n_params; ++q) {
+    if (q != p) others.push_back(data.parameters[q]);
+  }
+  const bool lines = AnySeriesHasLine(data, axes, p, groups);
+  const int n_series = static_cast<int>(groups.size());
+  const bool sampled = IsSampled(data, axes, p);
+  if (n_series > 1 && (!lines || sampled)) {
+    return SingleSeriesPlan(
+        data, PanelMode::kScatter,
+        sampled ? "Most combinations have a value of their own here (random sampling): "
+                  "one dot per case, no lines."
+                : "No two combinations share the values of " + Join(others, ", ") +
+                      " (random sampling): one dot per case, no lines.");
+  }
+  if (n_series > kMaxSweepSeries) {
+    return SingleSeriesPlan(
+        data, PanelMode::kPooled,
+        "The " + std::to_string(n_series) + " combinations of " + Join(others, ", ") +
+            " are pooled: point = mean, bar = min to max over every case at that value.");
+  }
+  return SeriesPlan(data, axes, p, groups, others);
 }
 
 // The points of one series in panel (metric m, parameter p), ordered along x.
@@ -249,43 +287,48 @@ std::string Caption(const SweepFigureData& data) {
          " repeats each).";
 }
 
-// Panel (metric m, parameter p) in `tile`: axes, title, then bars, lines and points.
-PanelInfo DrawPanel(cv::Mat& fig, const SweepFigureData& data, const SweepAxis& axis,
-                    const ColumnPlan& plan, std::size_t m, std::size_t p, cv::Rect tile) {
-  const int x0 = tile.x;
-  const int y0 = tile.y;
-  const int tile_w = tile.width;
-  const int plot_w = tile_w - internal::kChartLeft - internal::kChartRight;
-  // The data first: the y range must hold every point and bar.
+// What panel (metric m, parameter p) shows: its series (or scatter dots), how many values and
+// NaNs it has and the range of the finite ones.
+struct PanelValues {
   std::vector<std::vector<SeriesPoint>> series;
   std::vector<std::pair<double, double>> dots;  // scatter: (frame x, value) of every case
   std::size_t n_values = 0;
   std::size_t n_nan = 0;
   double lo = HUGE_VAL;
   double hi = -HUGE_VAL;
+};
+
+// The data of panel (metric m, parameter p), gathered first: the y range must hold every
+// point and bar.
+PanelValues CollectPanelValues(const SweepFigureData& data, const SweepAxis& axis,
+                               const ColumnPlan& plan, std::size_t m, std::size_t p) {
+  PanelValues d;
   for (const auto& c : data.combinations) {
     for (double v : c.metrics[m]) {
-      ++n_values;
+      ++d.n_values;
       if (!std::isfinite(v)) {
-        ++n_nan;
+        ++d.n_nan;
         continue;
       }
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
+      d.lo = std::min(d.lo, v);
+      d.hi = std::max(d.hi, v);
       if (plan.mode == PanelMode::kScatter) {
-        dots.emplace_back(axis.positions[static_cast<std::size_t>(axis.Index(c.values[p]))], v);
+        d.dots.emplace_back(axis.positions[static_cast<std::size_t>(axis.Index(c.values[p]))], v);
       }
     }
   }
   if (plan.mode != PanelMode::kScatter) {
     for (const auto& members : plan.members)
-      series.push_back(SeriesPoints(data, axis, p, m, members));
+      d.series.push_back(SeriesPoints(data, axis, p, m, members));
   }
-  const auto [y_lo, y_hi] = YRange(lo, hi);
+  return d;
+}
 
-  internal::Chart chart;
-  chart.plot = cv::Rect(x0 + internal::kChartLeft, y0 + internal::kChartTop, plot_w, kPlotHeight);
-  chart.box = Box2::Of(Vec2(axis.lo, y_lo), Vec2(axis.hi, y_hi));
+// Axes, x ticks, axis labels and the title (with its NaN count) of a panel in `tile`.
+void DrawPanelFrame(cv::Mat& fig, const internal::Chart& chart, const SweepFigureData& data,
+                    const SweepAxis& axis, std::size_t m, std::size_t p, cv::Rect tile,
+                    const PanelValues& d) {
+  const int plot_w = chart.plot.width;
   std::string x_label = data.parameters[p];
   if (axis.kind == internal::SweepAxisKind::kLog) x_label += " (log scale)";
   const std::string y_label = PrettyMetric(data.metrics[m]);
@@ -293,40 +336,42 @@ PanelInfo DrawPanel(cv::Mat& fig, const SweepFigureData& data, const SweepAxis& 
   internal::DrawXTicks(fig, chart, internal::SweepAxisTicks(axis, plot_w));
   internal::PutText(fig, x_label, cv::Point(chart.plot.x + plot_w / 2, chart.plot.br().y + 36),
                     internal::Align::kCenter, internal::VAlign::kTop,
-                    Fit(x_label, internal::kLabelText, tile_w - 16));
+                    Fit(x_label, internal::kLabelText, tile.width - 16));
   internal::PutTextVertical(fig, y_label,
                             cv::Point(chart.plot.x - 72, chart.plot.y + kPlotHeight / 2),
                             Fit(y_label, internal::kLabelText, kPlotHeight));
   std::string title = data.metrics[m];
-  if (n_nan > 0)
-    title += " (" + std::to_string(n_nan) + " of " + std::to_string(n_values) + " nan)";
-  internal::PutText(fig, title, cv::Point(x0 + tile_w / 2, y0 + 8), internal::Align::kCenter,
-                    internal::VAlign::kTop, Fit(title, internal::kPanelTitleText, tile_w - 16));
-  if (n_nan == n_values) {
-    internal::PutText(fig, "no finite value", (chart.plot.tl() + chart.plot.br()) / 2,
-                      internal::Align::kCenter, internal::VAlign::kMiddle, internal::kLabelText);
-  } else if (plan.mode != PanelMode::kScatter) {
-    // A value of the parameter where every case gave NaN would otherwise just look unswept.
-    std::vector<int> finite(axis.positions.size(), 0);
-    for (const auto& c : data.combinations) {
-      for (double v : c.metrics[m]) {
-        finite[static_cast<std::size_t>(axis.Index(c.values[p]))] += std::isfinite(v) ? 1 : 0;
-      }
-    }
-    for (std::size_t i = 0; i < finite.size(); ++i) {
-      if (finite[i] > 0) continue;
-      const cv::Point2d at = chart.Px(axis.positions[i], chart.box.min.y());
-      internal::PutLabel(fig, "all nan",
-                         cv::Point(static_cast<int>(std::lround(at.x)), static_cast<int>(at.y) - 8),
-                         internal::Align::kCenter, internal::VAlign::kBottom, internal::kSmallText);
+  if (d.n_nan > 0)
+    title += " (" + std::to_string(d.n_nan) + " of " + std::to_string(d.n_values) + " nan)";
+  internal::PutText(fig, title, cv::Point(tile.x + tile.width / 2, tile.y + 8),
+                    internal::Align::kCenter, internal::VAlign::kTop,
+                    Fit(title, internal::kPanelTitleText, tile.width - 16));
+}
+
+// "all nan" over every value of the parameter where every case gave NaN (it would otherwise
+// just look unswept).
+void MarkAllNanValues(cv::Mat& fig, const internal::Chart& chart, const SweepFigureData& data,
+                      const SweepAxis& axis, std::size_t m, std::size_t p) {
+  std::vector<int> finite(axis.positions.size(), 0);
+  for (const auto& c : data.combinations) {
+    for (double v : c.metrics[m]) {
+      finite[static_cast<std::size_t>(axis.Index(c.values[p]))] += std::isfinite(v) ? 1 : 0;
     }
   }
+  for (std::size_t i = 0; i < finite.size(); ++i) {
+    if (finite[i] > 0) continue;
+    const cv::Point2d at = chart.Px(axis.positions[i], chart.box.min.y());
+    internal::PutLabel(fig, "all nan",
+                       cv::Point(static_cast<int>(std::lround(at.x)), static_cast<int>(at.y) - 8),
+                       internal::Align::kCenter, internal::VAlign::kBottom, internal::kSmallText);
+  }
+}
 
-  for (const auto& [x, v] : dots)
-    internal::DrawPointMarker(fig, chart, x, 0.0, v, plan.colors[0], 4);
-
-  // Series at the same x sit a few pixels apart so that their bars stay readable.
-  double min_gap = plot_w;
+// The series' mean lines, then their min-max bars and mean points, series at the same x a few
+// pixels apart so that their bars stay readable.
+void DrawSeries(cv::Mat& fig, const internal::Chart& chart, const SweepAxis& axis,
+                const ColumnPlan& plan, const std::vector<std::vector<SeriesPoint>>& series) {
+  double min_gap = chart.plot.width;
   for (std::size_t i = 1; i < axis.positions.size(); ++i) {
     min_gap = std::min(min_gap,
                        chart.Px(axis.positions[i], 0.0).x - chart.Px(axis.positions[i - 1], 0.0).x);
@@ -352,14 +397,36 @@ PanelInfo DrawPanel(cv::Mat& fig, const SweepFigureData& data, const SweepAxis& 
     for (const SeriesPoint& pt : series[s])
       internal::DrawPointMarker(fig, chart, pt.x, dx, pt.mean, plan.colors[s], 5);
   }
+}
+
+// Panel (metric m, parameter p) in `tile`: axes, title, then bars, lines and points.
+PanelInfo DrawPanel(cv::Mat& fig, const SweepFigureData& data, const SweepAxis& axis,
+                    const ColumnPlan& plan, std::size_t m, std::size_t p, cv::Rect tile) {
+  const int plot_w = tile.width - internal::kChartLeft - internal::kChartRight;
+  const PanelValues d = CollectPanelValues(data, axis, plan, m, p);
+  const auto [y_lo, y_hi] = YRange(d.lo, d.hi);
+
+  internal::Chart chart;
+  chart.plot =
+      cv::Rect(tile.x + internal::kChartLeft, tile.y + internal::kChartTop, plot_w, kPlotHeight);
+  chart.box = Box2::Of(Vec2(axis.lo, y_lo), Vec2(axis.hi, y_hi));
+  DrawPanelFrame(fig, chart, data, axis, m, p, tile, d);
+  if (d.n_nan == d.n_values) {
+    internal::PutText(fig, "no finite value", (chart.plot.tl() + chart.plot.br()) / 2,
+                      internal::Align::kCenter, internal::VAlign::kMiddle, internal::kLabelText);
+  } else if (plan.mode != PanelMode::kScatter) {
+    MarkAllNanValues(fig, chart, data, axis, m, p);
+  }
+
+  for (const auto& [x, v] : d.dots)
+    internal::DrawPointMarker(fig, chart, x, 0.0, v, plan.colors[0], 4);
+  DrawSeries(fig, chart, axis, plan, d.series);
   return chart.Info(data.metrics[m] + " vs " + data.parameters[p]);
 }
 
-}  // namespace
-
-FigureInfo RenderSweepFigure(const SweepFigureData& data, const std::filesystem::path& png,
-                             const FigureOptions& options) {
-  options.Validate();
+// Throws unless there are parameters, metrics and cases, each case with one value per
+// parameter and one series per metric.
+void RequireSweepData(const SweepFigureData& data, const std::filesystem::path& png) {
   internal::Require(!data.parameters.empty(), png,
                     "the sweep figure needs at least one varied parameter");
   internal::Require(!data.metrics.empty(), png, "the sweep figure needs at least one metric");
@@ -373,35 +440,37 @@ FigureInfo RenderSweepFigure(const SweepFigureData& data, const std::filesystem:
                       "a combination has " + std::to_string(c.metrics.size()) + " metrics for " +
                           std::to_string(data.metrics.size()) + " metric names");
   }
-  const std::size_t n_params = data.parameters.size();
-  const std::size_t n_metrics = data.metrics.size();
-  const int cols = static_cast<int>(n_params);
-  const int W = std::max(options.width, cols * kMinColumnWidth);
-  const int tile_w = W / cols;
+}
 
+// One x axis per parameter, from its values in the cases.
+std::vector<SweepAxis> MakeAxes(const SweepFigureData& data) {
   std::vector<SweepAxis> axes;
-  for (std::size_t p = 0; p < n_params; ++p) {
+  for (std::size_t p = 0; p < data.parameters.size(); ++p) {
     std::vector<std::string> values;
     for (const auto& c : data.combinations) values.push_back(c.values[p]);
     axes.push_back(internal::MakeSweepAxis(values));
   }
-  std::vector<ColumnPlan> plans;
-  for (std::size_t p = 0; p < n_params; ++p) plans.push_back(PlanColumn(data, axes, p));
+  return axes;
+}
 
-  internal::Header header;
-  header.title = options.title.empty() ? "Parameter sweep" : options.title;
-  header.subtitle = Caption(data);
+// A column's legend: one line per labelled series.
+std::vector<internal::LegendEntry> ColumnLegend(const ColumnPlan& plan) {
+  std::vector<internal::LegendEntry> legend;
+  for (std::size_t i = 0; i < plan.labels.size(); ++i) {
+    legend.push_back(
+        {plan.labels[i], plan.colors[i], internal::LegendSymbol::kLine, Marker::kDisc, 3.0});
+  }
+  return legend;
+}
 
-  // Above each column: what its colours mean (legend) or how it pools.
+// Height of the band above the columns: the tallest heading, legend and note, padded (0 when
+// no column has any).
+int BandHeight(const std::vector<ColumnPlan>& plans,
+               const std::vector<std::vector<internal::LegendEntry>>& legends, int tile_w) {
   const int text_w = tile_w - 24;
-  std::vector<std::vector<internal::LegendEntry>> legends(n_params);
   int band_h = 0;
-  for (std::size_t p = 0; p < n_params; ++p) {
+  for (std::size_t p = 0; p < plans.size(); ++p) {
     const ColumnPlan& plan = plans[p];
-    for (std::size_t i = 0; i < plan.labels.size(); ++i) {
-      legends[p].push_back(
-          {plan.labels[i], plan.colors[i], internal::LegendSymbol::kLine, Marker::kDisc, 3.0});
-    }
     int h = 0;
     if (!plan.heading.empty())
       h += kLineStep * static_cast<int>(Wrap(plan.heading, text_w, internal::kLabelText).size());
@@ -411,33 +480,64 @@ FigureInfo RenderSweepFigure(const SweepFigureData& data, const std::filesystem:
     band_h = std::max(band_h, h);
   }
   if (band_h > 0) band_h += 2 * kBandPad;
+  return band_h;
+}
+
+// Above column p: what its colours mean (heading and legend) or how it pools (note).
+void DrawColumnBand(cv::Mat& fig, const ColumnPlan& plan,
+                    const std::vector<internal::LegendEntry>& legend, std::size_t p, int top,
+                    int tile_w) {
+  const int text_w = tile_w - 24;
+  const int x0 = static_cast<int>(p) * tile_w;
+  int y = top + kBandPad;
+  const int cx = x0 + tile_w / 2;
+  for (const std::string& line : Wrap(plan.heading, text_w, internal::kLabelText)) {
+    internal::PutText(fig, line, cv::Point(cx, y), internal::Align::kCenter, internal::VAlign::kTop,
+                      internal::kLabelText);
+    y += kLineStep;
+  }
+  if (!plan.heading.empty()) {
+    const int h = internal::LegendHeight(legend, tile_w);
+    internal::DrawLegend(fig, legend, cv::Rect(x0, y - 4, tile_w, h));
+    y += h;
+  }
+  for (const std::string& line : Wrap(plan.note, text_w, internal::kSmallText)) {
+    internal::PutText(fig, line, cv::Point(cx, y), internal::Align::kCenter, internal::VAlign::kTop,
+                      internal::kSmallText);
+    y += kLineStep;
+  }
+}
+
+}  // namespace
+
+FigureInfo RenderSweepFigure(const SweepFigureData& data, const std::filesystem::path& png,
+                             const FigureOptions& options) {
+  options.Validate();
+  RequireSweepData(data, png);
+  const std::size_t n_params = data.parameters.size();
+  const std::size_t n_metrics = data.metrics.size();
+  const int cols = static_cast<int>(n_params);
+  const int W = std::max(options.width, cols * kMinColumnWidth);
+  const int tile_w = W / cols;
+
+  const std::vector<SweepAxis> axes = MakeAxes(data);
+  std::vector<ColumnPlan> plans;
+  for (std::size_t p = 0; p < n_params; ++p) plans.push_back(PlanColumn(data, axes, p));
+
+  internal::Header header;
+  header.title = options.title.empty() ? "Parameter sweep" : options.title;
+  header.subtitle = Caption(data);
+
+  std::vector<std::vector<internal::LegendEntry>> legends;
+  for (const ColumnPlan& plan : plans) legends.push_back(ColumnLegend(plan));
+  const int band_h = BandHeight(plans, legends, tile_w);
 
   const int top = internal::HeaderHeight(header, W);
   const int tile_h = internal::kChartTop + kPlotHeight + internal::kChartBottom;
   cv::Mat fig = internal::NewFigure(W, top + band_h + static_cast<int>(n_metrics) * tile_h + 8);
   internal::DrawHeader(fig, header);
-
-  for (std::size_t p = 0; p < n_params; ++p) {
-    const ColumnPlan& plan = plans[p];
-    const int x0 = static_cast<int>(p) * tile_w;
-    int y = top + kBandPad;
-    const int cx = x0 + tile_w / 2;
-    for (const std::string& line : Wrap(plan.heading, text_w, internal::kLabelText)) {
-      internal::PutText(fig, line, cv::Point(cx, y), internal::Align::kCenter,
-                        internal::VAlign::kTop, internal::kLabelText);
-      y += kLineStep;
-    }
-    if (!plan.heading.empty()) {
-      const int h = internal::LegendHeight(legends[p], tile_w);
-      internal::DrawLegend(fig, legends[p], cv::Rect(x0, y - 4, tile_w, h));
-      y += h;
-    }
-    for (const std::string& line : Wrap(plan.note, text_w, internal::kSmallText)) {
-      internal::PutText(fig, line, cv::Point(cx, y), internal::Align::kCenter,
-                        internal::VAlign::kTop, internal::kSmallText);
-      y += kLineStep;
-    }
-  }
+  for (std::size_t p = 0; p < n_params; ++p)
+    DrawColumnBand(fig, plans[p], legends[p], p, top, tile_w);
 
   std::vector<PanelInfo> panels;
   const int rows_top = top + band_h;

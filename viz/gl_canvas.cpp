@@ -587,11 +587,20 @@ void GlCanvas::DrawRaster(const CellRaster& raster_M, const core::Pose2& X_WM) {
   glDisable(GL_TEXTURE_2D);
 }
 
-void GlCanvas::DrawGrid(const core::OccupancyGrid& grid_M, const core::Pose2& X_WM,
-                        const GridStyle& style) {
-  if (grid_M.empty()) return;
-  // The visible part of the grid: the view's box carried into M, in cells, one cell of slack.
-  const Box2 vis_W = impl_->view_.VisibleBox();
+namespace {
+
+// A rectangle of grid cells, both corners included.
+struct CellRange {
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = -1;
+  int y1 = -1;
+};
+
+// The cells of grid_M under vis_W (the view's box in W) carried into M, one cell of slack
+// (x1 < x0 or y1 < y0 when there are none).
+CellRange VisibleCells(const core::OccupancyGrid& grid_M, const core::Pose2& X_WM,
+                       const Box2& vis_W) {
   const core::Pose2 X_MW = X_WM.Inverse();
   Box2 vis_M;
   for (const Vec2& c : {vis_W.min, vis_W.max, Vec2(vis_W.min.x(), vis_W.max.y()),
@@ -606,54 +615,75 @@ void GlCanvas::DrawGrid(const core::OccupancyGrid& grid_M, const core::Pose2& X_
   auto clamp_y = [&](double v) {
     return static_cast<int>(std::clamp(v, -1.0, 1.0 * grid_M.height()));
   };
-  int cx0 = std::max(0, clamp_x(std::floor((vis_M.min.x() - o.x()) / res)) - 1);
-  int cy0 = std::max(0, clamp_y(std::floor((vis_M.min.y() - o.y()) / res)) - 1);
-  const int cx1 =
-      std::min(grid_M.width() - 1, clamp_x(std::floor((vis_M.max.x() - o.x()) / res)) + 1);
-  const int cy1 =
-      std::min(grid_M.height() - 1, clamp_y(std::floor((vis_M.max.y() - o.y()) / res)) + 1);
-  if (cx1 < cx0 || cy1 < cy0) return;
+  CellRange r;
+  r.x0 = std::max(0, clamp_x(std::floor((vis_M.min.x() - o.x()) / res)) - 1);
+  r.y0 = std::max(0, clamp_y(std::floor((vis_M.min.y() - o.y()) / res)) - 1);
+  r.x1 = std::min(grid_M.width() - 1, clamp_x(std::floor((vis_M.max.x() - o.x()) / res)) + 1);
+  r.y1 = std::min(grid_M.height() - 1, clamp_y(std::floor((vis_M.max.y() - o.y()) / res)) + 1);
+  return r;
+}
 
-  // Pool blocks of f x f cells when a cell is under one (supersampled) pixel; blocks are
-  // aligned to the grid, not the view, so a moving view does not make walls shimmer.
-  const double cell_px = res * impl_->view_ss_.pixels_per_meter();
-  const int f = cell_px >= 1.0 ? 1 : std::min(256, static_cast<int>(std::ceil(1.0 / cell_px)));
-  cx0 -= cx0 % f;
-  cy0 -= cy0 % f;
+// The log-odds shown for the block of f x f cells from (bx0, by0): the highest when it reaches
+// l_occupied (a wall stays a wall), else the lowest; 0 when no cell of it is known.
+float PooledLogOdds(const core::OccupancyGrid& grid_M, int bx0, int by0, int f, float l_occupied) {
+  const auto& lo = grid_M.log_odds();
+  float l_max = -std::numeric_limits<float>::infinity();
+  float l_min = std::numeric_limits<float>::infinity();
+  bool known = false;
+  const int bx1 = std::min(grid_M.width(), bx0 + f);
+  const int by1 = std::min(grid_M.height(), by0 + f);
+  for (int y = by0; y < by1; ++y) {
+    const float* row =
+        lo.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(grid_M.width());
+    for (int x = bx0; x < bx1; ++x) {
+      const float l = row[x];
+      if (l == 0.0f) continue;
+      known = true;
+      l_max = std::max(l_max, l);
+      l_min = std::min(l_min, l);
+    }
+  }
+  return !known ? 0.0f : (l_max >= l_occupied ? l_max : l_min);
+}
+
+// The cells from (cells.x0, cells.y0) (a multiple of f) to (cells.x1, cells.y1) coloured, f x
+// f cells pooled into each raster cell.
+CellRaster PooledRaster(const core::OccupancyGrid& grid_M, const CellRange& cells, int f,
+                        const GridStyle& style) {
+  const double res = grid_M.resolution();
   CellRaster r;
   r.resolution = res * f;
-  r.origin = o + Vec2(cx0 * res, cy0 * res);
-  r.width = (cx1 - cx0) / f + 1;
-  r.height = (cy1 - cy0) / f + 1;
+  r.origin = grid_M.origin() + Vec2(cells.x0 * res, cells.y0 * res);
+  r.width = (cells.x1 - cells.x0) / f + 1;
+  r.height = (cells.y1 - cells.y0) / f + 1;
   r.cells.resize(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
   const float l_occupied = static_cast<float>(core::Logit(style.occupied_probability));
-  const auto& lo = grid_M.log_odds();
   for (int py = 0; py < r.height; ++py) {
     for (int px = 0; px < r.width; ++px) {
-      float l_max = -std::numeric_limits<float>::infinity();
-      float l_min = std::numeric_limits<float>::infinity();
-      bool known = false;
-      const int bx0 = cx0 + px * f;
-      const int by0 = cy0 + py * f;
-      const int bx1 = std::min(grid_M.width(), bx0 + f);
-      const int by1 = std::min(grid_M.height(), by0 + f);
-      for (int y = by0; y < by1; ++y) {
-        const float* row =
-            lo.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(grid_M.width());
-        for (int x = bx0; x < bx1; ++x) {
-          const float l = row[x];
-          if (l == 0.0f) continue;
-          known = true;
-          l_max = std::max(l_max, l);
-          l_min = std::min(l_min, l);
-        }
-      }
-      const float l = !known ? 0.0f : (l_max >= l_occupied ? l_max : l_min);
+      const float l = PooledLogOdds(grid_M, cells.x0 + px * f, cells.y0 + py * f, f, l_occupied);
       r.cells[static_cast<std::size_t>(py) * static_cast<std::size_t>(r.width) +
               static_cast<std::size_t>(px)] = GridCellColor(l, style);
     }
   }
-  DrawRaster(r, X_WM);
+  return r;
+}
+
+}  // namespace
+
+void GlCanvas::DrawGrid(const core::OccupancyGrid& grid_M, const core::Pose2& X_WM,
+                        const GridStyle& style) {
+  if (grid_M.empty()) return;
+  // The visible part of the grid: the view's box carried into M, in cells, one cell of slack.
+  CellRange cells = VisibleCells(grid_M, X_WM, impl_->view_.VisibleBox());
+  if (cells.x1 < cells.x0 || cells.y1 < cells.y0) return;
+
+  // Pool blocks of f x f cells when a cell is under one (supersampled) pixel; blocks are
+  // aligned to the grid, not the view, so a moving view does not make walls shimmer.
+  const double cell_px = grid_M.resolution() * impl_->view_ss_.pixels_per_meter();
+  const int f = cell_px >= 1.0 ? 1 : std::min(256, static_cast<int>(std::ceil(1.0 / cell_px)));
+  cells.x0 -= cells.x0 % f;
+  cells.y0 -= cells.y0 % f;
+  DrawRaster(PooledRaster(grid_M, cells, f, style), X_WM);
 }
 
 Image GlCanvas::ReadBack() { return impl_->ReadBack(); }

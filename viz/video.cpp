@@ -35,6 +35,21 @@ void Backdrop(cv::Mat& img, cv::Rect r, double opacity = 0.8) {
 
 constexpr double kSwitchBannerTime = 3.0;  // s
 
+// A frame's localization layers (references into `f`; no map or path: empty ones).
+internal::LocalizationLayers LayersOf(const VideoFrame& f) {
+  static const core::OccupancyGrid kNoMap;
+  static const std::vector<core::Pose2> kNoPath;
+  return {.grid = f.map ? *f.map : kNoMap,
+          .path = f.path ? *f.path : kNoPath,
+          .particles = f.particles,
+          .weights = f.weights,
+          .estimate = f.estimate,
+          .truth = f.truth,
+          .scan = f.scan,
+          .pedestrians = f.pedestrians,
+          .robot_radius = f.robot_radius};
+}
+
 }  // namespace
 
 class VideoFrameRenderer::Impl {
@@ -46,11 +61,7 @@ class VideoFrameRenderer::Impl {
     const VideoFrameOptions& o = options_;
     canvas_.Clear(palette::kMapUnknown);
     canvas_.SetView(View::Centered(f.estimate.translation(), o.pixels_per_meter, o.width, o.height));
-    static const core::OccupancyGrid kNoMap;
-    static const std::vector<core::Pose2> kNoPath;
-    internal::DrawLocalizationLayers(canvas_, f.map ? *f.map : kNoMap, f.path ? *f.path : kNoPath,
-                                     f.particles, f.weights, f.estimate, f.truth, f.scan,
-                                     f.pedestrians, f.robot_radius, 1.0);
+    internal::DrawLocalizationLayers(canvas_, LayersOf(f), 1.0);
     cv::Mat img = internal::ToMat(canvas_.ReadBack());
 
     // Status box, top left.

@@ -23,41 +23,35 @@ double RoundTenthMm(double v) { return std::round(v * 1e4) / 1e4; }
 
 namespace internal {
 
-Repeatability RepeatabilityFromSeries(double path_length, bool path_empty,
-                                      const std::vector<int>& run_ids,
-                                      const std::vector<RunSeries>& series,
-                                      const MetricsConfig& config) {
-  Repeatability out;
-  out.station_spacing_m = config.station_spacing;
-  out.runs = run_ids;
-  if (path_empty) return out;
-  const double spacing = config.station_spacing;
-  const std::size_t stations =
-      static_cast<std::size_t>(std::floor(path_length / spacing + 1e-9)) + 1;
-  out.station_s_m.resize(stations);
-  for (std::size_t k = 0; k < stations; ++k) out.station_s_m[k] = static_cast<double>(k) * spacing;
-  out.offsets_m.assign(stations, std::vector<double>(series.size(), kMetricNaN));
+namespace {
 
-  for (std::size_t r = 0; r < series.size(); ++r) {
-    const std::vector<double>& s = series[r].progress_m;
-    const std::vector<double>& e = series[r].lateral_offset_m;
-    for (std::size_t i = 0; i + 1 < s.size(); ++i) {
-      const double s0 = s[i], s1 = s[i + 1];
-      if (!(s1 > s0) || s1 - s0 > kMaxCrossingStep || !std::isfinite(e[i]) ||
-          !std::isfinite(e[i + 1])) {
-        continue;
-      }
-      const double k_lo = std::max(0.0, std::floor(s0 / spacing));
-      const double k_hi = std::min(static_cast<double>(stations - 1), std::floor(s1 / spacing) + 1);
-      for (double kd = k_lo; kd <= k_hi; kd += 1.0) {
-        const std::size_t k = static_cast<std::size_t>(kd);
-        const double st = out.station_s_m[k];
-        if (st < s0 || st > s1 || !std::isnan(out.offsets_m[k][r])) continue;
-        out.offsets_m[k][r] = e[i] + (st - s0) / (s1 - s0) * (e[i + 1] - e[i]);
-      }
+// Run r's lateral offset at each station it crosses, interpolated between the two samples
+// around it (the first crossing of a station counts; jumps and non-finite offsets are skipped).
+void InterpolateRunOffsets(const RunSeries& run, std::size_t r, double spacing,
+                           std::size_t stations, Repeatability& out) {
+  const std::vector<double>& s = run.progress_m;
+  const std::vector<double>& e = run.lateral_offset_m;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i) {
+    const double s0 = s[i], s1 = s[i + 1];
+    if (!(s1 > s0) || s1 - s0 > kMaxCrossingStep || !std::isfinite(e[i]) ||
+        !std::isfinite(e[i + 1])) {
+      continue;
+    }
+    const double k_lo = std::max(0.0, std::floor(s0 / spacing));
+    const double k_hi = std::min(static_cast<double>(stations - 1), std::floor(s1 / spacing) + 1);
+    for (double kd = k_lo; kd <= k_hi; kd += 1.0) {
+      const std::size_t k = static_cast<std::size_t>(kd);
+      const double st = out.station_s_m[k];
+      if (st < s0 || st > s1 || !std::isnan(out.offsets_m[k][r])) continue;
+      out.offsets_m[k][r] = e[i] + (st - s0) / (s1 - s0) * (e[i + 1] - e[i]);
     }
   }
+}
 
+// Each station's standard deviation and spread of the offsets (two runs or more), the largest
+// spread and their mean standard deviation: the repeatability.
+void SummarizeStations(Repeatability& out) {
+  const std::size_t stations = out.station_s_m.size();
   out.std_m.assign(stations, kMetricNaN);
   out.spread_m.assign(stations, kMetricNaN);
   double std_sum = 0.0;
@@ -84,6 +78,27 @@ Repeatability RepeatabilityFromSeries(double path_length, bool path_empty,
     ++out.stations_used;
   }
   if (out.stations_used > 0) out.repeatability_m = std_sum / out.stations_used;
+}
+
+}  // namespace
+
+Repeatability RepeatabilityFromSeries(double path_length, bool path_empty,
+                                      const std::vector<int>& run_ids,
+                                      const std::vector<RunSeries>& series,
+                                      const MetricsConfig& config) {
+  Repeatability out;
+  out.station_spacing_m = config.station_spacing;
+  out.runs = run_ids;
+  if (path_empty) return out;
+  const double spacing = config.station_spacing;
+  const std::size_t stations =
+      static_cast<std::size_t>(std::floor(path_length / spacing + 1e-9)) + 1;
+  out.station_s_m.resize(stations);
+  for (std::size_t k = 0; k < stations; ++k) out.station_s_m[k] = static_cast<double>(k) * spacing;
+  out.offsets_m.assign(stations, std::vector<double>(series.size(), kMetricNaN));
+  for (std::size_t r = 0; r < series.size(); ++r)
+    InterpolateRunOffsets(series[r], r, spacing, stations, out);
+  SummarizeStations(out);
   return out;
 }
 

@@ -146,9 +146,65 @@ std::vector<std::vector<std::size_t>> LegendRows(const std::vector<LegendEntry>&
   return rows;
 }
 
-void DrawLegendSymbol(cv::Mat& img, const LegendEntry& e, cv::Point c) {
+// The legend's map patch: stripes free / unknown / occupied in a frame, centred on c.
+void DrawLegendMapPatch(cv::Mat& img, cv::Point c) {
+  const Rgba stripes[3] = {palette::kMapFree, palette::kMapUnknown, palette::kMapOccupied};
+  for (int i = 0; i < 3; ++i) {
+    cv::rectangle(img, cv::Rect(c.x - 12 + 8 * i, c.y - 8, 8, 16), ToScalar(stripes[i]),
+                  cv::FILLED);
+  }
+  cv::rectangle(img, cv::Rect(c.x - 12, c.y - 8, 24, 16), ToScalar(palette::kWorldEdge), 1);
+}
+
+// The legend's pose arrow: a dart pointing right centred on c, outlined if asked.
+void DrawLegendArrow(cv::Mat& img, const LegendEntry& e, cv::Point c) {
   const cv::Scalar col = ToScalar(e.color);
   const cv::Scalar black = ToScalar(palette::kText);
+  const double L = 20.0;
+  std::vector<cv::Point> dart{
+      c + cv::Point(static_cast<int>(0.55 * L), 0),
+      c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(-0.38 * L)),
+      c + cv::Point(static_cast<int>(-0.2 * L), 0),
+      c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(0.38 * L))};
+  cv::fillPoly(img, std::vector<std::vector<cv::Point>>{dart}, col, cv::LINE_AA);
+  if (e.outlined) cv::polylines(img, dart, true, black, 1, cv::LINE_AA);
+}
+
+// The legend's marker (disc, square, triangle, diamond or cross) of radius e.size (at least 3
+// px), centred on c, outlined if asked.
+void DrawLegendMarker(cv::Mat& img, const LegendEntry& e, cv::Point c) {
+  const cv::Scalar col = ToScalar(e.color);
+  const cv::Scalar black = ToScalar(palette::kText);
+  const int r = std::max(3, static_cast<int>(std::lround(e.size)));
+  std::vector<cv::Point> poly;
+  switch (e.marker) {
+    case Marker::kDisc:
+      cv::circle(img, c, r, col, cv::FILLED, cv::LINE_AA);
+      if (e.outlined) cv::circle(img, c, r, black, 1, cv::LINE_AA);
+      return;
+    case Marker::kSquare:
+      poly = {c + cv::Point(-r, -r), c + cv::Point(r, -r), c + cv::Point(r, r),
+              c + cv::Point(-r, r)};
+      break;
+    case Marker::kTriangle:
+      poly = {c + cv::Point(0, -r), c + cv::Point(r, r * 2 / 3), c + cv::Point(-r, r * 2 / 3)};
+      break;
+    case Marker::kDiamond:
+      poly = {c + cv::Point(0, -r * 6 / 5), c + cv::Point(r, 0), c + cv::Point(0, r * 6 / 5),
+              c + cv::Point(-r, 0)};
+      break;
+    case Marker::kCross:
+      cv::line(img, c - cv::Point(r, 0), c + cv::Point(r, 0), col, 2, cv::LINE_AA);
+      cv::line(img, c - cv::Point(0, r), c + cv::Point(0, r), col, 2, cv::LINE_AA);
+      return;
+  }
+  cv::fillPoly(img, std::vector<std::vector<cv::Point>>{poly}, col, cv::LINE_AA);
+  if (e.outlined) cv::polylines(img, poly, true, black, 1, cv::LINE_AA);
+}
+
+// An entry's symbol centred on c.
+void DrawLegendSymbol(cv::Mat& img, const LegendEntry& e, cv::Point c) {
+  const cv::Scalar col = ToScalar(e.color);
   const int half = kLegendSymbolWidth / 2;
   const int lw = std::max(1, static_cast<int>(std::lround(e.size)));
   switch (e.symbol) {
@@ -165,57 +221,18 @@ void DrawLegendSymbol(cv::Mat& img, const LegendEntry& e, cv::Point c) {
       cv::rectangle(img, cv::Rect(c.x - 12, c.y - 8, 24, 16), col, cv::FILLED);
       cv::rectangle(img, cv::Rect(c.x - 12, c.y - 8, 24, 16), ToScalar(palette::kWorldEdge), 1);
       break;
-    case LegendSymbol::kMapPatch: {
-      const Rgba stripes[3] = {palette::kMapFree, palette::kMapUnknown, palette::kMapOccupied};
-      for (int i = 0; i < 3; ++i) {
-        cv::rectangle(img, cv::Rect(c.x - 12 + 8 * i, c.y - 8, 8, 16), ToScalar(stripes[i]),
-                      cv::FILLED);
-      }
-      cv::rectangle(img, cv::Rect(c.x - 12, c.y - 8, 24, 16), ToScalar(palette::kWorldEdge), 1);
+    case LegendSymbol::kMapPatch:
+      DrawLegendMapPatch(img, c);
       break;
-    }
     case LegendSymbol::kRing:
       cv::circle(img, c, 7, col, 2, cv::LINE_AA);
       break;
-    case LegendSymbol::kArrow: {
-      const double L = 20.0;
-      std::vector<cv::Point> dart{
-          c + cv::Point(static_cast<int>(0.55 * L), 0),
-          c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(-0.38 * L)),
-          c + cv::Point(static_cast<int>(-0.2 * L), 0),
-          c + cv::Point(static_cast<int>(-0.45 * L), static_cast<int>(0.38 * L))};
-      cv::fillPoly(img, std::vector<std::vector<cv::Point>>{dart}, col, cv::LINE_AA);
-      if (e.outlined) cv::polylines(img, dart, true, black, 1, cv::LINE_AA);
+    case LegendSymbol::kArrow:
+      DrawLegendArrow(img, e, c);
       break;
-    }
-    case LegendSymbol::kMarker: {
-      const int r = std::max(3, static_cast<int>(std::lround(e.size)));
-      std::vector<cv::Point> poly;
-      switch (e.marker) {
-        case Marker::kDisc:
-          cv::circle(img, c, r, col, cv::FILLED, cv::LINE_AA);
-          if (e.outlined) cv::circle(img, c, r, black, 1, cv::LINE_AA);
-          return;
-        case Marker::kSquare:
-          poly = {c + cv::Point(-r, -r), c + cv::Point(r, -r), c + cv::Point(r, r),
-                  c + cv::Point(-r, r)};
-          break;
-        case Marker::kTriangle:
-          poly = {c + cv::Point(0, -r), c + cv::Point(r, r * 2 / 3), c + cv::Point(-r, r * 2 / 3)};
-          break;
-        case Marker::kDiamond:
-          poly = {c + cv::Point(0, -r * 6 / 5), c + cv::Point(r, 0), c + cv::Point(0, r * 6 / 5),
-                  c + cv::Point(-r, 0)};
-          break;
-        case Marker::kCross:
-          cv::line(img, c - cv::Point(r, 0), c + cv::Point(r, 0), col, 2, cv::LINE_AA);
-          cv::line(img, c - cv::Point(0, r), c + cv::Point(0, r), col, 2, cv::LINE_AA);
-          return;
-      }
-      cv::fillPoly(img, std::vector<std::vector<cv::Point>>{poly}, col, cv::LINE_AA);
-      if (e.outlined) cv::polylines(img, poly, true, black, 1, cv::LINE_AA);
+    case LegendSymbol::kMarker:
+      DrawLegendMarker(img, e, c);
       break;
-    }
   }
 }
 

@@ -21,26 +21,20 @@ std::vector<Rgba> ParticleColors(const std::vector<double>& weights, std::size_t
   return colors;
 }
 
-void DrawLocalizationLayers(GlCanvas& c, const core::OccupancyGrid& grid,
-                            const std::vector<core::Pose2>& path,
-                            const std::vector<core::Pose2>& particles,
-                            const std::vector<double>& weights, const core::Pose2& estimate,
-                            const core::Pose2& truth, const std::vector<ScanPoint>& scan,
-                            const std::vector<Circle>& pedestrians, double robot_radius,
-                            double scale) {
-  c.DrawGrid(grid, core::Pose2::Identity());
+void DrawLocalizationLayers(GlCanvas& c, const LocalizationLayers& l, double scale) {
+  c.DrawGrid(l.grid, core::Pose2::Identity());
   std::vector<Vec2> path_points;
-  path_points.reserve(path.size());
-  for (const auto& p : path) path_points.push_back(p.translation());
+  path_points.reserve(l.path.size());
+  for (const auto& p : l.path) path_points.push_back(p.translation());
   c.DrawPolyline(path_points, 2.0 * scale, palette::kTaughtPath.WithAlpha(150));
-  for (const Circle& p : pedestrians) {
+  for (const Circle& p : l.pedestrians) {
     c.FillDisc(p.center, p.radius, palette::kPedestrian.WithAlpha(90));
     c.DrawCircle(p.center, p.radius, 1.5 * scale, palette::kPedestrian);
   }
   std::vector<Vec2> used;
   std::vector<Vec2> rejected;
   std::vector<Vec2> pedestrian_hits;
-  for (const ScanPoint& s : scan) {
+  for (const ScanPoint& s : l.scan) {
     (s.rejected ? rejected : used).push_back(s.point);
     if (s.hits_pedestrian) pedestrian_hits.push_back(s.point);
   }
@@ -48,10 +42,11 @@ void DrawLocalizationLayers(GlCanvas& c, const core::OccupancyGrid& grid,
   c.DrawMarkers(pedestrian_hits, Marker::kDisc, 10.0 * scale, palette::kPedestrian);
   c.DrawMarkers(used, Marker::kDisc, 4.5 * scale, palette::kStaticPoint);
   c.DrawMarkers(rejected, Marker::kDisc, 5.0 * scale, palette::kRejectedPoint);
-  c.DrawPoseArrows(particles, 11.0 * scale, palette::kParticle, ParticleColors(weights, particles.size()));
-  c.DrawCircle(truth.translation(), robot_radius, 2.0 * scale, palette::kTruth);
-  c.DrawPoseArrows({truth}, 22.0 * scale, palette::kTruth, {}, 1.2, palette::kBackground);
-  c.DrawPoseArrows({estimate}, 22.0 * scale, palette::kEstimate, {}, 1.2, palette::kBackground);
+  c.DrawPoseArrows(l.particles, 11.0 * scale, palette::kParticle,
+                   ParticleColors(l.weights, l.particles.size()));
+  c.DrawCircle(l.truth.translation(), l.robot_radius, 2.0 * scale, palette::kTruth);
+  c.DrawPoseArrows({l.truth}, 22.0 * scale, palette::kTruth, {}, 1.2, palette::kBackground);
+  c.DrawPoseArrows({l.estimate}, 22.0 * scale, palette::kEstimate, {}, 1.2, palette::kBackground);
 }
 
 std::vector<LegendEntry> LocalizationLegend() {
