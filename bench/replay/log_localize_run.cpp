@@ -163,7 +163,8 @@ LogManifestInfo LocalizeManifest(const LogLocalizeRequest& options, const std::s
 }  // namespace
 
 LogLocalization LocalizeLog(const LogLocalizeRequest& request) {
-  LogLocalization l{.config = LoadLogRunConfig(request.run, {})};
+  LogLocalization l;
+  l.config = LoadLogRunConfig(request.run, {});
   LogReplayOptions replay;
   replay.initial = request.initial;
   replay.every_odometry_tick = request.every_odometry_tick;
