@@ -29,8 +29,8 @@ std::string MapTitle(const PartialMapView& m, int k) {
   const std::string label = m.label.empty() ? "map " + std::to_string(k) : m.label;
   const Box2 known = internal::KnownCellsBox(m.grid);
   const Vec2 size = known.Size();
-  return label + Format(":  %.0f x %.0f m, path %.0f m", size.x(), size.y(),
-                        internal::PathLength(m.path));
+  return label +
+         Format(":  %.0f x %.0f m, path %.0f m", size.x(), size.y(), internal::PathLength(m.path));
 }
 
 // The box a map panel shows: the occupied cells (or, with none, the observed ones), the path,
@@ -193,25 +193,27 @@ std::string MapsRouteTitle(RouteSource source) {
 }
 
 FigureInfo RenderMapsCompareFigure(const MapsCompareFigureData& data,
-                                   const std::filesystem::path& png,
-                                   const FigureOptions& options) {
+                                   const std::filesystem::path& png, const FigureOptions& options) {
   options.Validate();
   internal::Require(!data.maps.empty(), png, "the map comparison needs at least one map");
   const int W = options.width;
   const std::size_t n = data.maps.size();
   Header header;
   header.title = options.title.empty() ? "Maps of the same route" : options.title;
-  header.subtitle = "Each map in its own frame; the same teaching drive, mapped with different poses.";
+  header.subtitle =
+      "Each map in its own frame; the same teaching drive, mapped with different poses.";
   header.legend = {{"taught path", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 2.5},
                    internal::StartLegend()};
   if (std::any_of(data.maps.begin(), data.maps.end(),
                   [](const PartialMapView& m) { return m.switch_pose.has_value(); })) {
     header.legend.push_back(internal::SwitchLegend());
   }
-  header.legend.push_back({"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch});
+  header.legend.push_back(
+      {"map: free / unknown / occupied", palette::kMapUnknown, LegendSymbol::kMapPatch});
 
   const int cols = MapColumns(n);
-  const int rows = static_cast<int>((n + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
+  const int rows =
+      static_cast<int>((n + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
   const int tile_w = W / cols;
   const int plot_w = tile_w - internal::kPanelLeft - internal::kPanelRight;
   std::vector<Box2> boxes;
@@ -234,21 +236,16 @@ FigureInfo RenderMapsCompareFigure(const MapsCompareFigureData& data,
     panels.push_back(internal::RenderMapPanel(
         fig, internal::MapPanelAt(col * tile_w, top + row * tile_h, tile_w, plot_h), boxes[k],
         "map" + std::to_string(k), MapTitle(m, static_cast<int>(k)), options.supersample,
-        [&](GlCanvas& c) { DrawMapLayers(c, m, palette::kTaughtPath); }, internal::MapFrameStyle(-1)));
+        [&](GlCanvas& c) { DrawMapLayers(c, m, palette::kTaughtPath); },
+        internal::MapFrameStyle(-1)));
   }
   return internal::FinishFigure(fig, png, std::move(panels));
 }
 
-FigureInfo RenderWorldFigure(const WorldFigureData& data, const std::filesystem::path& png,
-                             const FigureOptions& options) {
-  options.Validate();
-  Box2 box = data.world.Bounds();
-  for (const Vec2& p : data.route) box.Extend(p);
-  for (const Circle& c : data.pedestrians) box.Extend(c.center, c.radius);
-  if (data.robot) box.Extend(data.robot->translation(), data.robot_radius);
-  internal::Require(!box.IsEmpty(), png, "nothing to draw");
-  box = box.Inflated(1.0);
-  const int W = options.width;
+namespace {
+
+// The world figure's title, extent / route / pedestrian line and legend.
+Header WorldHeader(const WorldFigureData& data, const FigureOptions& options) {
   Header header;
   header.title = options.title.empty() ? (data.name.empty() ? std::string("World") : data.name)
                                        : options.title;
@@ -264,15 +261,33 @@ FigureInfo RenderWorldFigure(const WorldFigureData& data, const std::filesystem:
   }
   header.legend.push_back(internal::WorldLegend());
   if (!data.route.empty()) {
-    header.legend.push_back({"route", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 2.5});
+    header.legend.push_back(
+        {"route", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 2.5});
     header.legend.push_back(internal::StartLegend());
   }
   if (!data.pedestrians.empty()) {
-    header.legend.push_back({"pedestrians", palette::kPedestrian, LegendSymbol::kMarker, Marker::kDisc, 6.0});
+    header.legend.push_back(
+        {"pedestrians", palette::kPedestrian, LegendSymbol::kMarker, Marker::kDisc, 6.0});
   }
   if (data.robot) {
     header.legend.push_back({"robot", palette::kTruth, LegendSymbol::kRing});
   }
+  return header;
+}
+
+}  // namespace
+
+FigureInfo RenderWorldFigure(const WorldFigureData& data, const std::filesystem::path& png,
+                             const FigureOptions& options) {
+  options.Validate();
+  Box2 box = data.world.Bounds();
+  for (const Vec2& p : data.route) box.Extend(p);
+  for (const Circle& c : data.pedestrians) box.Extend(c.center, c.radius);
+  if (data.robot) box.Extend(data.robot->translation(), data.robot_radius);
+  internal::Require(!box.IsEmpty(), png, "nothing to draw");
+  box = box.Inflated(1.0);
+  const int W = options.width;
+  const Header header = WorldHeader(data, options);
   const int plot_w = W - internal::kPanelLeft - internal::kPanelRight;
   const int plot_h = internal::PlotHeightFor(box, plot_w, 0.3, 1.2);
   const int top = internal::HeaderHeight(header, W);

@@ -55,21 +55,24 @@ internal::LocalizationLayers LayersOf(const VideoFrame& f) {
 class VideoFrameRenderer::Impl {
  public:
   explicit Impl(const VideoFrameOptions& o)
-      : options_(o), canvas_((CheckEvenSize(o.width, o.height), o.width), o.height, o.supersample) {}
+      : options_(o),
+        canvas_((CheckEvenSize(o.width, o.height), o.width), o.height, o.supersample) {}
 
   Image Render(const VideoFrame& f) {
     const VideoFrameOptions& o = options_;
     canvas_.Clear(palette::kMapUnknown);
-    canvas_.SetView(View::Centered(f.estimate.translation(), o.pixels_per_meter, o.width, o.height));
+    canvas_.SetView(
+        View::Centered(f.estimate.translation(), o.pixels_per_meter, o.width, o.height));
     internal::DrawLocalizationLayers(canvas_, LayersOf(f), 1.0);
     cv::Mat img = internal::ToMat(canvas_.ReadBack());
 
     // Status box, top left.
     char line[160];
-    std::snprintf(line, sizeof(line), "t = %.1f s   v = %.2f m/s   map %d (of maps 0-%d)", f.time_s, f.speed,
-                  f.map_index, std::max(1, f.map_count) - 1);
+    std::snprintf(line, sizeof(line), "t = %.1f s   v = %.2f m/s   map %d (of maps 0-%d)", f.time_s,
+                  f.speed, f.map_index, std::max(1, f.map_count) - 1);
     char err[96];
-    std::snprintf(err, sizeof(err), "estimate vs truth: %.2f m", core::Distance(f.estimate, f.truth));
+    std::snprintf(err, sizeof(err), "estimate vs truth: %.2f m",
+                  core::Distance(f.estimate, f.truth));
     std::vector<std::string> lines;
     if (!f.caption.empty()) lines.push_back(f.caption);
     lines.push_back(line);
@@ -138,7 +141,8 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   }
   std::error_code ec;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  if (ec) throw core::IoError(path.parent_path().string() + ": cannot create folder: " + ec.message());
+  if (ec)
+    throw core::IoError(path.parent_path().string() + ": cannot create folder: " + ec.message());
   struct Choice {
     const char* fourcc;
     const char* ext;
@@ -198,7 +202,8 @@ void VideoWriter::Close() {
 VideoInfo ProbeVideo(const std::filesystem::path& path) {
   // FFmpeg only: it reads what VideoWriter writes, and other backends would probe cameras.
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw core::IoError(path.string() + ": no such video");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw core::IoError(path.string() + ": no such video");
   cv::VideoCapture cap(path.string(), cv::CAP_FFMPEG);
   if (!cap.isOpened()) throw core::IoError(path.string() + ": cannot open video");
   VideoInfo info;

@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/bench_command.hpp"
 
 #include <unistd.h>
@@ -16,6 +15,7 @@
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/cli/report_command.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/suite/baseline.hpp"
 #include "bench/suite/junit_report.hpp"
@@ -248,8 +248,8 @@ void AddBenchOptions(CLI::App* command, BenchOptions* options) {
                       "Write every metric of the run to FILE as Bencher Metric Format JSON, "
                       "for trend charts across commits");
   AddNoReportFlag(command, &options->report,
-                    "Do not write report.html, the report's page with the regressions in red, "
-                    "also written on a regression (retrace report does it later)");
+                  "Do not write report.html, the report's page with the regressions in red, "
+                  "also written on a regression (retrace report does it later)");
 }
 
 int RunBenchCommand(const BenchOptions& options) {

@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/calibrate_lidar_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -11,12 +10,13 @@
 
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/log_options.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/output/results_io.hpp"
 #include "bench/replay/lidar_calibration.hpp"
 #include "bench/replay/lidar_calibration_figure.hpp"
 #include "bench/replay/log_streams.hpp"
-#include "core/format.hpp"
 #include "core/errors.hpp"
+#include "core/format.hpp"
 #include "io/atomic_file.hpp"
 #include "viz/render_error.hpp"
 
@@ -39,7 +39,9 @@ std::string HalvesSpread(const LidarCalibration& c) {
   const nav::BeamMixture& a = c.first_half.result.mixture;
   const nav::BeamMixture& b = c.second_half.result.mixture;
   const nav::BeamMixture& w = c.whole.result.mixture;
-  const auto points = [](double x, double y) { return core::FixedText(100.0 * std::abs(x - y), 2); };
+  const auto points = [](double x, double y) {
+    return core::FixedText(100.0 * std::abs(x - y), 2);
+  };
   const auto percent = [](double x, double y, double whole) {
     return whole > 0.0 ? core::FixedText(100.0 * std::abs(x - y) / whole, 1) + " %" : "-";
   };
@@ -89,21 +91,22 @@ std::vector<std::string> UnmappedReport(const LidarCalibration& c) {
 std::string WorldLine(const UnmappedFit& real, const WorldInference& inference) {
   const UnmappedFit& sim = inference.simulated;
   const std::string unknown =
-      inference.free_path > 0.0
-          ? "unknown cells filled at a free path of " + core::FixedText(inference.free_path, 2) + " m"
+      inference.free_path > 0.0 ? "unknown cells filled at a free path of " +
+                                      core::FixedText(inference.free_path, 2) + " m"
       : inference.unknown_hits_enough
           ? std::string("unknown cells left open (rays cross them farther than the LiDAR reaches)")
           : "unknown cells left open (fewer than " + std::to_string(kMinUnknownHitsPerHalf) +
                 " readings end in them in a half of the window)";
-  return "simulated world: " + unknown + ", static clutter " + core::FixedText(inference.density, 4) +
-         " per m^2 (" + std::to_string(inference.simulations) +
+  return "simulated world: " + unknown + ", static clutter " +
+         core::FixedText(inference.density, 4) + " per m^2 (" +
+         std::to_string(inference.simulations) +
          (inference.simulations == 1 ? " simulation" : " simulations") +
          (inference.converged ? "" : ", not within 5 % and 10 %") +
-         "); its scans estimate a free path of " + core::FixedText(sim.unknown_free_path, 2) + " m and " +
-         core::FixedText(sim.density, 4) + " per m^2 (real " + core::FixedText(real.unknown_free_path, 2) +
-         " m, " + core::FixedText(real.density, 4) + "), short readings " +
-         core::FixedText(100.0 * Share(sim.short_readings, sim.beams), 1) + " % (real " +
-         core::FixedText(100.0 * Share(real.short_readings, real.beams), 1) + " %)";
+         "); its scans estimate a free path of " + core::FixedText(sim.unknown_free_path, 2) +
+         " m and " + core::FixedText(sim.density, 4) + " per m^2 (real " +
+         core::FixedText(real.unknown_free_path, 2) + " m, " + core::FixedText(real.density, 4) +
+         "), short readings " + core::FixedText(100.0 * Share(sim.short_readings, sim.beams), 1) +
+         " % (real " + core::FixedText(100.0 * Share(real.short_readings, real.beams), 1) + " %)";
 }
 
 // The fit report: what was used, then one row per part and the halves' spread.
@@ -111,9 +114,9 @@ std::vector<std::string> FitReport(const LidarCalibration& c, const std::string&
                                    const std::filesystem::path& teach_dir) {
   const CalibrationBeams& b = c.beams;
   std::vector<std::string> lines = {
-      log_name + ": " + std::to_string(b.scans) + " scans (" + core::FixedText(b.first_s, 1) + " to " +
-          core::FixedText(b.last_s, 1) + " s of log time, as --from/--to), " + std::to_string(b.beams) +
-          " beams",
+      log_name + ": " + std::to_string(b.scans) + " scans (" + core::FixedText(b.first_s, 1) +
+          " to " + core::FixedText(b.last_s, 1) + " s of log time, as --from/--to), " +
+          std::to_string(b.beams) + " beams",
       "map: " + teach_dir.string() + "; expected range known for " +
           std::to_string(b.samples.size() + b.invalid) + " beams (" + std::to_string(b.unknown) +
           " unknown, " + std::to_string(b.invalid) + " of the known below range_min and left out)",
@@ -177,8 +180,7 @@ void AddCalibrateLidarOptions(CLI::App* cmd, CalibrateLidarOptions* options) {
   cmd->add_option("--teach", options->teach_dir,
                   "The consistent teach folder of the same place (log-teach's consistent/teach)")
       ->required();
-  AddOutOption(cmd, &options->out, "The YAML file to write (a sim.lidar.noise block)")
-      ->required();
+  AddOutOption(cmd, &options->out, "The YAML file to write (a sim.lidar.noise block)")->required();
   cmd->add_option("--figure", options->figure,
                   "The range error figure (PNG; default: --out with the extension .png)");
   AddNoFiguresFlag(cmd, &options->figures, "Do not render the figure");

@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/campus_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -7,6 +6,7 @@
 #include <system_error>
 
 #include "bench/cli/cli_checks.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/worldgen/campus_generator.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
@@ -131,7 +131,8 @@ void AddGenerateCampusOptions(CLI::App* cmd, GenerateCampusOptions* options) {
                   "Route file: one waypoint `x y` per line (W, m), or an AutoNavi path")
       ->required();
   AddOutOption(cmd, &options->out, "World file to write (YAML)")->required();
-  AddSeedOption(cmd, &options->seed, "of the placement: the same route, settings and seed give the same world");
+  AddSeedOption(cmd, &options->seed,
+                "of the placement: the same route, settings and seed give the same world");
   AddConfigOption(
       cmd, &options->config_file,
       "YAML file with generator settings (CampusConfig in bench/worldgen/campus_generator.hpp)");

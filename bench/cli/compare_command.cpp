@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/compare_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -12,6 +11,7 @@
 #include "bench/cli/mode_list.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/cli/report_command.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/compare/comparison_report.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
@@ -122,12 +122,11 @@ void AddCompareOptions(CLI::App* command, CompareOptions* options) {
                    "Playback runs per mode and seed (default: the scenario's)")
       ->check(kPositive);
   AddJobsOption(command, &options->jobs);
-  AddOutOption(command, &options->out,
-                      "Output folder (default: results/compare/<scenario name>)");
+  AddOutOption(command, &options->out, "Output folder (default: results/compare/<scenario name>)");
   AddSetOption(command, &options->overrides, "a scenario key: a.b.c=value");
   AddNoReportFlag(command, &options->report,
-                    "Do not write report.html, the study's page of tables and figures (retrace "
-                    "report does it later)");
+                  "Do not write report.html, the study's page of tables and figures (retrace "
+                  "report does it later)");
 }
 
 int RunCompareCommand(const CompareOptions& options, const std::string& command_line) {

@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/crowd_check_command.hpp"
 
 #include <unistd.h>
@@ -13,6 +12,7 @@
 #include <system_error>
 
 #include "bench/cli/cli_checks.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/crowd/fundamental_diagram.hpp"
 #include "core/errors.hpp"
 #include "io/config_yaml.hpp"

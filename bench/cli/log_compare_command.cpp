@@ -1,9 +1,9 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/log_compare_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "bench/cli/shared_options.hpp"
 #include "bench/output/staged_folder.hpp"
 #include "bench/replay/log_comparison.hpp"
 #include "core/errors.hpp"

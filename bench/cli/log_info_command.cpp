@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "bench/cli/log_options.hpp"
-#include "core/format.hpp"
 #include "core/config.hpp"
+#include "core/format.hpp"
 
 namespace retrace::bench {
 
@@ -37,8 +37,8 @@ std::string Rate(std::uint64_t messages, double span_s) {
 }
 
 std::string Pose(const core::Pose2& p) {
-  return "(" + core::FixedText(p.x, 3) + " m, " + core::FixedText(p.y, 3) + " m, " + Degrees(p.theta, 1) +
-         " deg)";
+  return "(" + core::FixedText(p.x, 3) + " m, " + core::FixedText(p.y, 3) + " m, " +
+         Degrees(p.theta, 1) + " deg)";
 }
 
 void WriteTopicTable(std::ostream& out, const logs::LogIndex& index) {
@@ -73,8 +73,9 @@ void WriteScanStreams(std::ostream& out, const logs::LogIndex& index) {
         << (used && index.scan_streams.size() > 1 ? " (used)" : "") << ": " << s.scans
         << " scans of " << s.beams << " beams over " << Degrees(s.field_of_view(), 1)
         << " deg from " << Degrees(s.angle_min, 1) << " deg, " << Degrees(s.angle_increment, 3)
-        << " deg apart; ranges " << core::FixedText(s.range_min, 2) << " to " << core::FixedText(s.range_max, 2)
-        << " m; frame " << (stream.frame.empty() ? "-" : stream.frame) << "\n";
+        << " deg apart; ranges " << core::FixedText(s.range_min, 2) << " to "
+        << core::FixedText(s.range_max, 2) << " m; frame "
+        << (stream.frame.empty() ? "-" : stream.frame) << "\n";
   }
 }
 
@@ -95,8 +96,8 @@ void WriteOdometryAndMount(std::ostream& out, const logs::LogIndex& index) {
   if (!index.odometry_source.empty() && !index.odometry.empty()) {
     out << "odometry:   " << index.odometry_source << ": " << index.odometry.size() << " poses, "
         << core::FixedText(logs::PathLength(index.odometry), 1) << " m driven over "
-        << core::FixedText(index.odometry.back().t - index.odometry.front().t, 1) << " s; base frame "
-        << (index.base_frame.empty() ? "-" : index.base_frame) << "\n";
+        << core::FixedText(index.odometry.back().t - index.odometry.front().t, 1)
+        << " s; base frame " << (index.base_frame.empty() ? "-" : index.base_frame) << "\n";
   }
   if (!index.mount_source.empty())
     out << "mount:      X_RL " << Pose(index.X_RL) << " from " << index.mount_source << "\n";

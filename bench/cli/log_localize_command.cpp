@@ -49,9 +49,9 @@ int RunLogLocalizeCommand(const LogLocalizeOptions& options, const std::string& 
   if (!options.initial_pose.empty()) request.initial = ParseInitialPose(options.initial_pose);
   const LogLocalization localized = LocalizeLog(request);
   const std::vector<std::string> notes = WriteLogLocalizeFolder(
-      request.run.out, localized, request, command_line,
+      localized, command_line,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
-  std::cout << LogLocalizeSummary(localized, request.run.out) << "\n";
+  std::cout << LogLocalizeSummary(localized) << "\n";
   for (const std::string& note : notes)
     std::cout << "  " << (note.starts_with("warning: ") ? "" : "note: ") << note << "\n";
   return 0;

@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/log_simulate_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -7,10 +6,11 @@
 
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/log_options.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/output/results_io.hpp"
 #include "bench/replay/log_simulate.hpp"
-#include "core/format.hpp"
 #include "core/errors.hpp"
+#include "core/format.hpp"
 
 namespace retrace::bench {
 
@@ -52,9 +52,9 @@ int RunLogSimulateCommand(const LogSimulateOptions& options) {
     throw;
   }
   std::cout << out.string() << ": " << simulation.scans << " simulated scans of "
-            << index.scan.beams << " beams from " << core::FixedText(simulation.first_stamp, 1) << " to "
-            << core::FixedText(simulation.last_stamp, 1) << " s along " << streams.reference_source
-            << ", in the map of " << options.teach_dir.string()
+            << index.scan.beams << " beams from " << core::FixedText(simulation.first_stamp, 1)
+            << " to " << core::FixedText(simulation.last_stamp, 1) << " s along "
+            << streams.reference_source << ", in the map of " << options.teach_dir.string()
             << "\nlocalize it as the log itself: retrace log-localize " << out.string()
             << " --teach <teach folder> --out <dir>\n";
   return 0;

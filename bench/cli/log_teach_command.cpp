@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/log_teach_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -10,13 +9,14 @@
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/log_options.hpp"
 #include "bench/cli/mode_list.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/engine/switch_points.hpp"
 #include "bench/output/manifest.hpp"
 #include "bench/output/render_results.hpp"
 #include "bench/output/results_io.hpp"
 #include "bench/output/staged_folder.hpp"
-#include "core/format.hpp"
 #include "core/errors.hpp"
+#include "core/format.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_override.hpp"
 #include "io/config_yaml.hpp"

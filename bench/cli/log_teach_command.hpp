@@ -29,7 +29,6 @@ struct LogTeachOptions {
 void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options);
 void AddLogTeachOptions(CLI::App* cmd, LogTeachOptions* options);
 
-
 /// Runs log-teach; returns the exit code (0). Throws core::Error for bad input, before anything
 /// is written.
 int RunLogTeachCommand(const LogTeachOptions& options, const std::string& command_line);

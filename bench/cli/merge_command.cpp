@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/merge_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -7,6 +6,7 @@
 #include <map>
 
 #include "bench/cli/progress.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/output/staged_folder.hpp"
 #include "bench/sweep/sweep_folder.hpp"
 #include "bench/sweep/sweep_results.hpp"

@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/run_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -16,6 +15,7 @@
 #include "bench/cli/mode_list.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/cli/report_command.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
@@ -219,10 +219,10 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   }
   if (phases != RunPhases::kTeachOnly) {
     AddNoFiguresFlag(command, &options->figures,
-                      "Do not render the figures (retrace render does it later)");
+                     "Do not render the figures (retrace render does it later)");
     AddNoReportFlag(command, &options->report,
-                      "Do not write report.html, the results folder's page of tables, figures "
-                      "and manifests (retrace report does it later)");
+                    "Do not write report.html, the results folder's page of tables, figures "
+                    "and manifests (retrace report does it later)");
     command->add_flag("--video", options->video,
                       "Record a video of one playback run per mode: <mode>/runs/<run>/video.mp4");
     command->add_option("--video-run", options->video_run, "The run to record (default 0)")

@@ -24,8 +24,7 @@ CLI::Option* AddSeedOption(CLI::App* cmd, std::uint64_t* seed, const std::string
 CLI::Option* AddSeedOption(CLI::App* cmd, std::optional<std::uint64_t>* seed,
                            const std::string& what);
 /// --jobs N (>= 0; 0: one per core).
-CLI::Option* AddJobsOption(CLI::App* cmd, int* jobs,
-                           const std::string& what = "Worker threads");
+CLI::Option* AddJobsOption(CLI::App* cmd, int* jobs, const std::string& what = "Worker threads");
 /// --out (-o) PATH: `help` says what is written there.
 CLI::Option* AddOutOption(CLI::App* cmd, std::filesystem::path* out, const std::string& help);
 /// --config FILE: `help` says what the settings file holds.

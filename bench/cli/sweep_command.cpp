@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/sweep_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -13,6 +12,7 @@
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/progress.hpp"
 #include "bench/cli/report_command.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/engine/parallel.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/scheduler.hpp"
@@ -280,7 +280,7 @@ void AddSweepOptions(CLI::App* command, SweepOptions* options) {
   command->add_flag("!--no-plot", options->plot, "Do not render sweep.png");
   AddNoReportFlag(command, &options->report,
                   "Do not write report.html, the sweep's page of its plot and results table "
-                    "(retrace report does it later)");
+                  "(retrace report does it later)");
 }
 
 int RunSweepCommand(const SweepOptions& options, const std::string& command_line) {

@@ -1,4 +1,3 @@
-#include "bench/cli/shared_options.hpp"
 #include "bench/cli/tour_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -7,6 +6,7 @@
 
 #include "bench/cli/campus_command.hpp"
 #include "bench/cli/cli_checks.hpp"
+#include "bench/cli/shared_options.hpp"
 #include "bench/engine/switch_points.hpp"
 #include "bench/output/staged_folder.hpp"
 #include "bench/worldgen/tour_generator.hpp"

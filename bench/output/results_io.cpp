@@ -160,8 +160,7 @@ ModeTeach ReadTeachFolder(const std::filesystem::path& dir, MapMode mode) {
               ? core::ParseEnum<nav::SwitchReason>(c[3])
               : std::nullopt;
       if (!reason) {
-        throw core::IoError((dir / "switches.csv").string() + ":" +
-                            std::to_string(rows[i].line) +
+        throw core::IoError((dir / "switches.csv").string() + ":" + std::to_string(rows[i].line) +
                             ": expected map, odometry_travelled_m, constraint, reason (" +
                             core::EnumNameList<nav::SwitchReason>() + ")");
       }

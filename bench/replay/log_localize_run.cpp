@@ -29,8 +29,7 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const LogLocalizeSample& s = run.samples[i];
     // Only where there is local truth can the estimate be carried into the reference's frame.
-    estimates.push_back({s.time, s.map, s.X_MR,
-                         s.X_WR && s.X_MR_truth ? s.X_WR : std::nullopt});
+    estimates.push_back({s.time, s.map, s.X_MR, s.X_WR && s.X_MR_truth ? s.X_WR : std::nullopt});
     errors.AddRow({s.time, s.map, series.driven_m[i], series.path_distance_m[i],
                    series.localization_error_m[i], series.localization_error_rad[i]});
   }
@@ -93,8 +92,8 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
                      (m.loop ? ", a loop" : "") + "), " + std::to_string(m.laps_completed) +
                      (m.laps_completed == 1 ? " lap" : " laps") + " of the taught route\n";
   if (m.has_truth) {
-    text += "  localization error: RMS " + core::FixedText(m.localization_error_m.rms, 3) + " m, p95 " +
-            core::FixedText(m.localization_error_m.p95, 3) + " m, max " +
+    text += "  localization error: RMS " + core::FixedText(m.localization_error_m.rms, 3) +
+            " m, p95 " + core::FixedText(m.localization_error_m.p95, 3) + " m, max " +
             core::FixedText(m.localization_error_m.max, 3) + " m; heading RMS " +
             core::FixedText(m.localization_error_rad.rms * 180.0 / M_PI, 2) + " deg; above " +
             "metrics.lost_error " + core::FixedText(100.0 * m.lost_fraction, 1) + " % of scans\n";
@@ -112,10 +111,11 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
         "--synthetic-odometry on a corrected log)\n";
   }
   const LocalizerHealth& h = m.localizer;
-  text += "  the localizer: lost (by its own account) " + core::FixedText(h.lost_time_s, 1) + " s in " +
-          std::to_string(h.lost_spells) + (h.lost_spells == 1 ? " spell" : " spells") + ", " +
-          std::to_string(h.reacquisitions) + " re-acquisitions; largest single-update jump " +
-          core::FixedText(h.max_jump_m, 2) + " m (at " + core::FixedText(h.max_jump_time_s, 1) + " s)\n";
+  text += "  the localizer: lost (by its own account) " + core::FixedText(h.lost_time_s, 1) +
+          " s in " + std::to_string(h.lost_spells) + (h.lost_spells == 1 ? " spell" : " spells") +
+          ", " + std::to_string(h.reacquisitions) +
+          " re-acquisitions; largest single-update jump " + core::FixedText(h.max_jump_m, 2) +
+          " m (at " + core::FixedText(h.max_jump_time_s, 1) + " s)\n";
   if (m.has_truth) {
     text += "  against the reference: " + std::to_string(h.reacquisitions_closer) +
             " re-acquisitions brought the estimate closer, " +
@@ -126,8 +126,8 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
   }
   text += "  beams rejected as dynamic: " + core::FixedText(100.0 * m.rejected_fraction, 2) +
           " %; update time mean " + core::FixedText(m.update_time_ms.mean, 2) + " ms, p95 " +
-          core::FixedText(m.update_time_ms.p95, 2) + " ms; " + core::FixedText(m.real_time_factor, 0) +
-          "x real time\nresults: " + out.string();
+          core::FixedText(m.update_time_ms.p95, 2) + " ms; " +
+          core::FixedText(m.real_time_factor, 0) + "x real time\nresults: " + out.string();
   return text;
 }
 
@@ -164,6 +164,7 @@ LogManifestInfo LocalizeManifest(const LogLocalizeRequest& options, const std::s
 
 LogLocalization LocalizeLog(const LogLocalizeRequest& request) {
   LogLocalization l;
+  l.request = request;
   l.config = LoadLogRunConfig(request.run, {});
   LogReplayOptions replay;
   replay.initial = request.initial;
@@ -171,20 +172,19 @@ LogLocalization LocalizeLog(const LogLocalizeRequest& request) {
   l.teach = ReadTeachFolder(request.teach_dir,
                             TeachFolderMode(request.teach_dir).value_or(MapMode::kPartial));
   l.index = logs::IndexLog(request.run.log, request.run.streams);
-  l.streams = PrepareLogStreams(l.index, l.config, request.run.synthetic_odometry,
-                                request.run.reference);
+  l.streams =
+      PrepareLogStreams(l.index, l.config, request.run.synthetic_odometry, request.run.reference);
   l.run = RunLogLocalize(l.index, l.streams, l.teach, l.config, request.run.window, replay);
   l.series = ComputeLogSeries(l.run, l.teach.trace);
   l.metrics = ComputeLogMetrics(l.run, l.series, l.teach.bundle, l.config.metrics);
   return l;
 }
 
-std::vector<std::string> WriteLogLocalizeFolder(const std::filesystem::path& out,
-                                                const LogLocalization& l,
-                                                const LogLocalizeRequest& request,
+std::vector<std::string> WriteLogLocalizeFolder(const LogLocalization& l,
                                                 const std::string& command_line,
                                                 double wall_time_s) {
-  StagedFolder folder(out);
+  const LogLocalizeRequest& request = l.request;
+  StagedFolder folder(request.run.out);
   WriteRunFiles(folder.path(), l.run, l.series, l.teach, l.config.metrics);
   nlohmann::json j = ToJson(l.metrics);
   j["log"] = l.index.name;
@@ -207,8 +207,8 @@ std::vector<std::string> WriteLogLocalizeFolder(const std::filesystem::path& out
   return notes;
 }
 
-std::string LogLocalizeSummary(const LogLocalization& l, const std::filesystem::path& out) {
-  return l.index.name + ": " + SummaryText(l.metrics, l.run, out);
+std::string LogLocalizeSummary(const LogLocalization& l) {
+  return l.index.name + ": " + SummaryText(l.metrics, l.run, l.request.run.out);
 }
 
 }  // namespace retrace::bench

@@ -29,6 +29,7 @@ struct LogLocalizeRequest {
 
 /// A localized log, with everything its results folder and summary are made of.
 struct LogLocalization {
+  LogLocalizeRequest request;  ///< what was asked (its run.out is where the folder goes)
   logs::LogIndex index;
   LogStreams streams;
   LogConfig config;
@@ -42,17 +43,15 @@ struct LogLocalization {
 /// Throws core::Error on bad input (one line naming the file, option or key).
 LogLocalization LocalizeLog(const LogLocalizeRequest& request);
 
-/// Writes the results folder `out` (staged, renamed when complete): est_map.csv, errors.csv,
-/// updates.csv, events.csv, est.tum and reference.tum, snapshot.json, metrics.json and
-/// manifest.yaml, and with `figures` the figures. Returns the manifest's notes; a figure that
-/// cannot be rendered adds a note and is not an error.
-std::vector<std::string> WriteLogLocalizeFolder(const std::filesystem::path& out,
-                                                const LogLocalization& localized,
-                                                const LogLocalizeRequest& request,
+/// Writes the results folder request.run.out (staged, renamed when complete): est_map.csv,
+/// errors.csv, updates.csv, events.csv, est.tum and reference.tum, snapshot.json, metrics.json
+/// and manifest.yaml, and with request.run.figures the figures. Returns the manifest's notes; a
+/// figure that cannot be rendered adds a note and is not an error.
+std::vector<std::string> WriteLogLocalizeFolder(const LogLocalization& localized,
                                                 const std::string& command_line,
                                                 double wall_time_s);
 
 /// The run's summary as the command line prints it (several lines, no trailing newline).
-std::string LogLocalizeSummary(const LogLocalization& localized, const std::filesystem::path& out);
+std::string LogLocalizeSummary(const LogLocalization& localized);
 
 }  // namespace retrace::bench

@@ -105,10 +105,11 @@ TEST(LogTeach, ABagWithoutOdometryTeachesAndLocalizesOnSyntheticOdometry) {
 
   LogLocalizeRequest localize;
   localize.run = teach.run;
+  localize.run.out = tmp.path() / "localized";
   localize.teach_dir = tmp.path() / "taught/partial/teach";
   const LogLocalization localized = LocalizeLog(localize);
   EXPECT_GT(localized.metrics.scans, 0);
-  WriteLogLocalizeFolder(tmp.path() / "localized", localized, localize, "log-localize", 0.0);
+  WriteLogLocalizeFolder(localized, "log-localize", 0.0);
   EXPECT_TRUE(fs::exists(tmp.path() / "localized/metrics.json"));
 }
 

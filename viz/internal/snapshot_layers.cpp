@@ -16,7 +16,8 @@ std::vector<Rgba> ParticleColors(const std::vector<double>& weights, std::size_t
   for (std::size_t i = 0; i < n; ++i) {
     const double t = std::isfinite(weights[i]) ? std::clamp(weights[i] / w_max, 0.0, 1.0) : 0.0;
     // Light particles stay faintly visible; heavy ones opaque.
-    colors[i] = palette::kParticle.WithAlpha(static_cast<std::uint8_t>(std::lround(50.0 + 205.0 * t)));
+    colors[i] =
+        palette::kParticle.WithAlpha(static_cast<std::uint8_t>(std::lround(50.0 + 205.0 * t)));
   }
   return colors;
 }
@@ -50,14 +51,16 @@ void DrawLocalizationLayers(GlCanvas& c, const LocalizationLayers& l, double sca
 }
 
 std::vector<LegendEntry> LocalizationLegend() {
-  return {{"taught path", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 2.0},
-          {"scan point", palette::kStaticPoint, LegendSymbol::kMarker, Marker::kDisc, 4.0},
-          {"rejected as dynamic", palette::kRejectedPoint, LegendSymbol::kMarker, Marker::kDisc, 4.0},
-          {"hit a pedestrian (truth)", palette::kPedestrian, LegendSymbol::kRing},
-          {"pedestrian", palette::kPedestrian.WithAlpha(255), LegendSymbol::kMarker, Marker::kDisc, 7.0},
-          {"particles", palette::kParticle, LegendSymbol::kArrow},
-          {"estimate", palette::kEstimate, LegendSymbol::kArrow},
-          {"ground truth", palette::kTruth, LegendSymbol::kArrow}};
+  return {
+      {"taught path", palette::kTaughtPath, LegendSymbol::kLine, Marker::kDisc, 2.0},
+      {"scan point", palette::kStaticPoint, LegendSymbol::kMarker, Marker::kDisc, 4.0},
+      {"rejected as dynamic", palette::kRejectedPoint, LegendSymbol::kMarker, Marker::kDisc, 4.0},
+      {"hit a pedestrian (truth)", palette::kPedestrian, LegendSymbol::kRing},
+      {"pedestrian", palette::kPedestrian.WithAlpha(255), LegendSymbol::kMarker, Marker::kDisc,
+       7.0},
+      {"particles", palette::kParticle, LegendSymbol::kArrow},
+      {"estimate", palette::kEstimate, LegendSymbol::kArrow},
+      {"ground truth", palette::kTruth, LegendSymbol::kArrow}};
 }
 
 }  // namespace retrace::viz::internal
