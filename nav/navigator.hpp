@@ -1,5 +1,5 @@
 #pragma once
-// One step of the repeating robot's navigation (docs/DESIGN.md §5, "One navigation step"): the
+// One step of the repeating robot's navigation (docs/DESIGN.md §5, the Navigator): the
 // localizer, the map server and the path follower, driven by odometry increments, scans and
 // control ticks. The simulator's playback and a log's replay are two sources of the same inputs
 // and call exactly this: predict on every odometry increment, update on every scan, and at every

@@ -1,6 +1,6 @@
 #pragma once
-// The metrics of a log's localization run (`retrace log-localize`, docs/METRICS in
-// docs/DESIGN.md §10), the log's reference standing in for ground truth:
+// The metrics of a log's localization run (`retrace log-localize`: docs/DESIGN.md §10, its
+// metrics.json in docs/FORMATS.md), the log's reference standing in for ground truth:
 //
 //   localization_error_m / _rad  the estimate against the local truth (bench/engine/
 //                                local_truth.hpp) at every scan, as for simulated runs
