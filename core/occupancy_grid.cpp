@@ -26,11 +26,6 @@ Vec2 OccupancyGrid::CellToWorld(CellIndex c) const {
   return {origin_.x() + (c.x + 0.5) * resolution_, origin_.y() + (c.y + 0.5) * resolution_};
 }
 
-void OccupancyGrid::AddLogOdds(CellIndex c, float delta, float lo, float hi) {
-  float& l = log_odds_[Index(c)];
-  l = std::clamp(l + delta, lo, hi);
-}
-
 double OccupancyGrid::Probability(CellIndex c) const { return InverseLogit(LogOdds(c)); }
 
 void OccupancyGrid::SetProbability(CellIndex c, double p) {

@@ -42,8 +42,6 @@ class OccupancyGrid {
 
   float LogOdds(CellIndex c) const { return log_odds_[Index(c)]; }
   void SetLogOdds(CellIndex c, float l) { log_odds_[Index(c)] = l; }
-  /// Adds delta and clamps to [lo, hi] (binary Bayes filter update, paper eq. 3-4).
-  void AddLogOdds(CellIndex c, float delta, float lo, float hi);
   double Probability(CellIndex c) const;
   void SetProbability(CellIndex c, double p);
 

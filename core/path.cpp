@@ -20,20 +20,6 @@ void Path::PushBack(const Pose2& p) {
   positions_.push_back(p.translation());
 }
 
-std::size_t Path::NearestIndex(const Vec2& p) const {
-  RETRACE_CHECK(!poses_.empty());
-  std::size_t best = 0;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < poses_.size(); ++i) {
-    const double d2 = (poses_[i].translation() - p).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best = i;
-    }
-  }
-  return best;
-}
-
 Pose2 Path::AtArcLength(double s) const {
   RETRACE_CHECK(!poses_.empty());
   if (s <= 0.0 || poses_.size() == 1) return poses_.front();

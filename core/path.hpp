@@ -29,8 +29,6 @@ class Path {
   double Length() const { return arc_.empty() ? 0.0 : arc_.back(); }
   /// Arc length from the first pose to pose i (m).
   double ArcLength(std::size_t i) const { return arc_[i]; }
-  /// Index of the pose closest in position to p; ties go to the lower index.
-  std::size_t NearestIndex(const Vec2& p) const;
   /// Pose at arc length s (m), interpolated; clamped to the ends.
   Pose2 AtArcLength(double s) const;
 

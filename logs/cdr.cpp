@@ -48,7 +48,7 @@ void CdrReader::Align(std::size_t n) {
 }
 
 template <typename T>
-T CdrReader::ReadAligned() {
+T CdrReader::Read() {
   Align(sizeof(T));
   return reader_.Read<T>();
 }
@@ -62,20 +62,10 @@ bool CdrReader::ReadBool() {
   return b == 1;
 }
 
-std::int8_t CdrReader::ReadInt8() { return reader_.Read<std::int8_t>(); }
-std::uint8_t CdrReader::ReadUint8() { return reader_.U8(); }
-std::int16_t CdrReader::ReadInt16() { return ReadAligned<std::int16_t>(); }
-std::uint16_t CdrReader::ReadUint16() { return ReadAligned<std::uint16_t>(); }
-std::int32_t CdrReader::ReadInt32() { return ReadAligned<std::int32_t>(); }
-std::uint32_t CdrReader::ReadUint32() { return ReadAligned<std::uint32_t>(); }
-std::int64_t CdrReader::ReadInt64() { return ReadAligned<std::int64_t>(); }
-std::uint64_t CdrReader::ReadUint64() { return ReadAligned<std::uint64_t>(); }
-float CdrReader::ReadFloat32() { return ReadAligned<float>(); }
-double CdrReader::ReadFloat64() { return ReadAligned<double>(); }
 
 std::string CdrReader::ReadString() {
   const std::size_t at = reader_.offset();
-  const std::uint32_t length = ReadUint32();
+  const std::uint32_t length = Read<std::uint32_t>();
   if (length > reader_.remaining()) {
     throw core::IoError("string length " + std::to_string(length) + " at byte " +
                         std::to_string(at) + " beyond the end (" +
@@ -88,7 +78,7 @@ std::string CdrReader::ReadString() {
 
 std::uint32_t CdrReader::ReadSequenceLength(std::size_t min_element_bytes) {
   const std::size_t at = reader_.offset();
-  const std::uint32_t count = ReadUint32();
+  const std::uint32_t count = Read<std::uint32_t>();
   const std::uint64_t need =
       static_cast<std::uint64_t>(count) * std::max<std::uint64_t>(min_element_bytes, 1);
   if (need > reader_.remaining()) {
@@ -102,7 +92,7 @@ std::uint32_t CdrReader::ReadSequenceLength(std::size_t min_element_bytes) {
 std::vector<float> CdrReader::ReadFloat32Sequence() {
   const std::uint32_t n = ReadSequenceLength(sizeof(float));
   std::vector<float> out(n);
-  for (float& v : out) v = ReadFloat32();
+  for (float& v : out) v = Read<float>();
   return out;
 }
 
@@ -110,12 +100,12 @@ std::vector<double> CdrReader::ReadFloat64Sequence() {
   // An 8-byte element may need 4 bytes of padding before the first one: checked per read.
   const std::uint32_t n = ReadSequenceLength(sizeof(double));
   std::vector<double> out(n);
-  for (double& v : out) v = ReadFloat64();
+  for (double& v : out) v = Read<double>();
   return out;
 }
 
 void CdrReader::ReadFloat64Array(std::span<double> out) {
-  for (double& v : out) v = ReadFloat64();
+  for (double& v : out) v = Read<double>();
 }
 
 void CdrReader::SkipFloat64Array(std::size_t n) {
@@ -132,7 +122,7 @@ void CdrWriter::Align(std::size_t n) {
 }
 
 template <typename T>
-void CdrWriter::WriteAligned(T v) {
+void CdrWriter::Write(T v) {
   Align(sizeof(T));
   std::uint8_t raw[sizeof(T)];
   std::memcpy(raw, &v, sizeof(T));
@@ -143,28 +133,18 @@ void CdrWriter::WriteAligned(T v) {
 }
 
 void CdrWriter::WriteBool(bool v) { data_.push_back(v ? 1 : 0); }
-void CdrWriter::WriteInt8(std::int8_t v) { data_.push_back(static_cast<std::uint8_t>(v)); }
-void CdrWriter::WriteUint8(std::uint8_t v) { data_.push_back(v); }
-void CdrWriter::WriteInt16(std::int16_t v) { WriteAligned(v); }
-void CdrWriter::WriteUint16(std::uint16_t v) { WriteAligned(v); }
-void CdrWriter::WriteInt32(std::int32_t v) { WriteAligned(v); }
-void CdrWriter::WriteUint32(std::uint32_t v) { WriteAligned(v); }
-void CdrWriter::WriteInt64(std::int64_t v) { WriteAligned(v); }
-void CdrWriter::WriteUint64(std::uint64_t v) { WriteAligned(v); }
-void CdrWriter::WriteFloat32(float v) { WriteAligned(v); }
-void CdrWriter::WriteFloat64(double v) { WriteAligned(v); }
 
 void CdrWriter::WriteString(std::string_view s) {
-  WriteUint32(static_cast<std::uint32_t>(s.size() + 1));
+  Write<std::uint32_t>(static_cast<std::uint32_t>(s.size() + 1));
   data_.insert(data_.end(), s.begin(), s.end());
   data_.push_back(0);
 }
 
-void CdrWriter::WriteSequenceLength(std::uint32_t count) { WriteUint32(count); }
+void CdrWriter::WriteSequenceLength(std::uint32_t count) { Write<std::uint32_t>(count); }
 
 void CdrWriter::WriteFloat32Sequence(std::span<const float> values) {
   WriteSequenceLength(static_cast<std::uint32_t>(values.size()));
-  for (float v : values) WriteFloat32(v);
+  for (float v : values) Write<float>(v);
 }
 
 void CdrWriter::WriteFloat64Sequence(std::span<const double> values) {
@@ -173,7 +153,29 @@ void CdrWriter::WriteFloat64Sequence(std::span<const double> values) {
 }
 
 void CdrWriter::WriteFloat64Array(std::span<const double> values) {
-  for (double v : values) WriteFloat64(v);
+  for (double v : values) Write<double>(v);
 }
+
+// The primitive types of ROS 2 messages.
+template std::int8_t CdrReader::Read<std::int8_t>();
+template std::uint8_t CdrReader::Read<std::uint8_t>();
+template std::int16_t CdrReader::Read<std::int16_t>();
+template std::uint16_t CdrReader::Read<std::uint16_t>();
+template std::int32_t CdrReader::Read<std::int32_t>();
+template std::uint32_t CdrReader::Read<std::uint32_t>();
+template std::int64_t CdrReader::Read<std::int64_t>();
+template std::uint64_t CdrReader::Read<std::uint64_t>();
+template float CdrReader::Read<float>();
+template double CdrReader::Read<double>();
+template void CdrWriter::Write<std::int8_t>(std::int8_t);
+template void CdrWriter::Write<std::uint8_t>(std::uint8_t);
+template void CdrWriter::Write<std::int16_t>(std::int16_t);
+template void CdrWriter::Write<std::uint16_t>(std::uint16_t);
+template void CdrWriter::Write<std::int32_t>(std::int32_t);
+template void CdrWriter::Write<std::uint32_t>(std::uint32_t);
+template void CdrWriter::Write<std::int64_t>(std::int64_t);
+template void CdrWriter::Write<std::uint64_t>(std::uint64_t);
+template void CdrWriter::Write<float>(float);
+template void CdrWriter::Write<double>(double);
 
 }  // namespace retrace::logs

@@ -32,16 +32,10 @@ class CdrReader {
   explicit CdrReader(std::span<const std::uint8_t> message);
 
   bool ReadBool();  ///< a byte that must be 0 or 1
-  std::int8_t ReadInt8();
-  std::uint8_t ReadUint8();  ///< also ROS `byte` and `char`
-  std::int16_t ReadInt16();
-  std::uint16_t ReadUint16();
-  std::int32_t ReadInt32();
-  std::uint32_t ReadUint32();
-  std::int64_t ReadInt64();
-  std::uint64_t ReadUint64();
-  float ReadFloat32();
-  double ReadFloat64();
+  /// One number, aligned to its size: T is one of the ROS 2 primitives int8_t ... uint64_t,
+  /// float (float32) and double (float64); ROS `byte` and `char` are uint8_t.
+  template <typename T>
+  T Read();
   /// A string; the terminating NUL is dropped (a length of 0 reads as "").
   std::string ReadString();
 
@@ -63,8 +57,6 @@ class CdrReader {
 
  private:
   void Align(std::size_t n);
-  template <typename T>
-  T ReadAligned();
 
   internal::ByteReader reader_;
 };
@@ -76,16 +68,9 @@ class CdrWriter {
   CdrWriter();
 
   void WriteBool(bool v);
-  void WriteInt8(std::int8_t v);
-  void WriteUint8(std::uint8_t v);
-  void WriteInt16(std::int16_t v);
-  void WriteUint16(std::uint16_t v);
-  void WriteInt32(std::int32_t v);
-  void WriteUint32(std::uint32_t v);
-  void WriteInt64(std::int64_t v);
-  void WriteUint64(std::uint64_t v);
-  void WriteFloat32(float v);
-  void WriteFloat64(double v);
+  /// One number, aligned to its size (the types of Read).
+  template <typename T>
+  void Write(T v);
   void WriteString(std::string_view s);
   void WriteSequenceLength(std::uint32_t count);
   void WriteFloat32Sequence(std::span<const float> values);
@@ -100,8 +85,6 @@ class CdrWriter {
 
  private:
   void Align(std::size_t n);
-  template <typename T>
-  void WriteAligned(T v);
 
   std::vector<std::uint8_t> data_;
 };

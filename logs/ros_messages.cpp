@@ -129,38 +129,38 @@ struct Header {
 
 Header ReadHeader(CdrReader& r) {
   RosTime t;
-  t.sec = r.ReadInt32();
-  t.nanosec = r.ReadUint32();
+  t.sec = r.Read<std::int32_t>();
+  t.nanosec = r.Read<std::uint32_t>();
   return {StampSeconds(t), r.ReadString()};
 }
 
 void WriteHeader(CdrWriter& w, double stamp, std::string_view frame_id) {
   const RosTime t = ToRosTime(stamp);
-  w.WriteInt32(t.sec);
-  w.WriteUint32(t.nanosec);
+  w.Write<std::int32_t>(t.sec);
+  w.Write<std::uint32_t>(t.nanosec);
   w.WriteString(frame_id);
 }
 
 // geometry_msgs/Point (or Vector3) and Quaternion, projected onto the plane.
 core::Pose2 ReadPlanarPose(CdrReader& r) {
-  const double x = r.ReadFloat64();
-  const double y = r.ReadFloat64();
-  r.ReadFloat64();  // z
-  const double qx = r.ReadFloat64();
-  const double qy = r.ReadFloat64();
-  const double qz = r.ReadFloat64();
-  const double qw = r.ReadFloat64();
+  const double x = r.Read<double>();
+  const double y = r.Read<double>();
+  r.Read<double>();  // z
+  const double qx = r.Read<double>();
+  const double qy = r.Read<double>();
+  const double qz = r.Read<double>();
+  const double qw = r.Read<double>();
   return core::Pose2(x, y, YawFromQuaternion(qx, qy, qz, qw));
 }
 
 void WritePlanarPose(CdrWriter& w, const core::Pose2& pose) {
-  w.WriteFloat64(pose.x);
-  w.WriteFloat64(pose.y);
-  w.WriteFloat64(0.0);
-  w.WriteFloat64(0.0);
-  w.WriteFloat64(0.0);
-  w.WriteFloat64(std::sin(0.5 * pose.theta));
-  w.WriteFloat64(std::cos(0.5 * pose.theta));
+  w.Write<double>(pose.x);
+  w.Write<double>(pose.y);
+  w.Write<double>(0.0);
+  w.Write<double>(0.0);
+  w.Write<double>(0.0);
+  w.Write<double>(std::sin(0.5 * pose.theta));
+  w.Write<double>(std::cos(0.5 * pose.theta));
 }
 
 // Runs `decode` on a reader over `cdr`, prefixing any IoError with the type name.
@@ -230,13 +230,13 @@ ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr) {
     Header h = ReadHeader(r);
     m.scan.stamp = h.stamp;
     m.frame_id = std::move(h.frame_id);
-    const float angle_min = r.ReadFloat32();
-    const float angle_max = r.ReadFloat32();
-    const float angle_increment = r.ReadFloat32();
-    r.ReadFloat32();  // time_increment
-    r.ReadFloat32();  // scan_time
-    m.scan.range_min = r.ReadFloat32();
-    m.scan.range_max = r.ReadFloat32();
+    const float angle_min = r.Read<float>();
+    const float angle_max = r.Read<float>();
+    const float angle_increment = r.Read<float>();
+    r.Read<float>();  // time_increment
+    r.Read<float>();  // scan_time
+    m.scan.range_min = r.Read<float>();
+    m.scan.range_max = r.Read<float>();
     m.scan.ranges = r.ReadFloat32Sequence();
     r.ReadFloat32Sequence();  // intensities
     m.scan.angle_min = angle_min;
@@ -273,13 +273,13 @@ std::vector<std::uint8_t> EncodeLaserScan(const ScanMessage& message) {
   CdrWriter w;
   WriteHeader(w, s.stamp, message.frame_id);
   const double angle_max = s.size() > 0 ? s.Angle(s.size() - 1) : s.angle_min;
-  w.WriteFloat32(static_cast<float>(s.angle_min));
-  w.WriteFloat32(static_cast<float>(angle_max));
-  w.WriteFloat32(static_cast<float>(s.angle_increment));
-  w.WriteFloat32(0.0f);  // time_increment
-  w.WriteFloat32(0.0f);  // scan_time
-  w.WriteFloat32(static_cast<float>(s.range_min));
-  w.WriteFloat32(static_cast<float>(s.range_max));
+  w.Write<float>(static_cast<float>(s.angle_min));
+  w.Write<float>(static_cast<float>(angle_max));
+  w.Write<float>(static_cast<float>(s.angle_increment));
+  w.Write<float>(0.0f);  // time_increment
+  w.Write<float>(0.0f);  // scan_time
+  w.Write<float>(static_cast<float>(s.range_min));
+  w.Write<float>(static_cast<float>(s.range_max));
   w.WriteFloat32Sequence(s.ranges);
   w.WriteFloat32Sequence({});  // intensities
   return w.Take();

@@ -74,8 +74,6 @@ class BeamModel {
   /// Terms of a reading z (m) for an expected range z_star (m; kNoHit or anything >= range_max
   /// means range_max).
   Terms Evaluate(double z, double z_star) const;
-  /// p_beam(z | z*) (1/m, or a probability mass at z >= range_max).
-  double Density(double z, double z_star) const { return Evaluate(z, z_star).total; }
 
   /// The per-reading factor exp(-λ z), shared by all particles (for EvaluateFast).
   double ShortDecay(double z) const;

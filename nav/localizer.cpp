@@ -546,20 +546,6 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
   return out;
 }
 
-Eigen::Matrix3d Localizer::Covariance() const {
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  if (particles_.empty()) return cov;
-  const core::Pose2 mean = Estimate();
-  double total = 0.0;
-  for (const Particle& p : particles_) {
-    const Eigen::Vector3d d(p.X_MR.x - mean.x, p.X_MR.y - mean.y,
-                            core::AngleDiff(p.X_MR.theta, mean.theta));
-    cov += p.weight * (d * d.transpose());
-    total += p.weight;
-  }
-  return total > 0.0 ? Eigen::Matrix3d(cov / total) : cov;
-}
-
 void Localizer::ApplyMapSwitch(const core::OccupancyGrid& next_map, const core::Pose2& X_new_old) {
   for (Particle& p : particles_) p.X_MR = X_new_old * p.X_MR;  // eq. (1)
   estimate_ = X_new_old * Estimate();

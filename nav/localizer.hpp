@@ -264,9 +264,6 @@ class Localizer {
   /// after the main cluster has stayed there for augmented.confirm_updates updates. A single
   /// update therefore cannot carry the estimate far. The identity before Initialize.
   core::Pose2 Estimate() const;
-  /// Weighted covariance of all particles' (x, y, θ) around Estimate() (m², m·rad, rad²); θ
-  /// differences wrapped to [-π, π).
-  Eigen::Matrix3d Covariance() const;
   /// Paper eq. (1) at a map switch: every particle becomes X_new_old * X_old_R (so does the
   /// estimate), then next_map replaces the map as in SetMap.
   /// X_new_old is the old map frame in the new one, i.e. inverse(X_{M_k S}) (docs/DESIGN.md §2).
@@ -275,8 +272,7 @@ class Localizer {
   const std::vector<Particle>& particles() const { return particles_; }
   const LocalizerConfig& config() const { return config_; }
   const RobotGeometry& robot() const { return robot_; }
-  bool has_map() const { return field_ != nullptr; }
-  /// The current map's likelihood field (requires has_map()).
+  /// The current map's likelihood field (requires a map: SetMap).
   const LikelihoodField& likelihood_field() const;
   /// As of the last update: the belief explains the scans much worse than it used to.
   bool lost() const { return lost_; }

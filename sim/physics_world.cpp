@@ -292,13 +292,4 @@ std::vector<CollisionEvent> PhysicsWorld::TakeCollisions() {
   return std::exchange(impl_->listener.events, {});
 }
 
-int PhysicsWorld::RobotContactCount() const {
-  if (!has_robot()) return 0;
-  int n = 0;
-  for (const b2ContactEdge* e = impl_->robot->GetContactList(); e != nullptr; e = e->next) {
-    if (e->contact->IsTouching()) ++n;
-  }
-  return n;
-}
-
 }  // namespace retrace::sim

@@ -99,8 +99,6 @@ class PhysicsWorld {
   // --- Collisions --------------------------------------------------------------------------
   /// Returns the collision events recorded since the last call and forgets them.
   std::vector<CollisionEvent> TakeCollisions();
-  /// Contacts currently touching the robot (static or pedestrian), for diagnostics.
-  int RobotContactCount() const;
 
  private:
   struct Impl;

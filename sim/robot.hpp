@@ -68,8 +68,6 @@ class Robot {
   const core::Twist& setpoint() const { return setpoint_; }
   /// Ground-truth pose X_WR.
   core::Pose2 Pose(const PhysicsWorld& world) const { return world.RobotPose(); }
-  /// Actual body twist in R (forward speed m/s, yaw rate rad/s) as Box2D moved it.
-  core::Twist MeasuredTwist(const PhysicsWorld& world) const { return world.RobotTwist(); }
 
   /// Moves the robot to X_WR at rest and clears command and set-point (between runs).
   /// Throws core::WorldError like the constructor.

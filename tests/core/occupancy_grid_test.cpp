@@ -21,10 +21,10 @@ TEST(OccupancyGrid, WorldToCellAndBackAreConsistent) {
   EXPECT_TRUE(grid.Contains({99, 49}));
 }
 
-TEST(OccupancyGrid, StartsUnknownAndClampsLogOdds) {
+TEST(OccupancyGrid, StartsUnknownAndStoresLogOdds) {
   OccupancyGrid grid(4, 4, 0.5, Vec2::Zero());
   EXPECT_DOUBLE_EQ(grid.Probability({1, 1}), 0.5);
-  for (int i = 0; i < 100; ++i) grid.AddLogOdds({1, 1}, 0.9f, -2.0f, 3.5f);
+  grid.SetLogOdds({1, 1}, 3.5f);
   EXPECT_FLOAT_EQ(grid.LogOdds({1, 1}), 3.5f);
   grid.SetProbability({2, 2}, 0.2);
   EXPECT_NEAR(grid.Probability({2, 2}), 0.2, 1e-6);

@@ -5,12 +5,10 @@
 namespace retrace::core {
 namespace {
 
-TEST(Path, ArcLengthNearestAndInterpolation) {
+TEST(Path, ArcLengthAndInterpolation) {
   const Path path({{0, 0, 0}, {3, 0, 0}, {3, 4, kPi / 2}});
   EXPECT_DOUBLE_EQ(path.Length(), 7.0);
   EXPECT_DOUBLE_EQ(path.ArcLength(1), 3.0);
-  EXPECT_EQ(path.NearestIndex({2.9, 1.0}), 1u);
-  EXPECT_EQ(path.NearestIndex({-1.0, 0.0}), 0u);
   const Pose2 mid = path.AtArcLength(5.0);
   EXPECT_NEAR(mid.x, 3.0, 1e-12);
   EXPECT_NEAR(mid.y, 2.0, 1e-12);

@@ -37,12 +37,12 @@ TEST(CdrReader, ReadsLittleEndianPrimitivesAlignedAfterTheHeader) {
   CdrReader r(b);
   EXPECT_EQ(r.byte_order(), std::endian::little);
   EXPECT_TRUE(r.ReadBool());
-  EXPECT_EQ(r.ReadUint16(), 0x1234);
-  EXPECT_EQ(r.ReadUint32(), 0x12345678u);
-  EXPECT_EQ(r.ReadInt8(), -1);
-  EXPECT_EQ(r.ReadUint64(), 0x0102030405060708ull);
-  EXPECT_EQ(r.ReadFloat32(), 1.5f);
-  EXPECT_EQ(r.ReadFloat64(), -2.5);
+  EXPECT_EQ(r.Read<std::uint16_t>(), 0x1234);
+  EXPECT_EQ(r.Read<std::uint32_t>(), 0x12345678u);
+  EXPECT_EQ(r.Read<std::int8_t>(), -1);
+  EXPECT_EQ(r.Read<std::uint64_t>(), 0x0102030405060708ull);
+  EXPECT_EQ(r.Read<float>(), 1.5f);
+  EXPECT_EQ(r.Read<double>(), -2.5);
   EXPECT_EQ(r.ReadString(), "hi");
   EXPECT_EQ(r.remaining(), 0u);
 }
@@ -59,17 +59,17 @@ TEST(CdrReader, ReadsBigEndian) {
   };
   CdrReader r(b);
   EXPECT_EQ(r.byte_order(), std::endian::big);
-  EXPECT_EQ(r.ReadInt16(), -2);
+  EXPECT_EQ(r.Read<std::int16_t>(), -2);
   EXPECT_EQ(r.ReadFloat32Sequence(), (std::vector<float>{1.5f, -2.5f}));
-  EXPECT_EQ(r.ReadFloat64(), -2.5);
+  EXPECT_EQ(r.Read<double>(), -2.5);
 }
 
 TEST(CdrWriter, LaysOutFieldsAsFastCdrDoes) {
   CdrWriter w;
-  w.WriteUint8(7);
-  w.WriteUint32(2);
+  w.Write<std::uint8_t>(7);
+  w.Write<std::uint32_t>(2);
   w.WriteString("ab");
-  w.WriteFloat64(1.0);
+  w.Write<double>(1.0);
   const Buffer expected = {0x00, 0x01, 0x00, 0x00,                           // header
                            0x07, 0x00, 0x00, 0x00,                           // uint8, pad
                            0x02, 0x00, 0x00, 0x00,                           // uint32
@@ -83,26 +83,26 @@ TEST(CdrWriter, EmptySequenceAddsNoPadding) {
   // uint32 count 0 at 0, then int32 at 4: an empty float64 sequence must not align to 8.
   CdrWriter w;
   w.WriteFloat64Sequence({});
-  w.WriteInt32(-1);
+  w.Write<std::int32_t>(-1);
   EXPECT_EQ(w.data().size(), 4u + 8u);
   CdrReader r(w.data());
   EXPECT_TRUE(r.ReadFloat64Sequence().empty());
-  EXPECT_EQ(r.ReadInt32(), -1);
+  EXPECT_EQ(r.Read<std::int32_t>(), -1);
 }
 
 TEST(CdrWriter, RoundTripsEveryType) {
   CdrWriter w;
   w.WriteBool(false);
-  w.WriteInt8(-128);
-  w.WriteUint8(255);
-  w.WriteInt16(-32768);
-  w.WriteUint16(65535);
-  w.WriteInt32(std::numeric_limits<std::int32_t>::min());
-  w.WriteUint32(std::numeric_limits<std::uint32_t>::max());
-  w.WriteInt64(std::numeric_limits<std::int64_t>::min());
-  w.WriteUint64(std::numeric_limits<std::uint64_t>::max());
-  w.WriteFloat32(std::numeric_limits<float>::infinity());
-  w.WriteFloat64(std::numeric_limits<double>::quiet_NaN());
+  w.Write<std::int8_t>(-128);
+  w.Write<std::uint8_t>(255);
+  w.Write<std::int16_t>(-32768);
+  w.Write<std::uint16_t>(65535);
+  w.Write<std::int32_t>(std::numeric_limits<std::int32_t>::min());
+  w.Write<std::uint32_t>(std::numeric_limits<std::uint32_t>::max());
+  w.Write<std::int64_t>(std::numeric_limits<std::int64_t>::min());
+  w.Write<std::uint64_t>(std::numeric_limits<std::uint64_t>::max());
+  w.Write<float>(std::numeric_limits<float>::infinity());
+  w.Write<double>(std::numeric_limits<double>::quiet_NaN());
   w.WriteString("");
   w.WriteString("frame");
   const std::vector<float> floats = {1.0f, -0.0f, std::numeric_limits<float>::quiet_NaN()};
@@ -113,16 +113,16 @@ TEST(CdrWriter, RoundTripsEveryType) {
 
   CdrReader r(w.data());
   EXPECT_FALSE(r.ReadBool());
-  EXPECT_EQ(r.ReadInt8(), -128);
-  EXPECT_EQ(r.ReadUint8(), 255);
-  EXPECT_EQ(r.ReadInt16(), -32768);
-  EXPECT_EQ(r.ReadUint16(), 65535);
-  EXPECT_EQ(r.ReadInt32(), std::numeric_limits<std::int32_t>::min());
-  EXPECT_EQ(r.ReadUint32(), std::numeric_limits<std::uint32_t>::max());
-  EXPECT_EQ(r.ReadInt64(), std::numeric_limits<std::int64_t>::min());
-  EXPECT_EQ(r.ReadUint64(), std::numeric_limits<std::uint64_t>::max());
-  EXPECT_EQ(r.ReadFloat32(), std::numeric_limits<float>::infinity());
-  EXPECT_TRUE(std::isnan(r.ReadFloat64()));
+  EXPECT_EQ(r.Read<std::int8_t>(), -128);
+  EXPECT_EQ(r.Read<std::uint8_t>(), 255);
+  EXPECT_EQ(r.Read<std::int16_t>(), -32768);
+  EXPECT_EQ(r.Read<std::uint16_t>(), 65535);
+  EXPECT_EQ(r.Read<std::int32_t>(), std::numeric_limits<std::int32_t>::min());
+  EXPECT_EQ(r.Read<std::uint32_t>(), std::numeric_limits<std::uint32_t>::max());
+  EXPECT_EQ(r.Read<std::int64_t>(), std::numeric_limits<std::int64_t>::min());
+  EXPECT_EQ(r.Read<std::uint64_t>(), std::numeric_limits<std::uint64_t>::max());
+  EXPECT_EQ(r.Read<float>(), std::numeric_limits<float>::infinity());
+  EXPECT_TRUE(std::isnan(r.Read<double>()));
   EXPECT_EQ(r.ReadString(), "");
   EXPECT_EQ(r.ReadString(), "frame");
   const std::vector<float> f = r.ReadFloat32Sequence();
@@ -186,19 +186,19 @@ TEST(CdrReader, RefusesAHugeSequenceCountBeforeAllocating) {
 TEST(CdrReader, RefusesTruncatedPrimitivesAndBadBools) {
   const Buffer b = {0x00, 0x01, 0x00, 0x00, 0x02, 0x00, 0x00};
   EXPECT_EQ(IoErrorOf([&] { CdrReader(b).ReadBool(); }), "bool of value 2 at byte 0");
-  EXPECT_EQ(IoErrorOf([&] { CdrReader(b).ReadUint32(); }),
+  EXPECT_EQ(IoErrorOf([&] { CdrReader(b).Read<std::uint32_t>(); }),
             "truncated: needs 4 bytes at byte 0, 3 left");
-  EXPECT_EQ(IoErrorOf([&] { CdrReader(b).ReadFloat64(); }),
+  EXPECT_EQ(IoErrorOf([&] { CdrReader(b).Read<double>(); }),
             "truncated: needs 8 bytes at byte 0, 3 left");
   CdrReader r(b);
-  r.ReadUint8();
-  EXPECT_EQ(IoErrorOf([&] { r.ReadUint32(); }), "truncated: needs 3 bytes at byte 1, 2 left");
+  r.Read<std::uint8_t>();
+  EXPECT_EQ(IoErrorOf([&] { r.Read<std::uint32_t>(); }), "truncated: needs 3 bytes at byte 1, 2 left");
 }
 
 TEST(CdrReader, EveryPrefixOfAMessageIsRefused) {
   CdrWriter w;
   w.WriteString("laser");
-  w.WriteFloat64(1.0);
+  w.Write<double>(1.0);
   w.WriteFloat32Sequence(std::vector<float>{1, 2, 3});
   const Buffer& full = w.data();
   for (std::size_t n = 0; n < full.size(); ++n) {
@@ -206,7 +206,7 @@ TEST(CdrReader, EveryPrefixOfAMessageIsRefused) {
     EXPECT_NE(IoErrorOf([&] {
                 CdrReader r(prefix);
                 r.ReadString();
-                r.ReadFloat64();
+                r.Read<double>();
                 r.ReadFloat32Sequence();
               }),
               "")

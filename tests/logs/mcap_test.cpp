@@ -225,18 +225,18 @@ struct BasicTypes {
 BasicTypes ReadBasicTypes(CdrReader& r) {
   BasicTypes b;
   b.bool_value = r.ReadBool();
-  b.byte_value = r.ReadUint8();
-  b.char_value = r.ReadUint8();
-  b.float32_value = r.ReadFloat32();
-  b.float64_value = r.ReadFloat64();
-  b.int8_value = r.ReadInt8();
-  b.uint8_value = r.ReadUint8();
-  b.int16_value = r.ReadInt16();
-  b.uint16_value = r.ReadUint16();
-  b.int32_value = r.ReadInt32();
-  b.uint32_value = r.ReadUint32();
-  b.int64_value = r.ReadInt64();
-  b.uint64_value = r.ReadUint64();
+  b.byte_value = r.Read<std::uint8_t>();
+  b.char_value = r.Read<std::uint8_t>();
+  b.float32_value = r.Read<float>();
+  b.float64_value = r.Read<double>();
+  b.int8_value = r.Read<std::int8_t>();
+  b.uint8_value = r.Read<std::uint8_t>();
+  b.int16_value = r.Read<std::int16_t>();
+  b.uint16_value = r.Read<std::uint16_t>();
+  b.int32_value = r.Read<std::int32_t>();
+  b.uint32_value = r.Read<std::uint32_t>();
+  b.int64_value = r.Read<std::int64_t>();
+  b.uint64_value = r.Read<std::uint64_t>();
   return b;
 }
 
@@ -246,49 +246,49 @@ void ExpectCdrTestArrays(std::span<const std::uint8_t> data) {
   EXPECT_TRUE(r.ReadBool());  // bool_values {true, false, true}
   EXPECT_FALSE(r.ReadBool());
   EXPECT_TRUE(r.ReadBool());
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadUint8(), 0);  // byte_values
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadUint8(), 0);  // char_values
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadFloat32(), 0.0f);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadFloat64(), 0.0);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadInt8(), 0);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadUint8(), 0);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadInt16(), 0);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadUint16(), 0);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadInt32(), 0);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadUint32(), 0u);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadInt64(), 0);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadUint64(), 0u);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::uint8_t>(), 0);  // byte_values
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::uint8_t>(), 0);  // char_values
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<float>(), 0.0f);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<double>(), 0.0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::int8_t>(), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::uint8_t>(), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::int16_t>(), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::uint16_t>(), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::int32_t>(), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::uint32_t>(), 0u);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::int64_t>(), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::uint64_t>(), 0u);
   EXPECT_EQ(r.ReadString(), "Complex Hello1");  // string_values
   EXPECT_EQ(r.ReadString(), "Complex Hello2");
   EXPECT_EQ(r.ReadString(), "Complex Hello3");
   for (int i = 0; i < 3; ++i) EXPECT_EQ(ReadBasicTypes(r), BasicTypes{});  // basic_types_values
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.ReadUint8(), 0);  // constants_values: empty structs
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.Read<std::uint8_t>(), 0);  // constants_values: empty structs
   const BasicTypes defaults{true,  50,   100,    1.125f, 1.125,     -50,     200,
                             -1000, 2000, -30000, 60000,  -40000000, 50000000};
   for (int i = 0; i < 3; ++i) EXPECT_EQ(ReadBasicTypes(r), defaults);  // defaults_values
   EXPECT_FALSE(r.ReadBool());  // bool_values_default {false, true, false}
   EXPECT_TRUE(r.ReadBool());
   EXPECT_FALSE(r.ReadBool());
-  for (int v : {0, 1, 255}) EXPECT_EQ(r.ReadUint8(), v);  // byte_values_default
-  for (int v : {0, 1, 127}) EXPECT_EQ(r.ReadUint8(), v);  // char_values_default
-  for (float v : {1.125f, 0.0f, -1.125f}) EXPECT_EQ(r.ReadFloat32(), v);
-  for (double v : {3.1415, 0.0, -3.1415}) EXPECT_EQ(r.ReadFloat64(), v);
-  for (int v : {0, 127, -128}) EXPECT_EQ(r.ReadInt8(), v);
-  for (int v : {0, 1, 255}) EXPECT_EQ(r.ReadUint8(), v);
-  for (int v : {0, 32767, -32768}) EXPECT_EQ(r.ReadInt16(), v);
-  for (int v : {0, 1, 65535}) EXPECT_EQ(r.ReadUint16(), v);
-  for (std::int32_t v : {0, 2147483647, -2147483647 - 1}) EXPECT_EQ(r.ReadInt32(), v);
-  for (std::uint32_t v : {0u, 1u, 4294967295u}) EXPECT_EQ(r.ReadUint32(), v);
-  EXPECT_EQ(r.ReadInt64(), 0);
-  EXPECT_EQ(r.ReadInt64(), std::numeric_limits<std::int64_t>::max());
-  EXPECT_EQ(r.ReadInt64(), std::numeric_limits<std::int64_t>::min());
-  EXPECT_EQ(r.ReadUint64(), 0u);
-  EXPECT_EQ(r.ReadUint64(), 1u);
-  EXPECT_EQ(r.ReadUint64(), std::numeric_limits<std::uint64_t>::max());
+  for (int v : {0, 1, 255}) EXPECT_EQ(r.Read<std::uint8_t>(), v);  // byte_values_default
+  for (int v : {0, 1, 127}) EXPECT_EQ(r.Read<std::uint8_t>(), v);  // char_values_default
+  for (float v : {1.125f, 0.0f, -1.125f}) EXPECT_EQ(r.Read<float>(), v);
+  for (double v : {3.1415, 0.0, -3.1415}) EXPECT_EQ(r.Read<double>(), v);
+  for (int v : {0, 127, -128}) EXPECT_EQ(r.Read<std::int8_t>(), v);
+  for (int v : {0, 1, 255}) EXPECT_EQ(r.Read<std::uint8_t>(), v);
+  for (int v : {0, 32767, -32768}) EXPECT_EQ(r.Read<std::int16_t>(), v);
+  for (int v : {0, 1, 65535}) EXPECT_EQ(r.Read<std::uint16_t>(), v);
+  for (std::int32_t v : {0, 2147483647, -2147483647 - 1}) EXPECT_EQ(r.Read<std::int32_t>(), v);
+  for (std::uint32_t v : {0u, 1u, 4294967295u}) EXPECT_EQ(r.Read<std::uint32_t>(), v);
+  EXPECT_EQ(r.Read<std::int64_t>(), 0);
+  EXPECT_EQ(r.Read<std::int64_t>(), std::numeric_limits<std::int64_t>::max());
+  EXPECT_EQ(r.Read<std::int64_t>(), std::numeric_limits<std::int64_t>::min());
+  EXPECT_EQ(r.Read<std::uint64_t>(), 0u);
+  EXPECT_EQ(r.Read<std::uint64_t>(), 1u);
+  EXPECT_EQ(r.Read<std::uint64_t>(), std::numeric_limits<std::uint64_t>::max());
   EXPECT_EQ(r.ReadString(), "");  // string_values_default
   EXPECT_EQ(r.ReadString(), "max value");
   EXPECT_EQ(r.ReadString(), "min value");
-  EXPECT_EQ(r.ReadInt32(), 0);  // alignment_check
+  EXPECT_EQ(r.Read<std::int32_t>(), 0);  // alignment_check
   EXPECT_EQ(r.remaining(), 0u);
 }
 

@@ -75,16 +75,16 @@ TEST(LaserScanCodec, RoundTripsWithNanAndInfiniteRanges) {
 TEST(LaserScanCodec, WritesAngleMaxAsTheLastBeamsAngle) {
   const Buffer b = EncodeLaserScan(SampleScan());
   CdrReader r(b);
-  r.ReadInt32();
-  r.ReadUint32();
+  r.Read<std::int32_t>();
+  r.Read<std::uint32_t>();
   EXPECT_EQ(r.ReadString(), "laser");
-  EXPECT_EQ(r.ReadFloat32(), -1.5f);
-  EXPECT_EQ(r.ReadFloat32(), -1.5f + 12 * 0.25f);  // angle_max
-  EXPECT_EQ(r.ReadFloat32(), 0.25f);
-  EXPECT_EQ(r.ReadFloat32(), 0.0f);  // time_increment
-  EXPECT_EQ(r.ReadFloat32(), 0.0f);  // scan_time
-  EXPECT_EQ(r.ReadFloat32(), 0.125f);
-  EXPECT_EQ(r.ReadFloat32(), 30.0f);
+  EXPECT_EQ(r.Read<float>(), -1.5f);
+  EXPECT_EQ(r.Read<float>(), -1.5f + 12 * 0.25f);  // angle_max
+  EXPECT_EQ(r.Read<float>(), 0.25f);
+  EXPECT_EQ(r.Read<float>(), 0.0f);  // time_increment
+  EXPECT_EQ(r.Read<float>(), 0.0f);  // scan_time
+  EXPECT_EQ(r.Read<float>(), 0.125f);
+  EXPECT_EQ(r.Read<float>(), 30.0f);
   EXPECT_EQ(r.ReadFloat32Sequence().size(), 13u);
   EXPECT_TRUE(r.ReadFloat32Sequence().empty());  // intensities
   EXPECT_EQ(r.remaining(), 0u);
@@ -93,16 +93,16 @@ TEST(LaserScanCodec, WritesAngleMaxAsTheLastBeamsAngle) {
 // A LaserScan built field by field with the given angles and ranges.
 Buffer HandBuiltScan(float angle_min, float angle_max, float increment, std::vector<float> ranges) {
   CdrWriter w;
-  w.WriteInt32(100);
-  w.WriteUint32(500'000'000);
+  w.Write<std::int32_t>(100);
+  w.Write<std::uint32_t>(500'000'000);
   w.WriteString("base_scan");
-  w.WriteFloat32(angle_min);
-  w.WriteFloat32(angle_max);
-  w.WriteFloat32(increment);
-  w.WriteFloat32(0.001f);
-  w.WriteFloat32(0.1f);
-  w.WriteFloat32(0.02f);
-  w.WriteFloat32(5.6f);
+  w.Write<float>(angle_min);
+  w.Write<float>(angle_max);
+  w.Write<float>(increment);
+  w.Write<float>(0.001f);
+  w.Write<float>(0.1f);
+  w.Write<float>(0.02f);
+  w.Write<float>(5.6f);
   w.WriteFloat32Sequence(ranges);
   w.WriteFloat32Sequence(std::vector<float>(ranges.size(), 100.0f));  // intensities
   return w.Take();
@@ -183,11 +183,11 @@ TEST(LaserScanCodec, RefusesMalformedMessages) {
                            "sensor_msgs/msg/LaserScan");
   // A range count of 2^32 - 1 is refused before anything is allocated.
   CdrWriter w;
-  w.WriteInt32(0);
-  w.WriteUint32(0);
+  w.Write<std::int32_t>(0);
+  w.Write<std::uint32_t>(0);
   w.WriteString("");
-  for (int i = 0; i < 7; ++i) w.WriteFloat32(0.0f);
-  w.WriteUint32(0xFFFFFFFFu);
+  for (int i = 0; i < 7; ++i) w.Write<float>(0.0f);
+  w.Write<std::uint32_t>(0xFFFFFFFFu);
   EXPECT_TRUE(Contains(IoErrorOf([&] { DecodeLaserScan(w.data()); }),
                        "sensor_msgs/msg/LaserScan: sequence of 4294967295 elements"));
   EXPECT_TRUE(Contains(IoErrorOf([] {
@@ -213,24 +213,24 @@ TEST(OdometryCodec, RoundTripsThePlanarPoseAndWritesTheTwist) {
 
   // The layout field by field: header, child frame, pose, covariance, twist, covariance.
   CdrReader r(b);
-  EXPECT_EQ(r.ReadInt32(), -4);
-  EXPECT_EQ(r.ReadUint32(), 250'000'000u);
+  EXPECT_EQ(r.Read<std::int32_t>(), -4);
+  EXPECT_EQ(r.Read<std::uint32_t>(), 250'000'000u);
   EXPECT_EQ(r.ReadString(), "odom");
   EXPECT_EQ(r.ReadString(), "base_link");
-  EXPECT_EQ(r.ReadFloat64(), 1.5);
-  EXPECT_EQ(r.ReadFloat64(), -2.25);
-  EXPECT_EQ(r.ReadFloat64(), 0.0);
-  EXPECT_EQ(r.ReadFloat64(), 0.0);
-  EXPECT_EQ(r.ReadFloat64(), 0.0);
-  EXPECT_NEAR(r.ReadFloat64(), std::sin(1.0), 1e-15);
-  EXPECT_NEAR(r.ReadFloat64(), std::cos(1.0), 1e-15);
+  EXPECT_EQ(r.Read<double>(), 1.5);
+  EXPECT_EQ(r.Read<double>(), -2.25);
+  EXPECT_EQ(r.Read<double>(), 0.0);
+  EXPECT_EQ(r.Read<double>(), 0.0);
+  EXPECT_EQ(r.Read<double>(), 0.0);
+  EXPECT_NEAR(r.Read<double>(), std::sin(1.0), 1e-15);
+  EXPECT_NEAR(r.Read<double>(), std::cos(1.0), 1e-15);
   r.SkipFloat64Array(36);
-  EXPECT_EQ(r.ReadFloat64(), 0.5);
-  EXPECT_EQ(r.ReadFloat64(), 0.0);
-  EXPECT_EQ(r.ReadFloat64(), 0.0);
-  EXPECT_EQ(r.ReadFloat64(), 0.0);
-  EXPECT_EQ(r.ReadFloat64(), 0.0);
-  EXPECT_EQ(r.ReadFloat64(), -0.25);
+  EXPECT_EQ(r.Read<double>(), 0.5);
+  EXPECT_EQ(r.Read<double>(), 0.0);
+  EXPECT_EQ(r.Read<double>(), 0.0);
+  EXPECT_EQ(r.Read<double>(), 0.0);
+  EXPECT_EQ(r.Read<double>(), 0.0);
+  EXPECT_EQ(r.Read<double>(), -0.25);
   r.SkipFloat64Array(36);
   EXPECT_EQ(r.remaining(), 0u);
 
@@ -284,8 +284,8 @@ TEST(PoseStampedCodec, RoundTrips) {
 // A PoseStamped with the given quaternion.
 Buffer PoseWithQuaternion(double x, double y, double z, double w) {
   CdrWriter b;
-  b.WriteInt32(1);
-  b.WriteUint32(0);
+  b.Write<std::int32_t>(1);
+  b.Write<std::uint32_t>(0);
   b.WriteString("map");
   b.WriteFloat64Array(std::vector<double>{0.0, 0.0, 0.0, x, y, z, w});
   return b.Take();

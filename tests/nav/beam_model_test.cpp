@@ -23,10 +23,10 @@ double Integral(const BeamModel& m, double z_star) {
   const int n = 600000;
   const double h = r / n;
   double s = 0.0;
-  for (int i = 0; i < n; ++i) s += m.Density((i + 0.5) * h, z_star) * h;
+  for (int i = 0; i < n; ++i) s += m.Evaluate((i + 0.5) * h, z_star).total * h;
   const BeamModelConfig& c = m.config();
   const double max_mass = c.z_max / (c.z_hit + c.z_short + c.z_max + c.z_rand);
-  EXPECT_GE(m.Density(r, z_star), max_mass);  // the point mass sits at range_max
+  EXPECT_GE(m.Evaluate(r, z_star).total, max_mass);  // the point mass sits at range_max
   return s + max_mass;
 }
 

@@ -97,8 +97,8 @@ TEST(Robot, RespectsSpeedAndAccelerationLimitsInMotion) {
   }
   EXPECT_NEAR(max_speed, c.max_speed, 1e-3);
   EXPECT_NEAR(max_yaw_rate, c.max_yaw_rate, 1e-3);
-  EXPECT_NEAR(robot.MeasuredTwist(world).v, -c.max_reverse_speed, 1e-4);
-  EXPECT_NEAR(robot.MeasuredTwist(world).omega, -c.max_yaw_rate, 1e-4);
+  EXPECT_NEAR(world.RobotTwist().v, -c.max_reverse_speed, 1e-4);
+  EXPECT_NEAR(world.RobotTwist().omega, -c.max_yaw_rate, 1e-4);
 }
 
 TEST(Robot, AcceleratesFromRestAlongTheExpectedProfile) {
@@ -140,7 +140,7 @@ TEST(Robot, BlockedByAWallStopsThereWhileTheSetpointStays) {
   EXPECT_GE(static_events, 1);
   EXPECT_NEAR(robot.setpoint().v, 1.0, 1e-12);
   // Pushing at 0.3 rad into the wall, the forward component that remains is the slide.
-  EXPECT_LT(robot.MeasuredTwist(world).v, 0.5);
+  EXPECT_LT(world.RobotTwist().v, 0.5);
   EXPECT_NEAR(robot.Pose(world).x, 2.0 - c.radius, 0.02);
 }
 
