@@ -3,9 +3,10 @@
 # which (internal/ folders included), that third-party types stay out of the public headers of
 # sim, nav and viz, and that CLI11 lives only in the command line. The layers, bottom up:
 #
-#   core → io → sim, nav, viz, logs → bench/engine → bench/metrics → bench/output, bench/suite,
-#   bench/sweep, bench/compare → bench/replay (on output) → bench/cli   (bench/worldgen and bench/crowd: on
-#   core, io and sim only; logs: only bench/replay and bench/cli read logs)
+#   core → io → sim, nav, viz, logs → bench/engine → bench/metrics → bench/output, bench/suite
+#   → bench/sweep, bench/compare, bench/replay, bench/worldgen (on output) → bench/calibration,
+#   bench/run → bench/cli (bench/crowd: on core, io, sim and viz; logs: only bench/replay,
+#   bench/calibration and bench/cli read logs; only bench/cli includes bench/calibration)
 #
 # The table of docs/DESIGN.md §1 checks every library's CMake links (parsed from the document
 # itself, below), so that a link cannot quietly allow what the includes may not do.
@@ -22,8 +23,8 @@ check() {  # check <dir> <file-glob> <forbidden include regex> <reason> [exempt 
     fail=1
   fi
 }
-harness='bench/(engine|metrics|output|suite|sweep|compare|replay|cli|worldgen|crowd)/'
-above_engine='bench/(metrics|output|suite|sweep|compare|replay|cli|worldgen|crowd)/'
+harness='bench/(engine|metrics|output|suite|sweep|compare|replay|calibration|run|cli|worldgen|crowd)/'
+above_engine='bench/(metrics|output|suite|sweep|compare|replay|calibration|run|cli|worldgen|crowd)/'
 check core '*' 'io/|sim/|nav/|viz/|bench/|yaml-cpp|box2d|opencv2|nlohmann|CLI/' "core depends on Eigen and std only"
 check io '*' 'sim/|nav/|logs/|viz/|bench/|box2d|CLI/' "io depends on core only"
 check sim '*' 'nav/|logs/|viz/|bench/|CLI/' "sim must not see nav, viz or bench"
@@ -36,20 +37,24 @@ for lib in sim nav viz logs; do
 done
 check bench/engine '*' "$above_engine|viz/|logs/|CLI/" \
   "the episode engine sees core, io, sim and nav only"
-check bench/metrics '*' 'bench/(output|suite|sweep|compare|replay|cli|worldgen|crowd)/|viz/|logs/|CLI/' \
+check bench/metrics '*' 'bench/(output|suite|sweep|compare|replay|calibration|run|cli|worldgen|crowd)/|viz/|logs/|CLI/' \
   "metrics depend on the engine only"
-check bench/output '*' 'bench/(suite|sweep|compare|replay|cli|worldgen|crowd)/|logs/|CLI/' \
+check bench/output '*' 'bench/(suite|sweep|compare|replay|calibration|run|cli|worldgen|crowd)/|logs/|CLI/' \
   "output depends on the engine, metrics and viz only"
-check bench/suite '*' 'bench/(output|sweep|compare|replay|cli|worldgen|crowd)/|viz/|logs/|CLI/' \
+check bench/suite '*' 'bench/(output|sweep|compare|replay|calibration|run|cli|worldgen|crowd)/|viz/|logs/|CLI/' \
   "suites depend on the engine and metrics only"
-check bench/sweep '*' 'bench/(output|suite|compare|replay|cli|worldgen|crowd)/|logs/|CLI/' \
-  "sweeps depend on the engine, metrics and viz only"
-check bench/compare '*' 'bench/(output|suite|sweep|replay|cli|worldgen|crowd)/|logs/|CLI/' \
-  "the comparison study depends on metrics and viz only"
-check bench/worldgen '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli|crowd)/|nav/|viz/|logs/|CLI/" "world generation depends on core, io and sim only"
-check bench/crowd '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|cli|worldgen)/|nav/|viz/|logs/|CLI/" "the crowd check depends on core, io and sim only"
-check bench/replay '*' 'bench/(suite|sweep|compare|cli|worldgen|crowd)/|CLI/' \
+check bench/sweep '*' 'bench/(suite|compare|replay|calibration|run|cli|worldgen|crowd)/|logs/|CLI/' \
+  "sweeps depend on output, the engine, metrics and viz only"
+check bench/compare '*' 'bench/(suite|sweep|replay|calibration|run|cli|worldgen|crowd)/|logs/|CLI/' \
+  "the comparison study depends on output, metrics and viz only"
+check bench/worldgen '*' "bench/(metrics|suite|sweep|compare|replay|calibration|run|cli|crowd)/|nav/|viz/|logs/|CLI/" "world generation depends on core, io, sim, the engine (clutter) and output (staged folders) only"
+check bench/crowd '*' "bench/(engine|metrics|output|suite|sweep|compare|replay|calibration|run|cli|worldgen)/|nav/|logs/|CLI/" "the crowd check depends on core, io, sim and viz only"
+check bench/replay '*' 'bench/(suite|sweep|compare|calibration|run|cli|worldgen|crowd)/|CLI/' \
   "replay depends on the engine, metrics, output, logs and viz only"
+check bench/calibration '*' 'bench/(suite|sweep|compare|run|cli|worldgen|crowd)/|CLI/' \
+  "calibration depends on replay, output, metrics, the engine, logs and viz only"
+check bench/run '*' 'bench/(suite|sweep|compare|calibration|cli|worldgen|crowd)/|CLI/' \
+  "a scenario run depends on replay, output, metrics, the engine and viz only"
 check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim, nav and logs kernels only"
 # The CMake links against the table of docs/DESIGN.md §1 ("The dependency picture"): each
 # row's target may link the targets its row lists, what those may use in turn, and core and io.

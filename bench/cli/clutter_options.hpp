@@ -1,8 +1,8 @@
 #pragma once
-// The clutter densities of `retrace generate-campus --scenario` and `retrace generate-tour`:
-// options that write the scenario's `clutter` block (bench/engine/clutter.hpp).
+// --clutter-density and --standing-density of `retrace generate-campus --scenario` and
+// `retrace generate-tour` (bench/worldgen/clutter_block.hpp writes the block they ask for).
 
-#include <string>
+#include "bench/worldgen/clutter_block.hpp"
 
 namespace CLI {
 class App;
@@ -10,21 +10,7 @@ class App;
 
 namespace retrace::bench {
 
-struct ClutterOptions {
-  double density = 0.0;           ///< --clutter-density: objects per m² of the band
-  double standing_density = 0.0;  ///< --standing-density: people standing still per m²
-  bool any() const { return density != 0.0 || standing_density != 0.0; }
-};
-
 /// Adds --clutter-density and --standing-density to `cmd`, writing into `options`.
 void AddClutterOptions(CLI::App* cmd, ClutterOptions* options);
-
-/// The scenario's clutter block for these densities, one line ending in a newline; "" when
-/// both are 0 (the scenario then has no clutter, as before these options). Throws
-/// core::ConfigError naming the option for a density the scenario would refuse.
-std::string ClutterBlock(const ClutterOptions& options);
-
-/// The options as they appear on a command line (" --clutter-density 0.03 ..."), "" at 0.
-std::string ClutterArguments(const ClutterOptions& options);
 
 }  // namespace retrace::bench

@@ -70,7 +70,7 @@ constexpr CommandSpec kCommands[] = {
     {"playback", "Play back a teach folder written by an earlier run or teach",
      DeclareRun<RunPhases::kPlaybackOnly>},
     {"world", "Load and check a world file, render it to a PNG",
-     [](CLI::App* c) { return DeclarePrinting(c, AddWorldOptions, RunWorldCommand); }},
+     [](CLI::App* c) { return DeclarePrinting(c, AddWorldOptions, RenderWorldFile); }},
     {"render", "Render the figures of a results folder again, without rerunning",
      [](CLI::App* c) { return DeclareQuiet(c, AddRenderOptions, RunRenderCommand); }},
     {"report",
@@ -79,14 +79,10 @@ constexpr CommandSpec kCommands[] = {
      [](CLI::App* c) { return DeclareQuiet(c, AddReportOptions, RunReportCommand); }},
     {"generate-campus",
      "Turn a route into a campus world: buildings, hedges, trees, poles, benches, pedestrians",
-     [](CLI::App* c) {
-       return DeclarePrinting(c, AddGenerateCampusOptions, RunGenerateCampusCommand);
-     }},
+     [](CLI::App* c) { return DeclarePrinting(c, AddGenerateCampusOptions, GenerateCampusWorld); }},
     {"generate-tour",
      "Write a random looped tour, a campus world round it and a scenario that drives it",
-     [](CLI::App* c) {
-       return DeclarePrinting(c, AddGenerateTourOptions, RunGenerateTourCommand);
-     }},
+     [](CLI::App* c) { return DeclarePrinting(c, AddGenerateTourOptions, GenerateTourFolder); }},
     {"compare",
      "Compare map modes over several seeds: paired differences with 95% confidence intervals",
      [](CLI::App* c) { return Declare(c, AddCompareOptions, RunCompareCommand); }},

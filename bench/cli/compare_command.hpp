@@ -2,13 +2,13 @@
 // `retrace compare`: the consistent-vs-partial study. For each of N scenario seeds one teaching
 // drive builds the maps of every mode, and each mode plays back R runs with the same playback
 // seeds; the per-seed metrics of the modes are then compared with confidence intervals over
-// seeds (bench/compare/comparison_report.hpp). Writes comparison.json, comparison.md and
-// comparison.png into one folder, published whole or not at all.
+// seeds. The study is one library call (bench/compare/comparison_study.hpp); it writes
+// comparison.json, comparison.md and comparison.png into one folder, published whole or not at
+// all.
 
-#include <filesystem>
-#include <optional>
 #include <string>
-#include <vector>
+
+#include "bench/compare/comparison_study.hpp"
 
 namespace CLI {
 class App;
@@ -17,14 +17,7 @@ class App;
 namespace retrace::bench {
 
 struct CompareOptions {
-  std::filesystem::path scenario;
-  std::vector<std::string> modes = {"all"};
-  std::string reference = "consistent";
-  int seeds = 5;               ///< scenario seeds seed, seed + 1, ...; >= 2
-  std::optional<int> repeats;  ///< playback runs per mode and seed; none: the scenario's
-  int jobs = 0;                ///< worker threads; 0: one per core
-  std::filesystem::path out;   ///< empty: results/compare/<scenario name>
-  std::vector<std::string> overrides;
+  ComparisonRequest request;
   bool report = true;  ///< write report.html at the end
 };
 

@@ -3,179 +3,14 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <charconv>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <nlohmann/json.hpp>
-#include <system_error>
 
 #include "bench/cli/cli_checks.hpp"
 #include "bench/cli/shared_options.hpp"
-#include "bench/crowd/fundamental_diagram.hpp"
-#include "core/errors.hpp"
-#include "io/config_yaml.hpp"
-#include "io/csv_writer.hpp"
-#include "io/json_writer.hpp"
-#include "viz/fundamental_diagram_figure.hpp"
+#include "bench/crowd/crowd_check.hpp"
 
 namespace retrace::bench {
-namespace {
-
-constexpr double kCheckTolerance = 0.15;
-
-std::string Fixed(double v, int decimals) {
-  if (!std::isfinite(v)) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
-  return buf;
-}
-
-std::string Percent(double v) { return std::isfinite(v) ? Fixed(100.0 * v, 1) + " %" : "-"; }
-
-void WriteFigure(const FundamentalDiagramResult& result, const FundamentalDiagramConfig& config,
-                 const std::filesystem::path& png) {
-  viz::FundamentalDiagramFigureData fig;
-  const WeidmannCurve curve;
-  for (double rho = 0.1; rho <= 4.6 + 1e-9; rho += 0.025) {
-    const double v = WeidmannSpeed(rho, curve);
-    fig.curve_density.push_back(rho);
-    fig.curve_speed.push_back(v);
-    fig.band_low.push_back((1.0 - result.tolerance) * v);
-    fig.band_high.push_back((1.0 + result.tolerance) * v);
-  }
-  fig.curve_label = "Weidmann (1993)";
-  fig.band_label = "+-" + Fixed(100.0 * result.tolerance, 0) + " %";
-  for (const FundamentalDiagramRow& row : result.rows) {
-    if (row.spawned) fig.points.push_back({row.density, row.mean_speed, row.speed_std});
-  }
-  fig.subtitle = "Two-way ring corridor " + Fixed(config.width, 1) +
-                 " m wide, bodies r = " + Fixed(config.pedestrian_radius, 2) +
-                 " m; RMS deviation " + Fixed(result.rms_deviation, 3) + " m/s";
-  viz::FigureOptions options;
-  options.width = 1000;
-  viz::RenderFundamentalDiagramFigure(fig, png, options);
-}
-
-nlohmann::ordered_json ToJson(const FundamentalDiagramResult& result,
-                              const FundamentalDiagramConfig& config, std::uint64_t seed,
-                              const std::vector<std::string>& overrides) {
-  nlohmann::ordered_json j;
-  j["check"] = "fundamental diagram, bidirectional ring corridor";
-  j["seed"] = seed;
-  j["overrides"] = overrides;
-  const WeidmannCurve curve;
-  j["weidmann"] = {
-      {"free_speed", curve.free_speed}, {"gamma", curve.gamma}, {"max_density", curve.max_density}};
-  j["tolerance"] = result.tolerance;
-  j["parameters"] = {{"inner_radius", config.inner_radius},
-                     {"width", config.width},
-                     {"outer_radius", config.outer_radius()},
-                     {"area", config.area()},
-                     {"pedestrian_radius", config.pedestrian_radius},
-                     {"speed_mean", config.speed_mean},
-                     {"speed_std", config.speed_std},
-                     {"clockwise_fraction", config.clockwise_fraction},
-                     {"warmup", config.warmup},
-                     {"duration", config.duration},
-                     {"sample_period", config.sample_period},
-                     {"time_step", config.time_step},
-                     {"speed_measured", "velocity along the ring's tangent, walking direction"}};
-  j["config_yaml"] = io::ConfigToYaml(config);
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-  for (const FundamentalDiagramRow& r : result.rows) {
-    nlohmann::ordered_json row;
-    row["requested_density"] = r.requested_density;
-    row["count"] = r.count;
-    row["density"] = r.density;
-    row["spawned"] = r.spawned;
-    if (!r.note.empty()) row["note"] = r.note;
-    row["mean_speed"] = io::JsonNumber(r.spawned ? r.mean_speed : NAN);
-    row["speed_std"] = io::JsonNumber(r.spawned ? r.speed_std : NAN);
-    row["mean_abs_speed"] = io::JsonNumber(r.spawned ? r.mean_abs_speed : NAN);
-    row["weidmann_speed"] = r.weidmann_speed;
-    row["relative_deviation"] = io::JsonNumber(r.spawned ? r.relative_deviation : NAN);
-    row["samples"] = r.samples;
-    row["lattice_spacing"] = r.lattice_spacing;
-    row["misaligned_starts"] = r.misaligned_starts;
-    row["yields"] = r.yields;
-    row["goals_abandoned"] = r.goals_abandoned;
-    rows.push_back(row);
-  }
-  j["rows"] = rows;
-  j["rms_deviation"] = io::JsonNumber(result.rms_deviation);
-  j["free_speed"] = {{"relative_deviation", io::JsonNumber(result.free_speed_deviation)},
-                     {"pass", result.free_speed_pass}};
-  j["band_1_2"] = {{"rows", result.band_rows},
-                   {"max_relative_deviation", io::JsonNumber(result.band_max_deviation)},
-                   {"pass", result.band_pass}};
-  return j;
-}
-
-void WriteCsv(const FundamentalDiagramResult& result, const std::filesystem::path& path) {
-  io::CsvWriter csv(path,
-                    {"requested_density", "count", "density", "spawned", "mean_speed", "speed_std",
-                     "mean_abs_speed", "weidmann_speed", "relative_deviation", "samples"});
-  for (const FundamentalDiagramRow& r : result.rows) {
-    const double nan = std::nan("");
-    csv.AddRow({r.requested_density, r.count, r.density, r.spawned, r.spawned ? r.mean_speed : nan,
-                r.spawned ? r.speed_std : nan, r.spawned ? r.mean_abs_speed : nan, r.weidmann_speed,
-                r.spawned ? r.relative_deviation : nan, static_cast<long long>(r.samples)});
-  }
-  csv.Commit();
-}
-
-std::string Table(const FundamentalDiagramResult& result) {
-  std::string out;
-  char line[256];
-  std::snprintf(line, sizeof(line), "%9s %6s %9s %10s %9s %10s %10s\n", "rho(/m2)", "count",
-                "v_sim", "sd", "v_weid", "dev", "");
-  out += line;
-  for (const FundamentalDiagramRow& r : result.rows) {
-    if (!r.spawned) {
-      std::snprintf(line, sizeof(line), "%9.3f %6d  not spawned: %s\n", r.density, r.count,
-                    r.note.c_str());
-    } else {
-      const bool in_band = std::abs(r.relative_deviation) <= result.tolerance;
-      std::snprintf(line, sizeof(line), "%9.3f %6d %9.3f %10.3f %9.3f %10s %10s\n", r.density,
-                    r.count, r.mean_speed, r.speed_std, r.weidmann_speed,
-                    Percent(r.relative_deviation).c_str(), in_band ? "" : "outside");
-    }
-    out += line;
-  }
-  out += "RMS deviation: " + Fixed(result.rms_deviation, 3) + " m/s\n";
-  out += "free speed: " + Percent(result.free_speed_deviation) +
-         (result.free_speed_pass ? "  pass" : "  FAIL") + " (within " +
-         Fixed(100.0 * result.tolerance, 0) + " %)\n";
-  out += "1-2 /m2: max " + Percent(result.band_max_deviation) +
-         (result.band_pass ? "  pass" : "  FAIL") + " (" + std::to_string(result.band_rows) +
-         " densities)\n";
-  return out;
-}
-
-}  // namespace
-
-std::vector<double> ParseDensityList(const std::string& text) {
-  std::vector<double> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    std::size_t end = text.find(',', start);
-    if (end == std::string::npos) end = text.size();
-    std::string item = text.substr(start, end - start);
-    while (!item.empty() && item.front() == ' ') item.erase(item.begin());
-    while (!item.empty() && item.back() == ' ') item.pop_back();
-    double v = 0.0;
-    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
-    if (item.empty() || ec != std::errc() || ptr != item.data() + item.size()) {
-      throw core::ConfigError("densities", "'" + item + "' is not a number (persons/m²)");
-    }
-    out.push_back(v);
-    start = end + 1;
-  }
-  ValidateDensities(out);
-  return out;
-}
 
 void AddCrowdCheckOptions(CLI::App* cmd, CrowdCheckOptions* options) {
   AddOutOption(cmd, &options->out, "Output folder")->capture_default_str();
@@ -194,38 +29,23 @@ void AddCrowdCheckOptions(CLI::App* cmd, CrowdCheckOptions* options) {
 }
 
 int RunCrowdCheckCommand(const CrowdCheckOptions& options) {
-  const std::vector<double> densities = ParseDensityList(options.densities);
-  FundamentalDiagramConfig config = ReadFundamentalDiagramConfig(options.overrides);
-  if (options.duration > 0.0) config.duration = options.duration;
-  if (options.warmup >= 0.0) config.warmup = options.warmup;
-  config.Validate();
-
+  CrowdCheckRequest request;
+  request.densities = ParseDensityList(options.densities);
+  request.seed = options.seed;
+  request.duration = options.duration;
+  request.warmup = options.warmup;
+  request.overrides = options.overrides;
   const bool terminal = isatty(fileno(stderr)) != 0;
-  const auto start = std::chrono::steady_clock::now();
-  std::size_t done = 0;
-  const FundamentalDiagramResult result =
-      RunFundamentalDiagram(config, densities, options.seed, [&](const FundamentalDiagramRow& r) {
-        ++done;
-        if (terminal) {
-          std::fprintf(stderr, "\rcrowd-check: %zu/%zu densities (last %.2f /m2, %d people)   ",
-                       done, densities.size(), r.density, r.count);
-          std::fflush(stderr);
-        }
+  const CrowdCheck check =
+      RunCrowdCheck(request, [&](const FundamentalDiagramRow& r, std::size_t done) {
+        if (!terminal) return;
+        std::fprintf(stderr, "\rcrowd-check: %zu/%zu densities (last %.2f /m2, %d people)   ", done,
+                     request.densities.size(), r.density, r.count);
+        std::fflush(stderr);
       });
   if (terminal) std::fprintf(stderr, "\n");
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  std::filesystem::create_directories(options.out);
-  WriteCsv(result, options.out / "fundamental_diagram.csv");
-  io::WriteJsonAtomic(options.out / "crowd_check.json",
-                      ToJson(result, config, options.seed, options.overrides));
-  WriteFigure(result, config, options.out / "fundamental_diagram.png");
-
-  std::cout << Table(result);
-  std::cout << "simulated " << densities.size() << " densities x "
-            << Fixed(config.warmup + config.duration, 0) << " s in " << Fixed(seconds, 1)
-            << " s -> " << options.out.string() << "\n";
+  WriteCrowdCheckFolder(options.out, check, request);
+  std::cout << CrowdCheckSummary(check, options.out);
   return 0;
 }
 

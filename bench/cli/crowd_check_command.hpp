@@ -33,7 +33,4 @@ void AddCrowdCheckOptions(CLI::App* cmd, CrowdCheckOptions* options);
 /// anything is simulated or written).
 int RunCrowdCheckCommand(const CrowdCheckOptions& options);
 
-/// Parses "0.25,0.5,1": throws core::ConfigError("densities") on a value that is not a number.
-std::vector<double> ParseDensityList(const std::string& text);
-
 }  // namespace retrace::bench

@@ -1,11 +1,10 @@
 #pragma once
-// `retrace log-compare <log-localize folders>... --out DIR`: their metrics in one table and
-// their errors in one figure (bench/replay/log_comparison.hpp), e.g. real scans against the same
-// log simulated.
+// `retrace log-compare <log-localize folders>... --out DIR`: the options of
+// bench/calibration/log_compare_run.hpp's CompareLogs, which it calls; writes their metrics in
+// one table and their errors in one figure (WriteLogCompareFolder), e.g. real scans against the
+// same log simulated, and prints its summary.
 
-#include <filesystem>
-#include <string>
-#include <vector>
+#include "bench/calibration/log_compare_run.hpp"
 
 namespace CLI {
 class App;
@@ -14,9 +13,7 @@ class App;
 namespace retrace::bench {
 
 struct LogCompareOptions {
-  std::vector<std::filesystem::path> runs;
-  std::vector<std::string> labels;
-  std::filesystem::path out;
+  LogCompareRequest request;
 };
 
 void AddLogCompareOptions(CLI::App* cmd, LogCompareOptions* options);

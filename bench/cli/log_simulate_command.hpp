@@ -1,13 +1,11 @@
 #pragma once
-// `retrace log-simulate <log> --teach DIR --out FILE.mcap`: the log's reference driven again in
-// the simulator, in the consistent map built from it, with the log's LiDAR geometry: the same
-// log with simulated scans (bench/replay/log_simulate.hpp), to localize side by side with the
-// real one.
+// `retrace log-simulate <log> --teach DIR --out FILE.mcap`: the options of
+// bench/calibration/log_simulate_run.hpp's SimulateLogFile, which it calls: the log's reference
+// driven again in the simulator, in the consistent map built from it, with the log's LiDAR
+// geometry — the same log with simulated scans, to localize side by side with the real one;
+// prints its summary.
 
-#include <filesystem>
-#include <string>
-
-#include "bench/cli/log_teach_command.hpp"
+#include "bench/calibration/log_simulate_run.hpp"
 
 namespace CLI {
 class App;
@@ -16,8 +14,7 @@ class App;
 namespace retrace::bench {
 
 struct LogSimulateOptions {
-  LogRunOptions run;  ///< `out` is the MCAP file to write; `figures` is not used
-  std::filesystem::path teach_dir;
+  LogSimulateRequest request;
 };
 
 void AddLogSimulateOptions(CLI::App* cmd, LogSimulateOptions* options);

@@ -1,16 +1,13 @@
 #pragma once
 // `retrace log-teach <log> --out DIR`: the teach folders of a recorded log, one per map mode, as
-// `retrace teach` writes them for a simulated drive (bench/replay/log_teach.hpp).
+// `retrace teach` writes them for a simulated drive: the options of
+// bench/replay/log_teach_run.hpp's TeachLog, which it calls; prints its summary.
 
-#include <cstdint>
-#include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/replay/log_run_options.hpp"
-#include "bench/replay/log_teach.hpp"
-#include "logs/sensor_log.hpp"
+#include "bench/replay/log_teach_run.hpp"
 
 namespace CLI {
 class App;
@@ -18,14 +15,13 @@ class App;
 
 namespace retrace::bench {
 
-/// The options log-teach and log-localize share: the log, its streams and part, the config.
 struct LogTeachOptions {
-  LogRunOptions run;
+  LogTeachRequest request;         ///< its extra_overrides and modes come from the two below
   std::string switch_points;       ///< auto, online or s1,s2,... (empty: the config's)
   std::vector<std::string> modes;  ///< --mode
 };
 
-/// Adds the options of LogRunOptions to `cmd`.
+/// Adds the options of LogRunOptions, which the log commands share, to `cmd`.
 void AddLogRunOptions(CLI::App* cmd, LogRunOptions* options);
 void AddLogTeachOptions(CLI::App* cmd, LogTeachOptions* options);
 

@@ -2,11 +2,11 @@
 // `retrace merge <shard folder>... --out DIR`: joins the results folders of the shards of one
 // sweep (`retrace sweep --shard i/N`, run on several machines) into one folder that is
 // byte-for-byte what the sweep run whole would have written: results.csv sorted by case id,
-// timings.csv, sweep.json, and sweep.png.
+// timings.csv, sweep.json, and sweep.png. One library call (bench/sweep/sweep_merge.hpp).
 
-#include <filesystem>
 #include <string>
-#include <vector>
+
+#include "bench/sweep/sweep_merge.hpp"
 
 namespace CLI {
 class App;
@@ -15,9 +15,7 @@ class App;
 namespace retrace::bench {
 
 struct MergeOptions {
-  std::vector<std::filesystem::path> inputs;  ///< shard folders
-  std::filesystem::path out;
-  bool plot = true;
+  MergeRequest request;
 };
 
 /// Adds the command's arguments to a CLI11 subcommand.

@@ -47,6 +47,14 @@ void ProgressLine::UnitDone() {
   Draw(true);
 }
 
+void ProgressLine::Warning(const std::string& text) {
+  std::lock_guard lock(mutex_);
+  if (enabled_ && drawn_) std::fprintf(stderr, "\r\033[K");
+  drawn_ = false;
+  std::fprintf(stderr, "retrace: warning: %s\n", text.c_str());
+  std::fflush(stderr);
+}
+
 void ProgressLine::Clear() {
   std::lock_guard lock(mutex_);
   if (enabled_ && drawn_) std::fprintf(stderr, "\r\033[K");
@@ -76,19 +84,6 @@ void ProgressLine::Draw(bool force) {
                done_, total_, sim_time_, wall > 0.0 ? sim_time_ / wall : 0.0);
   std::fflush(stderr);
   drawn_ = true;
-}
-
-std::string FormatDuration(double seconds) {
-  const long long s = std::llround(std::max(seconds, 0.0));
-  char text[48];
-  if (s < 60) {
-    std::snprintf(text, sizeof(text), "%lld s", s);
-  } else if (s < 3600) {
-    std::snprintf(text, sizeof(text), "%lld min %02lld s", s / 60, s % 60);
-  } else {
-    std::snprintf(text, sizeof(text), "%lld h %02lld min", s / 3600, (s % 3600) / 60);
-  }
-  return text;
 }
 
 std::string ProgressBar(int done, int total, int width) {

@@ -23,11 +23,13 @@ class ProgressLine : public ProgressSink {
   /// Starts a phase shown as a bar with the time left ("sweep [####----] 12/32 cases, 3 min
   /// left"): `done` of the `total` units are done already (resumed) and do not count towards
   /// the rate the estimate uses.
-  void CountdownPhase(const std::string& name, int total, int done);
+  void CountdownPhase(const std::string& name, int total, int done) override;
   /// Adds simulated seconds done by any thread, and redraws at most a few times per second.
   void AddSimTime(double seconds) override;
   /// One unit of the phase is done.
   void UnitDone() override;
+  /// Prints "retrace: warning: <text>" on stderr, on a line of its own (always, terminal or not).
+  void Warning(const std::string& text) override;
   /// Clears the line (before the summary is printed).
   void Clear();
 
@@ -45,9 +47,6 @@ class ProgressLine : public ProgressSink {
   std::chrono::steady_clock::time_point last_draw_;
   bool drawn_ = false;
 };
-
-/// A duration for people: "42 s", "3 min 20 s", "2 h 05 min".
-std::string FormatDuration(double seconds);
 
 /// A text bar `width` characters wide, filled in proportion to done / total: "[#####-----]".
 std::string ProgressBar(int done, int total, int width);

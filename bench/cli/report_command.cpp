@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "bench/cli/progress.hpp"
 #include "bench/output/html_report.hpp"
 #include "bench/output/render_results.hpp"
 #include "core/errors.hpp"
@@ -36,27 +37,15 @@ int RunReportCommand(const ReportOptions& options) {
   return 0;
 }
 
-void FinishOrWarn(const char* what, const char* retry_command, const std::filesystem::path& dir,
-                  const std::function<void()>& step) {
-  const auto warn = [&](const char* why) {
-    std::cerr << "retrace: warning: no " << what << ": " << why
-              << " (the results are complete; retry with `retrace " << retry_command << " "
-              << dir.string() << "`)\n";
-  };
-  try {
-    step();
-  } catch (const core::Error& e) {
-    warn(e.what());
-  } catch (const std::filesystem::filesystem_error& e) {  // e.g. a figures/ that is a file
-    warn(e.what());
-  }
-}
-
 void WriteReportAtEnd(const std::filesystem::path& dir) {
-  FinishOrWarn("report.html", "report", dir, [&] {
-    WriteHtmlReport(dir);
-    std::cout << "report: " << (dir / "report.html").string() << "\n";
-  });
+  ProgressLine warnings;
+  FinishOrWarn(
+      "report.html", "report", dir,
+      [&] {
+        WriteHtmlReport(dir);
+        std::cout << "report: " << (dir / "report.html").string() << "\n";
+      },
+      &warnings);
 }
 
 }  // namespace retrace::bench

@@ -32,12 +32,6 @@ int RunRenderCommand(const RenderOptions& options);
 /// unreadable manifest or results file.
 int RunReportCommand(const ReportOptions& options);
 
-/// A last step of a command that wrote the results folder `dir`, one the results are complete
-/// without (the figures, the page): runs `step`; a core::Error or filesystem error is a warning
-/// on stderr, "no <what>: <why>", that says to retry with `retrace <retry_command> <dir>`.
-void FinishOrWarn(const char* what, const char* retry_command, const std::filesystem::path& dir,
-                  const std::function<void()>& step);
-
 /// The end of a command that wrote a results folder: writes its report.html and prints
 /// "report: <file>" on stdout; a failure is a warning on stderr, never an error (the results are
 /// complete without the page).

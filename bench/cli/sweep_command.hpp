@@ -3,11 +3,11 @@
 // one row per case appended to <out>/results.csv as each finishes; resumes an interrupted
 // sweep where it stopped; runs one shard of the cases (`--shard i/N`) for a batch scheduler;
 // at the end rewrites results.csv sorted by case id and plots sweep.png. The results do not
-// depend on --jobs or on interruptions.
+// depend on --jobs or on interruptions. One library call (bench/sweep/sweep_run.hpp).
 
-#include <filesystem>
 #include <string>
-#include <vector>
+
+#include "bench/sweep/sweep_run.hpp"
 
 namespace CLI {
 class App;
@@ -16,12 +16,7 @@ class App;
 namespace retrace::bench {
 
 struct SweepOptions {
-  std::filesystem::path file;
-  int jobs = 0;                        ///< cases at once; 0: one per core
-  std::filesystem::path out;           ///< empty: DefaultSweepFolder
-  std::string shard;                   ///< "i/N"; empty: all cases
-  std::vector<std::string> overrides;  ///< --set, applied to every case
-  bool plot = true;
+  SweepRequest request;
   bool report = true;  ///< write report.html at the end (a shard's too)
 };
 

@@ -1,9 +1,8 @@
 #pragma once
+// `retrace world`: the options of bench/output/world_figure.hpp's RenderWorldFile, which the
+// command table runs.
 
-#include <cstdint>
-#include <filesystem>
-#include <string>
-#include <vector>
+#include "bench/output/world_figure.hpp"
 
 namespace CLI {
 class App;
@@ -11,19 +10,6 @@ class App;
 
 namespace retrace::bench {
 
-struct WorldCommandOptions {
-  std::filesystem::path world_file;
-  std::filesystem::path png;
-  std::filesystem::path route_file;  ///< optional route to draw
-  std::vector<std::string> overrides;
-  double pixels_per_meter = 0.0;  ///< 0: a figure 1600 px wide
-  std::uint64_t seed = 1;         ///< seed of the pedestrians' spawn points
-};
-
 void AddWorldOptions(CLI::App* cmd, WorldCommandOptions* options);
-
-/// `retrace world`: loads and validates a world file and renders it to a PNG.
-/// Returns a one-line summary; throws core::Error on bad input.
-std::string RunWorldCommand(const WorldCommandOptions& options);
 
 }  // namespace retrace::bench

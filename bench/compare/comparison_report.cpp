@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "bench/metrics/provenance.hpp"
 #include "core/check.hpp"
 #include "core/config.hpp"
 #include "io/json_writer.hpp"
@@ -204,9 +205,11 @@ nlohmann::json ComparisonJson(const Comparison& c) {
   nlohmann::json j;
   j["scenario"] = in.scenario_name;
   j["scenario_file"] = in.scenario_file;
-  j["command"] = in.command_line;
-  j["git_revision"] = in.git_revision;
-  j["wall_time_s"] = in.wall_time_s;
+  Provenance provenance;
+  provenance.command_line = in.command_line;
+  provenance.git_revision = in.git_revision;
+  provenance.wall_time_s = in.wall_time_s;
+  WriteProvenance(provenance, &j);
   j["seeds"] = in.seeds;
   j["repeats"] = in.repeats;
   j["confidence"] = kComparisonConfidence;

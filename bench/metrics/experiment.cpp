@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "bench/engine/parallel.hpp"
 #include "bench/engine/scheduler.hpp"
 #include "bench/metrics/map_quality.hpp"
 
@@ -61,10 +62,9 @@ AggregateMetrics AggregateMode(const Scenario& scenario, const ModeTeach& teach,
   aggregate.map_quality =
       ComputeMapQuality(teach, scenario.teach_world.geometry,
                         scenario.config.nav.localizer.likelihood_field.occupied_threshold);
-  aggregate.switching =
-      EvaluateSwitching(teach.trace, scenario.config.route.revisit_radius,
-                        SwitchReasons(teach, scenario.config.route),
-                        scenario.config.route.OnlineSwitching().MinMapLength());
+  aggregate.switching = EvaluateSwitching(teach.trace, scenario.config.route.revisit_radius,
+                                          SwitchReasons(teach, scenario.config.route),
+                                          scenario.config.route.OnlineSwitching().MinMapLength());
   aggregate.match_counts = teach.match_counts;
   return aggregate;
 }
@@ -92,6 +92,14 @@ std::vector<Experiment> RunExperiments(const std::vector<const Scenario*>& scena
     jobs[j].modes = modes;
   }
   return Run(std::move(jobs), options);
+}
+
+ExperimentOptions RunOptionsFor(int repeats, int jobs, ProgressSink* progress) {
+  ExperimentOptions options;
+  options.repeats = repeats;
+  options.jobs = jobs > 0 ? jobs : DefaultJobs();
+  options.progress = progress;
+  return options;
 }
 
 }  // namespace retrace::bench

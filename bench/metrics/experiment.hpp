@@ -40,6 +40,10 @@ struct ExperimentOptions {
   std::function<std::unique_ptr<SensorTap>(const ModeTeach* teach, int run)> tap;
 };
 
+/// Options for `repeats` playback runs per mode on `jobs` threads (0: one per core), reporting
+/// to `progress` (may be null).
+ExperimentOptions RunOptionsFor(int repeats, int jobs, ProgressSink* progress);
+
 /// The metrics of one mode: Aggregate over its runs, plus the quality of its taught maps
 /// against the scenario's teach world and its scan-matching counts. Every path from runs to a
 /// mode's numbers (experiments, suites) goes through here.

@@ -1,14 +1,11 @@
 #include "bench/suite/baseline.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 
 #include "bench/metrics/flat_metrics.hpp"
 #include "core/errors.hpp"
-#include "git_revision.hpp"
 #include "io/json_writer.hpp"
 
 namespace retrace::bench {
@@ -57,19 +54,6 @@ std::string FirstDifference(const nlohmann::json& recorded, const nlohmann::json
 
 }  // namespace
 
-std::string UtcNow() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
-
-std::string BuildRevision() { return RETRACE_GIT_REVISION; }
-
-std::string BuildVersion() { return RETRACE_VERSION; }
-
 std::optional<double> Baseline::Find(const std::string& name) const {
   if (const auto it = metrics.find(name); it != metrics.end()) return it->second;
   if (const auto it = timing.find(name); it != timing.end()) return it->second;
@@ -91,7 +75,7 @@ Baseline MakeBaseline(const SuiteSpec& spec, const SuiteResults& results) {
   b.suite_file = spec.source.string();
   b.suite_digest = spec.digest;
   b.git_revision = BuildRevision();
-  b.build_type = RETRACE_BUILD_TYPE;
+  b.build_type = BuildType();
   b.date = UtcNow();
   for (const SuiteEntry& entry : spec.entries) b.entries.push_back(EntryDefinition(entry));
   for (const auto& [name, metric] : results.metrics) {
@@ -134,9 +118,11 @@ void WriteBaseline(const std::filesystem::path& file, const Baseline& b) {
   root["suite"] = b.suite;
   root["suite_file"] = b.suite_file;
   root["suite_digest"] = b.suite_digest;
-  root["git_revision"] = b.git_revision;
-  root["build_type"] = b.build_type;
-  root["date"] = b.date;
+  Provenance provenance;
+  provenance.git_revision = b.git_revision;
+  provenance.build_type = b.build_type;
+  provenance.date = b.date;
+  WriteProvenance(provenance, &root);
   root["entries"] = b.entries;
   nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
   for (const auto& [name, value] : b.metrics) metrics[name] = io::JsonNumber(value);

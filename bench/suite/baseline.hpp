@@ -25,6 +25,7 @@
 #include <optional>
 #include <string>
 
+#include "bench/metrics/provenance.hpp"
 #include "bench/suite/suite_runner.hpp"
 #include "bench/suite/suite_spec.hpp"
 
@@ -59,15 +60,6 @@ void WriteBaseline(const std::filesystem::path& file, const Baseline& baseline);
 /// for other entry definitions than `spec`'s.
 void CheckBaselineMatches(const Baseline& baseline, const SuiteSpec& spec,
                           const std::filesystem::path& file);
-
-/// The time now, UTC, ISO 8601 ("2025-06-01T12:00:00Z").
-std::string UtcNow();
-
-/// The git revision this program was built from (see cmake/git_revision.cmake).
-std::string BuildRevision();
-
-/// retrace's version, the project's in the top-level CMakeLists.txt ("0.1.0").
-std::string BuildVersion();
 
 /// An entry's definition as the baseline records it.
 nlohmann::json EntryDefinition(const SuiteEntry& entry);

@@ -196,6 +196,17 @@ std::string ReportMarkdown(const SuiteReport& report, const ReportContext& conte
   return md;
 }
 
+Provenance ReportProvenance(const ReportContext& context) {
+  Provenance p;
+  p.git_revision = context.git_revision;
+  p.date = context.date;
+  p.wall_time_s = context.wall_time_s;
+  p.jobs = context.jobs;
+  p.overrides = context.overrides;
+  p.only = context.only;
+  return p;
+}
+
 nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& context,
                           const SuiteSpec& spec, const SuiteResults& results) {
   nlohmann::json rows = nlohmann::json::array();
@@ -226,27 +237,23 @@ nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& contex
                 {"build_type", context.baseline->build_type},
                 {"date", context.baseline->date}};
   }
-  return {{"suite", report.suite},
-          {"suite_file", context.suite_file.string()},
-          {"suite_digest", context.suite_digest},
-          {"baseline", baseline},
-          {"git_revision", context.git_revision},
-          {"date", context.date},
-          {"wall_time_s", context.wall_time_s},
-          {"jobs", context.jobs},
-          {"set", context.overrides},
-          {"only", context.only},
-          {"verdict", !report.compared      ? "recorded"
-                      : report.failures > 0 ? "FAIL"
-                                            : "pass"},
-          {"counts",
-           {{"checked", report.checked},
-            {"failures", report.failures},
-            {"improved", report.improved},
-            {"reported", report.reported}}},
-          {"entries", entries},
-          {"rows", rows},
-          {"metrics", metrics}};
+  nlohmann::json json = {{"suite", report.suite},
+                         {"suite_file", context.suite_file.string()},
+                         {"suite_digest", context.suite_digest},
+                         {"baseline", baseline},
+                         {"verdict", !report.compared      ? "recorded"
+                                     : report.failures > 0 ? "FAIL"
+                                                           : "pass"},
+                         {"counts",
+                          {{"checked", report.checked},
+                           {"failures", report.failures},
+                           {"improved", report.improved},
+                           {"reported", report.reported}}},
+                         {"entries", entries},
+                         {"rows", rows},
+                         {"metrics", metrics}};
+  WriteProvenance(ReportProvenance(context), &json);
+  return json;
 }
 
 }  // namespace retrace::bench

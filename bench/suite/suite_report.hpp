@@ -70,6 +70,9 @@ struct ReportContext {
 
 std::string ReportMarkdown(const SuiteReport& report, const ReportContext& context);
 
+/// The provenance report.json records: git revision, date, wall time, jobs, --set and --only.
+Provenance ReportProvenance(const ReportContext& context);
+
 /// The rows, plus every metric's mean and per-seed values (to measure seed-to-seed spreads).
 nlohmann::json ReportJson(const SuiteReport& report, const ReportContext& context,
                           const SuiteSpec& spec, const SuiteResults& results);

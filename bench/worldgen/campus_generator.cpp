@@ -48,7 +48,6 @@ void RequireOutsideCorridor(std::string_view key, const Range& r, double corrido
 
 // ---- geometry --------------------------------------------------------------------------------
 
-
 double SegmentSegmentDistance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) {
   if (sim::SegmentsIntersect(a0, a1, b0, b1)) return 0.0;
   return std::min({core::SegmentDistance(a0, b0, b1), core::SegmentDistance(a1, b0, b1),

@@ -301,7 +301,7 @@ TEST_F(GenerateCampusCommand, WritesAWorldThatLoadsBackWithItsCommandInTheHeader
   options.seed = 3;
   options.pedestrians = 12;
   options.overrides = {"landmark_poor_intervals=[[20, 60]]", "name=test campus"};
-  const std::string summary = RunGenerateCampusCommand(options);
+  const std::string summary = GenerateCampusWorld(options);
   EXPECT_THAT(summary, HasSubstr("buildings"));
   EXPECT_THAT(summary, HasSubstr("trees"));
   EXPECT_THAT(summary, HasSubstr("(12 pedestrians)"));
@@ -319,7 +319,7 @@ TEST_F(GenerateCampusCommand, WritesAWorldThatLoadsBackWithItsCommandInTheHeader
                 "--pedestrians 12\n"));
   // The same command writes the same bytes.
   const std::string first = text;
-  RunGenerateCampusCommand(options);
+  GenerateCampusWorld(options);
   EXPECT_EQ(tmp_.Read(options.out), first);
 }
 
@@ -329,7 +329,7 @@ TEST_F(GenerateCampusCommand, ReadsSettingsFromAConfigFileWithOverridesOnTop) {
   options.config_file = tmp_.Write("campus.yaml", "pedestrians: 4\nposes_per_100m: 1\n");
   options.out = tmp_.path() / "world.yaml";
   try {
-    RunGenerateCampusCommand(options);
+    GenerateCampusWorld(options);
     FAIL() << "expected a ConfigError";
   } catch (const core::ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr("campus.yaml:2"));
@@ -340,7 +340,7 @@ TEST_F(GenerateCampusCommand, ReadsSettingsFromAConfigFileWithOverridesOnTop) {
   options.config_file =
       tmp_.Write("campus.yaml", "pedestrians: 4\npoles_per_100m: 0\nbenches_per_100m: 0\n");
   options.overrides = {"benches_per_100m=2"};
-  const std::string summary = RunGenerateCampusCommand(options);
+  const std::string summary = GenerateCampusWorld(options);
   EXPECT_THAT(summary, HasSubstr(" 0 poles"));
   EXPECT_THAT(summary, ::testing::Not(HasSubstr(" 0 benches")));
   EXPECT_THAT(summary, HasSubstr("(4 pedestrians)"));
@@ -350,25 +350,25 @@ TEST_F(GenerateCampusCommand, BadInputWritesNothing) {
   GenerateCampusOptions options;
   options.out = tmp_.path() / "world.yaml";
   options.route_file = tmp_.path() / "missing.txt";
-  EXPECT_THROW(RunGenerateCampusCommand(options), core::IoError);
+  EXPECT_THROW(GenerateCampusWorld(options), core::IoError);
 
   options.route_file = tmp_.Write("one.txt", "1 2\n");
-  EXPECT_THROW(RunGenerateCampusCommand(options), core::IoError);
+  EXPECT_THROW(GenerateCampusWorld(options), core::IoError);
 
   options.route_file = tmp_.Write("route.txt", RouteText(DoubleLoop()));
   options.overrides = {"no_such_key=1"};
   try {
-    RunGenerateCampusCommand(options);
+    GenerateCampusWorld(options);
     FAIL() << "expected a ConfigError";
   } catch (const core::ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr("no_such_key"));
     EXPECT_THAT(e.what(), HasSubstr("unknown key"));
   }
   options.overrides = {"corridor_half_width=0.1"};
-  EXPECT_THROW(RunGenerateCampusCommand(options), core::ConfigError);
+  EXPECT_THROW(GenerateCampusWorld(options), core::ConfigError);
   options.overrides = {};
   options.config_file = tmp_.path() / "missing.yaml";
-  EXPECT_THROW(RunGenerateCampusCommand(options), core::IoError);
+  EXPECT_THROW(GenerateCampusWorld(options), core::IoError);
   EXPECT_FALSE(std::filesystem::exists(options.out));
 }
 

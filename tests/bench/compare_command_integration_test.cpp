@@ -4,8 +4,8 @@
 #include <sstream>
 #include <string>
 
-#include "bench/cli/compare_command.hpp"
 #include "bench/compare/comparison_report.hpp"
+#include "bench/compare/comparison_study.hpp"
 #include "core/errors.hpp"
 #include "io/json_writer.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -15,8 +15,8 @@ namespace {
 
 using CompareCommand = retrace::testing::TempDirTest;
 
-CompareOptions SmallStudy(const std::filesystem::path& out) {
-  CompareOptions o;
+ComparisonRequest SmallStudy(const std::filesystem::path& out) {
+  ComparisonRequest o;
   o.scenario = std::filesystem::path(RETRACE_SOURCE_DIR) / "scenarios/small.yaml";
   o.modes = {"partial", "consistent"};
   o.seeds = 2;
@@ -33,10 +33,10 @@ CompareOptions SmallStudy(const std::filesystem::path& out) {
 // consistent.
 TEST_F(CompareCommand, WritesTheStudyOfATinyRun) {
   const std::filesystem::path out = tmp_.path() / "compare";
-  ::testing::internal::CaptureStdout();
-  const int code = RunCompareCommand(SmallStudy(out), "retrace compare small.yaml");
-  const std::string stdout_text = ::testing::internal::GetCapturedStdout();
-  EXPECT_EQ(code, 0);
+  const ComparisonStudy study =
+      RunComparisonStudy(SmallStudy(out), "retrace compare small.yaml", nullptr);
+  const std::string stdout_text = ComparisonStudySummary(study);
+  EXPECT_EQ(study.out, out);
   EXPECT_FALSE(std::filesystem::exists(tmp_.path() / "compare.tmp"));
   ASSERT_TRUE(std::filesystem::exists(out / "comparison.png"));
   EXPECT_GT(std::filesystem::file_size(out / "comparison.png"), 10000u);
@@ -68,7 +68,7 @@ TEST_F(CompareCommand, WritesTheStudyOfATinyRun) {
       j.at("modes").at("partial").at("tracking_error_m.pooled.rms").contains("vs_reference"));
 
   const std::string md = tmp_.Read(out / "comparison.md");
-  EXPECT_EQ(md, stdout_text.substr(0, md.size()));  // the summary on stdout is the table
+  EXPECT_EQ(md, stdout_text.substr(0, md.size()));  // the summary printed is the table
   int rows = 0;
   std::istringstream lines(md);
   std::string line;
@@ -81,18 +81,18 @@ TEST_F(CompareCommand, WritesTheStudyOfATinyRun) {
 
 TEST_F(CompareCommand, BadInputThrowsBeforeAnythingIsWritten) {
   const std::filesystem::path out = tmp_.path() / "compare";
-  CompareOptions o = SmallStudy(out);
+  ComparisonRequest o = SmallStudy(out);
   o.modes = {"partial", "perfect"};
-  EXPECT_THROW(RunCompareCommand(o, ""), core::ConfigError);
+  EXPECT_THROW(RunComparisonStudy(o, "", nullptr), core::ConfigError);
   o = SmallStudy(out);
   o.modes = {"partial", "single"};  // the default reference, consistent, is not among them
-  EXPECT_THROW(RunCompareCommand(o, ""), core::ConfigError);
+  EXPECT_THROW(RunComparisonStudy(o, "", nullptr), core::ConfigError);
   o = SmallStudy(out);
   o.seeds = 1;
-  EXPECT_THROW(RunCompareCommand(o, ""), core::ConfigError);
+  EXPECT_THROW(RunComparisonStudy(o, "", nullptr), core::ConfigError);
   o = SmallStudy(out);
   o.overrides.push_back("nav.localizer.particle=100");
-  EXPECT_THROW(RunCompareCommand(o, ""), core::ConfigError);
+  EXPECT_THROW(RunComparisonStudy(o, "", nullptr), core::ConfigError);
   EXPECT_FALSE(std::filesystem::exists(out));
   EXPECT_FALSE(std::filesystem::exists(tmp_.path() / "compare.tmp"));
 }

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "bench/cli/crowd_check_command.hpp"
+#include "bench/crowd/crowd_check.hpp"
 #include "core/errors.hpp"
 
 namespace retrace::bench {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/calibration/log_simulate.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
@@ -19,7 +20,6 @@
 #include "bench/replay/log_localize.hpp"
 #include "bench/replay/log_metrics.hpp"
 #include "bench/replay/log_recorder.hpp"
-#include "bench/replay/log_simulate.hpp"
 #include "bench/replay/log_streams.hpp"
 #include "bench/replay/log_teach.hpp"
 #include "core/errors.hpp"

@@ -8,8 +8,8 @@
 #include <numeric>
 #include <vector>
 
-#include "bench/cli/log_teach_command.hpp"
 #include "bench/replay/log_localize_run.hpp"
+#include "bench/replay/log_teach_run.hpp"
 #include "logs/carmen_writer.hpp"
 #include "logs/sensor_log.hpp"
 #include "tests/support/fake_scan.hpp"
@@ -92,13 +92,14 @@ TEST(LogTeach, ABagWithoutOdometryIsRefusedInOneLineNamingTheFix) {
 // ... and with --synthetic-odometry, log-teach teaches it and log-localize localizes it.
 TEST(LogTeach, ABagWithoutOdometryTeachesAndLocalizesOnSyntheticOdometry) {
   testing::TempDir tmp;
-  LogTeachOptions teach;
+  LogTeachRequest teach;
   teach.run.log = testing::WriteMocapBag(tmp.path() / "mocap.mcap");
   teach.run.out = tmp.path() / "taught";
   teach.run.synthetic_odometry = true;
   teach.run.figures = false;
-  teach.modes = {"partial"};
-  ASSERT_EQ(RunLogTeachCommand(teach, "log-teach"), 0);
+  teach.modes = {MapMode::kPartial};
+  const LogTeaching taught = TeachLog(teach);
+  EXPECT_TRUE(WriteLogTeachFolder(taught, "log-teach", 0.0).empty());
   EXPECT_TRUE(fs::exists(tmp.path() / "taught/partial/teach/sub_map_num.txt"));
   EXPECT_NE(tmp.Read("taught/partial/manifest.yaml").find("synthetic, drawn from /pose"),
             std::string::npos);

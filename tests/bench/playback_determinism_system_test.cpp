@@ -19,7 +19,6 @@
 #include <iterator>
 #include <string>
 
-#include "bench/cli/run_command.hpp"
 #include "bench/engine/playback.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
@@ -79,13 +78,13 @@ std::string ReadWholeFile(const std::filesystem::path& path) {
 TEST(Episode, ParallelRunsGiveTheSameFilesAsASerialRun) {
   const retrace::testing::TempDir tmp;
   // Two modes of one teaching drive on three threads: runs of both modes interleave.
-  RunOptions serial_run = SmallRunOptions("partial", tmp.path() / "serial", 1);
-  RunOptions parallel_run = SmallRunOptions("partial", tmp.path() / "parallel", 3);
+  ScenarioRunRequest serial_run = SmallRunOptions("partial", tmp.path() / "serial", 1);
+  ScenarioRunRequest parallel_run = SmallRunOptions("partial", tmp.path() / "parallel", 3);
   serial_run.modes = parallel_run.modes = {"partial", "scan_matched"};
   // The figures are rendered after the runs and are not what is compared.
   serial_run.figures = parallel_run.figures = false;
-  ASSERT_EQ(RunRunCommand(serial_run, RunPhases::kAll, "serial"), 0);
-  ASSERT_EQ(RunRunCommand(parallel_run, RunPhases::kAll, "parallel"), 0);
+  ASSERT_EQ(RunScenario(serial_run, "serial", nullptr).exit_code, 0);
+  ASSERT_EQ(RunScenario(parallel_run, "parallel", nullptr).exit_code, 0);
   for (const char* mode : {"partial", "scan_matched"}) {
     for (const char* file :
          {"runs/0/gt.tum", "runs/0/est.tum", "runs/0/events.csv", "teach/gt.tum"}) {

@@ -8,12 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
-#include "bench/cli/run_command.hpp"
 #include "bench/engine/playback.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/output/render_results.hpp"
 #include "bench/output/results_io.hpp"
+#include "bench/run/scenario_run.hpp"
 #include "io/json_writer.hpp"
 #include "io/tum.hpp"
 #include "tests/support/small_run.hpp"
@@ -24,10 +25,19 @@ namespace {
 
 using retrace::testing::SmallRunOptions;
 
+// The warnings of a run, kept.
+struct WarningList : ProgressSink {
+  void Phase(const std::string&, int) override {}
+  void AddSimTime(double) override {}
+  void UnitDone() override {}
+  void Warning(const std::string& text) override { lines.push_back(text); }
+  std::vector<std::string> lines;
+};
+
 TEST(Episode, RunCommandWritesFilesThatParseBack) {
   const retrace::testing::TempDir tmp;
-  const RunOptions options = SmallRunOptions("partial", tmp.path() / "small", 1);
-  EXPECT_EQ(RunRunCommand(options, RunPhases::kAll, "retrace run (test)"), 0);
+  const ScenarioRunRequest options = SmallRunOptions("partial", tmp.path() / "small", 1);
+  EXPECT_EQ(RunScenario(options, "retrace run (test)", nullptr).exit_code, 0);
   const std::filesystem::path dir = options.out / "partial";
   const nlohmann::json metrics = io::ReadJsonFile(dir / "metrics.json");
   EXPECT_EQ(metrics["mode"], "partial");
@@ -56,24 +66,25 @@ TEST(Episode, RunCommandWritesFilesThatParseBack) {
   EXPECT_GT(std::filesystem::file_size(dir / "figures/playback_partial.png"), 10000u);
 
   // Playback again from the written teach folder.
-  RunOptions again = options;
+  ScenarioRunRequest again = options;
+  again.phases = RunPhases::kPlaybackOnly;
   again.teach_dir = dir / "teach";
   again.out = tmp.path() / "again";
-  EXPECT_EQ(RunRunCommand(again, RunPhases::kPlaybackOnly, "retrace playback (test)"), 0);
+  EXPECT_EQ(RunScenario(again, "retrace playback (test)", nullptr).exit_code, 0);
   EXPECT_TRUE(std::filesystem::exists(again.out / "partial/runs/0/gt.tum"));
 }
 
 // Figures come last: when they cannot be written the numbers stay, with a warning and exit 0.
 TEST(Episode, AFigureFailureLeavesTheResultsAndTheExitCode) {
   const retrace::testing::TempDir tmp;
-  const RunOptions options = SmallRunOptions("partial", tmp.path() / "small", 1);
+  const ScenarioRunRequest options = SmallRunOptions("partial", tmp.path() / "small", 1);
   std::filesystem::create_directories(options.out);
   { std::ofstream(options.out / "figures") << "a file where the figures folder goes\n"; }
-  ::testing::internal::CaptureStderr();
-  const int code = RunRunCommand(options, RunPhases::kAll, "retrace run (test)");
-  const std::string err = ::testing::internal::GetCapturedStderr();
+  WarningList warnings;
+  const int code = RunScenario(options, "retrace run (test)", &warnings).exit_code;
   EXPECT_EQ(code, 0);
-  EXPECT_NE(err.find("warning: no figures"), std::string::npos) << err;
+  ASSERT_EQ(warnings.lines.size(), 1u);
+  EXPECT_EQ(warnings.lines[0].rfind("no figures: ", 0), 0u) << warnings.lines[0];
   EXPECT_TRUE(std::filesystem::exists(options.out / "partial/metrics.json"));
   EXPECT_TRUE(std::filesystem::exists(options.out / "partial/runs/0/gt.tum"));
 }

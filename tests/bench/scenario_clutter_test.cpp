@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/cli/tour_command.hpp"
+#include "bench/worldgen/tour_folder.hpp"
 #include "bench/engine/scenario.hpp"
 #include "core/errors.hpp"
 #include "io/config_override.hpp"
@@ -101,7 +101,7 @@ TEST(ScenarioClutter, GenerateTourWritesTheBlock) {
   options.overrides = {"length=300"};
   options.pedestrians = 0;
   options.clutter = {0.02, 0.005};
-  RunGenerateTourCommand(options);
+  GenerateTourFolder(options);
   const Scenario s = LoadScenario(out / "scenario.yaml");
   EXPECT_DOUBLE_EQ(s.config.clutter.density, 0.02);
   EXPECT_DOUBLE_EQ(s.config.clutter.standing_density, 0.005);

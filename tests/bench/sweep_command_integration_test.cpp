@@ -1,6 +1,7 @@
-// `retrace sweep` in process, on shards of the tiny test sweep (tests/data/sweep_small.yaml,
-// 8 cases of well under a second) so that each test runs only a few cases. The command line
-// tests (tests/cli/sweep_*_test.sh) cover kill -9, whole sweeps and `retrace merge`.
+// `retrace sweep` in process (bench::RunSweep), on shards of the tiny test sweep
+// (tests/data/sweep_small.yaml, 8 cases of well under a second) so that each test runs only a
+// few cases. The command line tests (tests/cli/sweep_*_test.sh) cover kill -9, whole sweeps and
+// `retrace merge`.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-#include "bench/cli/sweep_command.hpp"
+#include "bench/sweep/sweep_run.hpp"
 #include "core/errors.hpp"
 #include "io/json_writer.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -25,8 +26,8 @@ const std::filesystem::path kFixture =
 
 using SweepCommandTest = retrace::testing::TempDirTest;
 
-SweepOptions Options(const std::filesystem::path& out, const std::string& shard, int jobs) {
-  SweepOptions options;
+SweepRequest Options(const std::filesystem::path& out, const std::string& shard, int jobs) {
+  SweepRequest options;
   options.file = kFixture;
   options.out = out;
   options.shard = shard;
@@ -40,8 +41,8 @@ int LineCount(const std::string& text) {
 }
 
 TEST_F(SweepCommandTest, ResultsDoNotDependOnTheNumberOfJobs) {
-  ASSERT_EQ(RunSweepCommand(Options(tmp_.path() / "one", "1/2", 1), "test"), 0);
-  ASSERT_EQ(RunSweepCommand(Options(tmp_.path() / "two", "1/2", 2), "test"), 0);
+  RunSweep(Options(tmp_.path() / "one", "1/2", 1), "test", nullptr);
+  RunSweep(Options(tmp_.path() / "two", "1/2", 2), "test", nullptr);
   const std::string one = tmp_.Read("one/results.csv");
   EXPECT_EQ(LineCount(one), 1 + 4);  // header + cases 0, 2, 4, 6
   EXPECT_EQ(one, tmp_.Read("two/results.csv"));
@@ -59,38 +60,38 @@ TEST_F(SweepCommandTest, ResultsDoNotDependOnTheNumberOfJobs) {
 
 TEST_F(SweepCommandTest, AHalfWrittenRowIsRunAgainAndTheFinalFileIsTheSame) {
   const auto out = tmp_.path() / "s";
-  ASSERT_EQ(RunSweepCommand(Options(out, "2/4", 1), "test"), 0);  // cases 1 and 5
+  RunSweep(Options(out, "2/4", 1), "test", nullptr);  // cases 1 and 5
   const std::string complete = tmp_.Read("s/results.csv");
   ASSERT_EQ(LineCount(complete), 3);
   // As if killed while appending case 5: its row is cut short, with no line break.
   const std::size_t second_row = complete.find('\n', complete.find('\n') + 1) + 1;
   tmp_.Write("s/results.csv", complete.substr(0, second_row + 12));
-  ASSERT_EQ(RunSweepCommand(Options(out, "2/4", 1), "test"), 0);
+  RunSweep(Options(out, "2/4", 1), "test", nullptr);
   EXPECT_EQ(tmp_.Read("s/results.csv"), complete);
   EXPECT_EQ(io::ReadJsonFile(out / "sweep.json")["cases_run"], 1);  // case 1 was not run again
   // Done: a third start runs nothing and changes nothing.
-  ASSERT_EQ(RunSweepCommand(Options(out, "2/4", 1), "test"), 0);
+  RunSweep(Options(out, "2/4", 1), "test", nullptr);
   EXPECT_EQ(tmp_.Read("s/results.csv"), complete);
   EXPECT_EQ(io::ReadJsonFile(out / "sweep.json")["cases_run"], 0);
 }
 
 TEST_F(SweepCommandTest, AFolderOfAnotherSweepIsLeftAlone) {
   const auto out = tmp_.path() / "s";
-  ASSERT_EQ(RunSweepCommand(Options(out, "4/4", 1), "test"), 0);  // cases 3 and 7
+  RunSweep(Options(out, "4/4", 1), "test", nullptr);  // cases 3 and 7
   const std::string results = tmp_.Read("s/results.csv");
   const std::string record = tmp_.Read("s/sweep.json");
   try {
-    RunSweepCommand(Options(out, "3/4", 1), "test");
+    RunSweep(Options(out, "3/4", 1), "test", nullptr);
     FAIL();
   } catch (const core::ConfigError& e) {
     EXPECT_THAT(
         e.what(),
         HasSubstr(out.string() + " holds results of another sweep (shard 4/4; this is shard 3/4)"));
   }
-  SweepOptions changed = Options(out, "4/4", 1);
+  SweepRequest changed = Options(out, "4/4", 1);
   changed.overrides = {"limits.stall_time=30"};
   try {
-    RunSweepCommand(changed, "test");
+    RunSweep(changed, "test", nullptr);
     FAIL();
   } catch (const core::ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr("holds results of another sweep"));
@@ -102,14 +103,14 @@ TEST_F(SweepCommandTest, AFolderOfAnotherSweepIsLeftAlone) {
 
 TEST_F(SweepCommandTest, ARowThatIsNotThisSweepsIsAnError) {
   const auto out = tmp_.path() / "s";
-  ASSERT_EQ(RunSweepCommand(Options(out, "4/4", 1), "test"), 0);
+  RunSweep(Options(out, "4/4", 1), "test", nullptr);
   std::string results = tmp_.Read("s/results.csv");
   const std::size_t at = results.find("\n3,1,1,2,60,false,");
   ASSERT_NE(at, std::string::npos);
   results.replace(at, 18, "\n3,1,1,2,61,false,");
   tmp_.Write("s/results.csv", results);
   try {
-    RunSweepCommand(Options(out, "4/4", 1), "test");
+    RunSweep(Options(out, "4/4", 1), "test", nullptr);
     FAIL();
   } catch (const core::IoError& e) {
     EXPECT_THAT(

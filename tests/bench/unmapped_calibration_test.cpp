@@ -1,7 +1,7 @@
-// What the map does not hold (bench/replay/unmapped_calibration.hpp): the walk's lengths through
-// unknown and band cells, the Poisson rates recovered from beams drawn with known ones, and the
-// static test that tells a chair from a passer-by.
-#include "bench/replay/unmapped_calibration.hpp"
+// What the map does not hold (bench/calibration/unmapped_calibration.hpp): the walk's lengths
+// through unknown and band cells, the Poisson rates recovered from beams drawn with known ones,
+// and the static test that tells a chair from a passer-by.
+#include "bench/calibration/unmapped_calibration.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "bench/replay/log_comparison.hpp"
+#include "bench/calibration/log_comparison.hpp"
 
 #include <cmath>
 #include <cstdio>

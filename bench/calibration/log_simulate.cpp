@@ -1,11 +1,11 @@
-#include "bench/replay/log_simulate.hpp"
+#include "bench/calibration/log_simulate.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "bench/replay/unmapped_calibration.hpp"
+#include "bench/calibration/unmapped_calibration.hpp"
 #include "core/angle.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"

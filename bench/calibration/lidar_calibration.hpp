@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "bench/calibration/unmapped_calibration.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/replay/log_streams.hpp"
 #include "bench/replay/log_teach.hpp"
-#include "bench/replay/unmapped_calibration.hpp"
 #include "logs/sensor_log.hpp"
 #include "nav/beam_mixture_fit.hpp"
 #include "sim/lidar.hpp"
@@ -42,7 +42,8 @@ struct CalibrationBeams {
   double last_s = 0.0;     ///< ... and of the last
   double range_min = 0.0;  ///< m, the log's LiDAR (its first scan)
   double range_max = 0.0;
-  /// Every beam with a reading, walked through the map (bench/replay/unmapped_calibration.hpp).
+  /// Every beam with a reading, walked through the map
+  /// (bench/calibration/unmapped_calibration.hpp).
   std::vector<UnmappedBeam> unmapped;
 };
 

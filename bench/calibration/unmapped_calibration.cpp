@@ -1,4 +1,4 @@
-#include "bench/replay/unmapped_calibration.hpp"
+#include "bench/calibration/unmapped_calibration.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "bench/replay/lidar_calibration.hpp"
+#include "bench/calibration/lidar_calibration.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-#include "bench/replay/log_simulate.hpp"
+#include "bench/calibration/log_simulate.hpp"
 #include "core/errors.hpp"
 #include "io/ros_map.hpp"
 #include "nav/grid_ray_caster.hpp"

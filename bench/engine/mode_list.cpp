@@ -1,4 +1,4 @@
-#include "bench/cli/mode_list.hpp"
+#include "bench/engine/mode_list.hpp"
 
 #include <algorithm>
 
@@ -33,6 +33,17 @@ std::vector<MapMode> ParseModeList(const std::vector<std::string>& names, std::s
     modes.push_back(*mode);
   }
   return modes;
+}
+
+std::vector<io::ConfigOverride> CommandLineOverrides(const std::vector<std::string>& sets,
+                                                     std::optional<std::uint64_t> seed,
+                                                     std::optional<int> repeats) {
+  std::vector<io::ConfigOverride> overrides;
+  for (const std::string& text : sets) overrides.push_back(io::ParseOverride(text));
+  if (seed) overrides.push_back(io::ParseOverride("seed=" + std::to_string(*seed)));
+  if (repeats)
+    overrides.push_back(io::ParseOverride("playback.repeats=" + std::to_string(*repeats)));
+  return overrides;
 }
 
 }  // namespace retrace::bench

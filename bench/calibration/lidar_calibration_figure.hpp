@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "bench/replay/lidar_calibration.hpp"
+#include "bench/calibration/lidar_calibration.hpp"
 #include "viz/range_error_figure.hpp"
 
 namespace retrace::bench {

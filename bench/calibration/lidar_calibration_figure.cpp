@@ -1,4 +1,4 @@
-#include "bench/replay/lidar_calibration_figure.hpp"
+#include "bench/calibration/lidar_calibration_figure.hpp"
 
 #include <algorithm>
 #include <cmath>

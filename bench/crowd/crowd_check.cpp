@@ -1,0 +1,205 @@
+#include "bench/crowd/crowd_check.hpp"
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "core/errors.hpp"
+#include "core/format.hpp"
+#include "io/config_yaml.hpp"
+#include "io/csv_writer.hpp"
+#include "io/json_writer.hpp"
+#include "viz/fundamental_diagram_figure.hpp"
+
+namespace retrace::bench {
+namespace {
+
+// v with `decimals` decimals, "-" when not finite.
+std::string Fixed(double v, int decimals) {
+  return std::isfinite(v) ? core::FixedText(v, decimals) : "-";
+}
+
+std::string Percent(double v) { return std::isfinite(v) ? Fixed(100.0 * v, 1) + " %" : "-"; }
+
+void WriteFigure(const FundamentalDiagramResult& result, const FundamentalDiagramConfig& config,
+                 const std::filesystem::path& png) {
+  viz::FundamentalDiagramFigureData fig;
+  const WeidmannCurve curve;
+  for (double rho = 0.1; rho <= 4.6 + 1e-9; rho += 0.025) {
+    const double v = WeidmannSpeed(rho, curve);
+    fig.curve_density.push_back(rho);
+    fig.curve_speed.push_back(v);
+    fig.band_low.push_back((1.0 - result.tolerance) * v);
+    fig.band_high.push_back((1.0 + result.tolerance) * v);
+  }
+  fig.curve_label = "Weidmann (1993)";
+  fig.band_label = "+-" + Fixed(100.0 * result.tolerance, 0) + " %";
+  for (const FundamentalDiagramRow& row : result.rows) {
+    if (row.spawned) fig.points.push_back({row.density, row.mean_speed, row.speed_std});
+  }
+  fig.subtitle = "Two-way ring corridor " + Fixed(config.width, 1) +
+                 " m wide, bodies r = " + Fixed(config.pedestrian_radius, 2) +
+                 " m; RMS deviation " + Fixed(result.rms_deviation, 3) + " m/s";
+  viz::FigureOptions options;
+  options.width = 1000;
+  viz::RenderFundamentalDiagramFigure(fig, png, options);
+}
+
+nlohmann::ordered_json ToJson(const FundamentalDiagramResult& result,
+                              const FundamentalDiagramConfig& config, std::uint64_t seed,
+                              const std::vector<std::string>& overrides) {
+  nlohmann::ordered_json j;
+  j["check"] = "fundamental diagram, bidirectional ring corridor";
+  j["seed"] = seed;
+  j["overrides"] = overrides;
+  const WeidmannCurve curve;
+  j["weidmann"] = {
+      {"free_speed", curve.free_speed}, {"gamma", curve.gamma}, {"max_density", curve.max_density}};
+  j["tolerance"] = result.tolerance;
+  j["parameters"] = {{"inner_radius", config.inner_radius},
+                     {"width", config.width},
+                     {"outer_radius", config.outer_radius()},
+                     {"area", config.area()},
+                     {"pedestrian_radius", config.pedestrian_radius},
+                     {"speed_mean", config.speed_mean},
+                     {"speed_std", config.speed_std},
+                     {"clockwise_fraction", config.clockwise_fraction},
+                     {"warmup", config.warmup},
+                     {"duration", config.duration},
+                     {"sample_period", config.sample_period},
+                     {"time_step", config.time_step},
+                     {"speed_measured", "velocity along the ring's tangent, walking direction"}};
+  j["config_yaml"] = io::ConfigToYaml(config);
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const FundamentalDiagramRow& r : result.rows) {
+    nlohmann::ordered_json row;
+    row["requested_density"] = r.requested_density;
+    row["count"] = r.count;
+    row["density"] = r.density;
+    row["spawned"] = r.spawned;
+    if (!r.note.empty()) row["note"] = r.note;
+    row["mean_speed"] = io::JsonNumber(r.spawned ? r.mean_speed : NAN);
+    row["speed_std"] = io::JsonNumber(r.spawned ? r.speed_std : NAN);
+    row["mean_abs_speed"] = io::JsonNumber(r.spawned ? r.mean_abs_speed : NAN);
+    row["weidmann_speed"] = r.weidmann_speed;
+    row["relative_deviation"] = io::JsonNumber(r.spawned ? r.relative_deviation : NAN);
+    row["samples"] = r.samples;
+    row["lattice_spacing"] = r.lattice_spacing;
+    row["misaligned_starts"] = r.misaligned_starts;
+    row["yields"] = r.yields;
+    row["goals_abandoned"] = r.goals_abandoned;
+    rows.push_back(row);
+  }
+  j["rows"] = rows;
+  j["rms_deviation"] = io::JsonNumber(result.rms_deviation);
+  j["free_speed"] = {{"relative_deviation", io::JsonNumber(result.free_speed_deviation)},
+                     {"pass", result.free_speed_pass}};
+  j["band_1_2"] = {{"rows", result.band_rows},
+                   {"max_relative_deviation", io::JsonNumber(result.band_max_deviation)},
+                   {"pass", result.band_pass}};
+  return j;
+}
+
+void WriteCsv(const FundamentalDiagramResult& result, const std::filesystem::path& path) {
+  io::CsvWriter csv(path,
+                    {"requested_density", "count", "density", "spawned", "mean_speed", "speed_std",
+                     "mean_abs_speed", "weidmann_speed", "relative_deviation", "samples"});
+  for (const FundamentalDiagramRow& r : result.rows) {
+    const double nan = std::nan("");
+    csv.AddRow({r.requested_density, r.count, r.density, r.spawned, r.spawned ? r.mean_speed : nan,
+                r.spawned ? r.speed_std : nan, r.spawned ? r.mean_abs_speed : nan, r.weidmann_speed,
+                r.spawned ? r.relative_deviation : nan, static_cast<long long>(r.samples)});
+  }
+  csv.Commit();
+}
+
+std::string Table(const FundamentalDiagramResult& result) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%9s %6s %9s %10s %9s %10s %10s\n", "rho(/m2)", "count",
+                "v_sim", "sd", "v_weid", "dev", "");
+  out += line;
+  for (const FundamentalDiagramRow& r : result.rows) {
+    if (!r.spawned) {
+      std::snprintf(line, sizeof(line), "%9.3f %6d  not spawned: %s\n", r.density, r.count,
+                    r.note.c_str());
+    } else {
+      const bool in_band = std::abs(r.relative_deviation) <= result.tolerance;
+      std::snprintf(line, sizeof(line), "%9.3f %6d %9.3f %10.3f %9.3f %10s %10s\n", r.density,
+                    r.count, r.mean_speed, r.speed_std, r.weidmann_speed,
+                    Percent(r.relative_deviation).c_str(), in_band ? "" : "outside");
+    }
+    out += line;
+  }
+  out += "RMS deviation: " + Fixed(result.rms_deviation, 3) + " m/s\n";
+  out += "free speed: " + Percent(result.free_speed_deviation) +
+         (result.free_speed_pass ? "  pass" : "  FAIL") + " (within " +
+         Fixed(100.0 * result.tolerance, 0) + " %)\n";
+  out += "1-2 /m2: max " + Percent(result.band_max_deviation) +
+         (result.band_pass ? "  pass" : "  FAIL") + " (" + std::to_string(result.band_rows) +
+         " densities)\n";
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> ParseDensityList(const std::string& text) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find(',', start);
+    if (end == std::string::npos) end = text.size();
+    std::string item = text.substr(start, end - start);
+    while (!item.empty() && item.front() == ' ') item.erase(item.begin());
+    while (!item.empty() && item.back() == ' ') item.pop_back();
+    double v = 0.0;
+    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
+    if (item.empty() || ec != std::errc() || ptr != item.data() + item.size()) {
+      throw core::ConfigError("densities", "'" + item + "' is not a number (persons/m²)");
+    }
+    out.push_back(v);
+    start = end + 1;
+  }
+  ValidateDensities(out);
+  return out;
+}
+
+CrowdCheck RunCrowdCheck(
+    const CrowdCheckRequest& request,
+    const std::function<void(const FundamentalDiagramRow& row, std::size_t done)>& progress) {
+  CrowdCheck check;
+  check.config = ReadFundamentalDiagramConfig(request.overrides);
+  if (request.duration > 0.0) check.config.duration = request.duration;
+  if (request.warmup >= 0.0) check.config.warmup = request.warmup;
+  check.config.Validate();
+  ValidateDensities(request.densities);
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t done = 0;
+  check.result = RunFundamentalDiagram(check.config, request.densities, request.seed,
+                                       [&](const FundamentalDiagramRow& row) {
+                                         ++done;
+                                         if (progress) progress(row, done);
+                                       });
+  check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return check;
+}
+
+void WriteCrowdCheckFolder(const std::filesystem::path& out, const CrowdCheck& check,
+                           const CrowdCheckRequest& request) {
+  std::filesystem::create_directories(out);
+  WriteCsv(check.result, out / "fundamental_diagram.csv");
+  io::WriteJsonAtomic(out / "crowd_check.json",
+                      ToJson(check.result, check.config, request.seed, request.overrides));
+  WriteFigure(check.result, check.config, out / "fundamental_diagram.png");
+}
+
+std::string CrowdCheckSummary(const CrowdCheck& check, const std::filesystem::path& out) {
+  return Table(check.result) + "simulated " + std::to_string(check.result.rows.size()) +
+         " densities x " + Fixed(check.config.warmup + check.config.duration, 0) + " s in " +
+         Fixed(check.seconds, 1) + " s -> " + out.string() + "\n";
+}
+
+}  // namespace retrace::bench
