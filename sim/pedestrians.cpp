@@ -9,6 +9,7 @@
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
+#include "core/format.hpp"
 #include "core/segment.hpp"
 
 namespace retrace::sim {
@@ -35,12 +36,6 @@ void ValidateNested(std::string_view prefix, const auto& config) {
   } catch (const core::ConfigError& e) {
     throw core::ConfigError(std::string(prefix) + "." + e.key_path(), e.detail());
   }
-}
-
-std::string Format(const char* fmt, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof(buf), fmt, args...);
-  return buf;
 }
 
 // Appends the closest point of every solid added at run time (polygon edge or circle) within
@@ -84,18 +79,18 @@ std::vector<Vec2> SnapLoopWaypoints(const PedestrianGroupConfig& group, const ch
     std::optional<Vec2> snapped =
         planner.IsFree(w) ? std::optional<Vec2>(w) : planner.NearestFree(w, kWaypointSnap);
     if (!snapped) {
-      throw core::WorldError(
-          Format("%s: loop waypoint %zu (%.2f, %.2f) is inside or too close to static geometry (no "
-                 "walkable point within %.1f m)",
-                 name, k, w.x(), w.y(), kWaypointSnap));
+      throw core::WorldError(core::Printf(
+          "%s: loop waypoint %zu (%.2f, %.2f) is inside or too close to static geometry (no "
+          "walkable point within %.1f m)",
+          name, k, w.x(), w.y(), kWaypointSnap));
     }
     const int c = planner.Component(*snapped);
     if (k == 0) loop_component = c;
     if (c != loop_component) {
-      throw core::WorldError(
-          Format("%s: loop waypoint %zu (%.2f, %.2f) cannot be reached on foot from waypoint 0 "
-                 "(%.2f, %.2f)",
-                 name, k, w.x(), w.y(), group.waypoints[0].x(), group.waypoints[0].y()));
+      throw core::WorldError(core::Printf(
+          "%s: loop waypoint %zu (%.2f, %.2f) cannot be reached on foot from waypoint 0 "
+          "(%.2f, %.2f)",
+          name, k, w.x(), w.y(), group.waypoints[0].x(), group.waypoints[0].y()));
     }
     loop.push_back(*snapped);
   }
@@ -118,7 +113,7 @@ std::string PlacementFailure(const PedestrianGroupConfig& group, const char* nam
   const Aabb region{group.region_min, group.region_max};
   core::Rng probe = rng.Split("probe");
   const bool any_free = planner.SampleFreePoint(region, probe, 10000, component).has_value();
-  return Format(
+  return core::Printf(
       "%s: cannot place pedestrian %d of %d in region [%.2f, %.2f]-[%.2f, %.2f] after %d "
       "tries: %s",
       name, n + 1, group.count, region.min.x(), region.min.y(), region.max.x(), region.max.y(),
@@ -215,8 +210,8 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
   for (std::size_t g = 0; g < groups.size(); ++g) {
     if (groups[g].count == 0) continue;
     std::vector<Placement> placements =
-        PlaceGroup(groups[g], static_cast<int>(g), Format("pedestrian group %zu", g), *planners_[0],
-                   0, rng, person, keep_clear, &occupied);
+        PlaceGroup(groups[g], static_cast<int>(g), core::Printf("pedestrian group %zu", g),
+                   *planners_[0], 0, rng, person, keep_clear, &occupied);
     person += static_cast<std::uint64_t>(groups[g].count);
     Commit(std::move(placements), world);
   }
@@ -349,7 +344,7 @@ std::vector<int> Pedestrians::AddGroup(const PedestrianGroupConfig& group,
   if (group.count == 0) return {};
   const int group_index = constructor_groups_ + static_cast<int>(k);
   const std::string label =
-      Format("pedestrian group %d (added at t = %.2f s)", group_index, world.time());
+      core::Printf("pedestrian group %d (added at t = %.2f s)", group_index, world.time());
 
   // A planner whose grid is inflated enough for this radius and covers the region and loop
   // waypoints with room for detours; else a new one (which must see the added obstacles too).

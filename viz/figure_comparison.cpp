@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <utility>
 
+#include "core/format.hpp"
 #include "viz/figures.hpp"
 #include "viz/internal/chart.hpp"
 #include "viz/internal/cv_image.hpp"
@@ -15,11 +16,7 @@ namespace retrace::viz {
 namespace {
 
 // A bar's value label: three significant digits.
-std::string ValueLabel(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.3g", v);
-  return buf;
-}
+std::string ValueLabel(double v) { return core::Printf("%.3g", v); }
 
 // The mode's value of `metric`, or nullptr.
 const MetricValue* Find(const ModeMetrics& m, const std::string& metric) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
+#include "core/format.hpp"
 #include "viz/figures.hpp"
 #include "viz/internal/figure_layout.hpp"
 #include "viz/internal/layers.hpp"
@@ -17,20 +18,13 @@ using internal::Header;
 using internal::LegendEntry;
 using internal::LegendSymbol;
 
-// `fmt` filled with up to three numbers.
-std::string Format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
-  char buf[160];
-  std::snprintf(buf, sizeof(buf), fmt, a, b, c);
-  return buf;
-}
-
 // A map panel's title: its label, the size of its known cells and its path length.
 std::string MapTitle(const PartialMapView& m, int k) {
   const std::string label = m.label.empty() ? "map " + std::to_string(k) : m.label;
   const Box2 known = internal::KnownCellsBox(m.grid);
   const Vec2 size = known.Size();
-  return label +
-         Format(":  %.0f x %.0f m, path %.0f m", size.x(), size.y(), internal::PathLength(m.path));
+  return label + core::Printf(":  %.0f x %.0f m, path %.0f m", size.x(), size.y(),
+                              internal::PathLength(m.path));
 }
 
 // The box a map panel shows: the occupied cells (or, with none, the observed ones), the path,
@@ -69,8 +63,8 @@ Header MapsHeader(const MapsFigureData& data, const FigureOptions& options,
   std::string top_title = route_title;
   top_title[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(top_title[0])));
   header.subtitle = std::to_string(n) + " partial map" + (n == 1 ? "" : "s") +
-                    Format(", route %.0f m. Top: ", internal::PathLength(data.route)) + top_title +
-                    ". Bottom: each map in its own frame M_k, built from odometry.";
+                    core::Printf(", route %.0f m. Top: ", internal::PathLength(data.route)) +
+                    top_title + ". Bottom: each map in its own frame M_k, built from odometry.";
   for (std::size_t k = 0; k < std::min<std::size_t>(n, 6); ++k) {
     header.legend.push_back({"map " + std::to_string(k) + " path", MapColor(static_cast<int>(k)),
                              LegendSymbol::kLine, Marker::kDisc, 3.0});
@@ -254,8 +248,8 @@ Header WorldHeader(const WorldFigureData& data, const FigureOptions& options) {
   for (std::size_t i = 1; i < data.route.size(); ++i) {
     route_length += (data.route[i] - data.route[i - 1]).norm();
   }
-  header.subtitle = Format("extent %.1f x %.1f m", size.x(), size.y());
-  if (!data.route.empty()) header.subtitle += Format(", route %.0f m", route_length);
+  header.subtitle = core::Printf("extent %.1f x %.1f m", size.x(), size.y());
+  if (!data.route.empty()) header.subtitle += core::Printf(", route %.0f m", route_length);
   if (!data.pedestrians.empty()) {
     header.subtitle += ", " + std::to_string(data.pedestrians.size()) + " pedestrians";
   }

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/errors.hpp"
+#include "core/format.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_reader.hpp"
 #include "io/json_writer.hpp"
@@ -47,9 +48,7 @@ double Number(const nlohmann::json& j, const char* key, const char* sub = nullpt
 
 std::string Cell(double v, const char* format) {
   if (!std::isfinite(v)) return "–";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, v);
-  return buffer;
+  return core::Printf(format, v);
 }
 
 }  // namespace

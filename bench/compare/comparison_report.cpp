@@ -9,6 +9,7 @@
 #include "bench/metrics/provenance.hpp"
 #include "core/check.hpp"
 #include "core/config.hpp"
+#include "core/format.hpp"
 #include "io/json_writer.hpp"
 
 namespace retrace::bench {
@@ -33,16 +34,11 @@ std::string Format(double v, bool sign = false) {
     v = 0.0;       // no "-0"
     sign = false;  // nor "+0"
   }
-  char buf[48];
   const double magnitude = std::abs(v);
-  if (magnitude >= 1e4 || (magnitude > 0.0 && magnitude < 1e-3)) {
-    std::snprintf(buf, sizeof(buf), sign ? "%+.2e" : "%.2e", v);
-  } else if (magnitude >= 1000.0) {
-    std::snprintf(buf, sizeof(buf), sign ? "%+.0f" : "%.0f", v);
-  } else {
-    std::snprintf(buf, sizeof(buf), sign ? "%+.3g" : "%.3g", v);
-  }
-  return buf;
+  if (magnitude >= 1e4 || (magnitude > 0.0 && magnitude < 1e-3))
+    return core::Printf(sign ? "%+.2e" : "%.2e", v);
+  if (magnitude >= 1000.0) return core::Printf(sign ? "%+.0f" : "%.0f", v);
+  return core::Printf(sign ? "%+.3g" : "%.3g", v);
 }
 
 // "mean [lower, upper]"; the interval is "n/a" with fewer than two values.

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "core/format.hpp"
 #include "core/rng.hpp"
 #include "io/config_yaml.hpp"
 #include "sim/physics_world.hpp"
@@ -26,12 +27,6 @@ constexpr double kCellSlack = 0.75;  // of a cell size
 constexpr double kMaxJitter = 0.05;
 // Most lattice rows tried across the corridor.
 constexpr int kMaxRows = 40;
-
-std::string FormatFd(const char* fmt, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof(buf), fmt, args...);
-  return buf;
-}
 
 sim::StaticGeometry RingGeometry(const FundamentalDiagramConfig& c) {
   sim::StaticGeometry g;
@@ -343,7 +338,7 @@ FundamentalDiagramRow RunDensity(const FundamentalDiagramConfig& config, double 
   row.lattice_spacing = lattice.spacing;
   const double needed = 2.0 * config.pedestrian_radius + config.crowd.spawn_gap;
   if (!(lattice.spacing >= needed + 1e-9)) {
-    row.note = FormatFd(
+    row.note = core::Printf(
         "%d pedestrians of radius %.2f m do not fit between the walls: the start lattice's "
         "spacing %.3f m is below 2 x radius + spawn gap = %.3f m",
         row.count, config.pedestrian_radius, lattice.spacing, needed);

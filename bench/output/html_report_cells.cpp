@@ -3,6 +3,7 @@
 
 #include "bench/output/html_report.hpp"
 #include "bench/output/internal/report_page.hpp"
+#include "core/format.hpp"
 #include "io/json_writer.hpp"
 
 namespace retrace::bench::report {
@@ -12,16 +13,12 @@ using nlohmann::json;
 
 std::string Number(double v) {
   if (!std::isfinite(v)) return "n/a";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", v);
-  return buffer;
+  return core::Printf("%.4g", v);
 }
 
 std::string SignedNumber(double v) {
   if (!std::isfinite(v)) return "n/a";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%+.4g", v);
-  return buffer;
+  return core::Printf("%+.4g", v);
 }
 
 bool IsScalar(const json& v) { return !v.is_object() && !v.is_array(); }

@@ -4,15 +4,15 @@
 #include <cstdio>
 #include <string>
 
+#include "core/format.hpp"
+
 namespace retrace::bench {
 namespace {
 
 // A number for the table, "-" when undefined.
 std::string Cell(double v, const char* format = "%.3f") {
   if (!std::isfinite(v)) return "-";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, format, v);
-  return buffer;
+  return core::Printf(format, v);
 }
 
 // The scenario's line: route length and how its maps are cut.
@@ -101,9 +101,9 @@ std::string LocalizerLines(const std::vector<ModeSummary>& modes) {
     text += std::string(core::EnumName(m.mode)) + ": localizer lost " +
             Cell(h.lost_time_s, "%.1f") + " s in " + std::to_string(h.lost_spells) + " spells, " +
             std::to_string(h.reacquisitions) + " re-acquisitions (" +
-            std::to_string(h.reacquisitions_wrong) +
-            " wrong); largest single-tick jump " + Cell(h.max_jump_m, "%.2f") +
-            " m, error increase " + Cell(h.max_error_increase_m, "%.2f") + " m\n";
+            std::to_string(h.reacquisitions_wrong) + " wrong); largest single-tick jump " +
+            Cell(h.max_jump_m, "%.2f") + " m, error increase " +
+            Cell(h.max_error_increase_m, "%.2f") + " m\n";
   }
   return text;
 }

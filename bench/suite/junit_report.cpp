@@ -8,6 +8,7 @@
 
 #include "bench/suite/suite_spec.hpp"
 #include "bench/suite/tolerance.hpp"
+#include "core/format.hpp"
 #include "io/markup_escape.hpp"
 
 namespace retrace::bench {
@@ -95,12 +96,6 @@ std::string Attribute(std::string_view name, std::string_view value) {
   return out;
 }
 
-std::string Seconds(double s) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f", s);
-  return buffer;
-}
-
 // The rows `retrace bench` exits 1 for.
 bool Fails(const SuiteReport& report, const ReportContext& context, const ReportRow& row) {
   return report.compared && !context.recording && IsFailure(row.check.verdict);
@@ -138,7 +133,7 @@ std::vector<std::pair<std::string, std::string>> Properties(const SuiteReport& r
   std::vector<std::pair<std::string, std::string>> p = {{"retrace_version", context.version}};
   if (!context.git_revision.empty()) p.emplace_back("git_revision", context.git_revision);
   p.emplace_back("date", context.date);
-  p.emplace_back("wall_time_s", Seconds(context.wall_time_s));
+  p.emplace_back("wall_time_s", core::FixedText(context.wall_time_s, 3));
   p.emplace_back("jobs", std::to_string(context.jobs));
   p.emplace_back("suite", report.suite);
   p.emplace_back("suite_file", context.suite_file.string());
@@ -217,8 +212,8 @@ std::string JunitXml(const SuiteReport& report, const ReportContext& context) {
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites" +
                     Attribute("name", report.suite) + Attribute("tests", std::to_string(tests)) +
                     Attribute("failures", std::to_string(failures)) + Attribute("errors", "0") +
-                    Attribute("skipped", "0") + Attribute("time", Seconds(context.wall_time_s)) +
-                    ">\n";
+                    Attribute("skipped", "0") +
+                    Attribute("time", core::FixedText(context.wall_time_s, 3)) + ">\n";
   for (const SuiteBlock& block : blocks) xml += TestSuiteXml(block, report, context, properties);
   return xml + "</testsuites>\n";
 }

@@ -15,18 +15,13 @@
 #include "bench/suite/suite_runner.hpp"
 #include "bench/suite/trend_file.hpp"
 #include "core/errors.hpp"
+#include "core/format.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_override.hpp"
 #include "io/json_writer.hpp"
 
 namespace retrace::bench {
 namespace {
-
-std::string OneDecimalSeconds(double s) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f s", s);
-  return buffer;
-}
 
 // The baseline to compare with, read and checked before anything runs. When recording a new
 // one, an old baseline is compared with for information if it fits the suite, and another
@@ -133,10 +128,11 @@ std::string VerdictLine(const SuiteSpec& spec, const SuiteReport& report,
   std::string selection;
   for (const std::string& o : only) selection += (selection.empty() ? " (--only " : ", ") + o;
   if (!selection.empty()) selection += ")";
-  const std::string work =
-      std::to_string(spec.entries.size()) + (spec.entries.size() == 1 ? " entry" : " entries") +
-      selection + ", " + std::to_string(results.teaching_drives) + " teaching drives, " +
-      std::to_string(results.playback_runs) + " playback runs, " + OneDecimalSeconds(wall_time_s);
+  const std::string work = std::to_string(spec.entries.size()) +
+                           (spec.entries.size() == 1 ? " entry" : " entries") + selection + ", " +
+                           std::to_string(results.teaching_drives) + " teaching drives, " +
+                           std::to_string(results.playback_runs) + " playback runs, " +
+                           core::FixedText(wall_time_s, 1) + " s";
   std::string line = "suite " + spec.name + ": ";
   if (updated) {
     line += "baseline written to " + baseline_file.string() + " (" +

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "bench/suite/metric_pattern.hpp"
+#include "core/format.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -34,9 +35,7 @@ nlohmann::json JsonNumber(std::optional<double> v) {
 std::string FormatValue(std::optional<double> v) {
   if (!v) return "-";
   if (std::isnan(*v)) return "nan";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", *v);
-  return buffer;
+  return core::Printf("%.4g", *v);
 }
 
 std::optional<double> RowDelta(const ReportRow& row) {
@@ -47,9 +46,7 @@ std::optional<double> RowDelta(const ReportRow& row) {
 
 std::string FormatDelta(std::optional<double> v) {
   if (!v) return "-";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%+.3g", *v);
-  return buffer;
+  return core::Printf("%+.3g", *v);
 }
 
 double SeedStdDev(const std::vector<double>& values) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bench/metrics/flat_metrics.hpp"
+#include "core/format.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -31,11 +32,7 @@ constexpr std::array<std::string_view, 16> kHigherIsBetter = {"success_rate",
                                                               "passed"};
 
 // Four significant digits: enough to see a change in a table, short enough to read.
-std::string Short(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", v);
-  return buffer;
-}
+std::string Short(double v) { return core::Printf("%.4g", v); }
 
 }  // namespace
 

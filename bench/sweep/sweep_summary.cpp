@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <map>
 
+#include "core/format.hpp"
+
 namespace retrace::bench {
 namespace {
 
@@ -13,9 +15,7 @@ constexpr std::size_t kFirstParameter = 4;  // case, combo, repeat, seed
 
 std::string FormatMean(double sum, int count) {
   if (count == 0) return "-";
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.4g", sum / count);
-  return text;
+  return core::Printf("%.4g", sum / count);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
+#include "core/format.hpp"
 #include "viz/internal/cv_image.hpp"
 
 namespace retrace::viz::internal {
@@ -104,9 +105,7 @@ std::string FormatTick(double value, double step) {
     }
   }
   if (std::abs(value) < std::abs(step) * 1e-6) value = 0.0;
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.*f", std::clamp(decimals, 0, 6), value);
-  return buf;
+  return core::FixedText(value, std::clamp(decimals, 0, 6));
 }
 
 double NiceStep(double range, int max_ticks) {

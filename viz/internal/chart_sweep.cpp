@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
+#include "core/format.hpp"
 #include "viz/internal/annotate.hpp"
 #include "viz/internal/cv_image.hpp"
 
 namespace retrace::viz::internal {
 namespace {
-
 
 // A sweep grid rarely has more values per parameter; beyond this the values are probably
 // sampled at random and round-number ticks read better than a tick per value.
@@ -38,9 +38,7 @@ bool ParseFiniteNumber(const std::string& text, double* value) {
 }
 
 std::string FormatValue(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", value == 0.0 ? 0.0 : value);  // no "-0"
-  return buf;
+  return core::Printf("%.6g", value == 0.0 ? 0.0 : value);  // no "-0"
 }
 
 SweepAxis MakeSweepAxis(const std::vector<std::string>& values) {
