@@ -1,7 +1,5 @@
 #pragma once
-// `retrace log-info <log>`: what a recorded log holds and what the log commands would take from
-// it — messages per topic, duration, the scans' geometry, the odometry's path length, the LiDAR
-// mount and whether a reference trajectory exists.
+// `retrace log-info <log>`: prints bench/replay/log_description.hpp's DescribeLog of the log.
 
 #include <filesystem>
 #include <string>
@@ -26,9 +24,5 @@ void AddLogInfoOptions(CLI::App* cmd, LogInfoOptions* options);
 /// (logs/sensor_log.hpp, RequireUsable) — but not for one that only needs a topic chosen
 /// (LogIndex::needs_choice): log-info describes them all.
 int RunLogInfoCommand(const LogInfoOptions& options);
-
-/// What the log holds, several lines: topics, every scan topic, odometry, mount, reference,
-/// notes and, where a stream has several topics, the choice the other commands need.
-std::string DescribeLog(const logs::LogIndex& index);
 
 }  // namespace retrace::bench

@@ -6,7 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "bench/cli/log_info_command.hpp"
+#include "bench/cli/log_info_command.hpp"  // the exit code of log-info itself
+#include "bench/replay/log_description.hpp"
 #include "logs/mcap_writer.hpp"
 #include "logs/ros_messages.hpp"
 #include "logs/sensor_log.hpp"
