@@ -88,4 +88,22 @@ std::optional<ClusterMean> MainCluster(std::span<const Particle> particles) {
   return mean ? mean : std::optional<ClusterMean>(ClusterMean{seed, 0.0});
 }
 
+double ParticleSpread(std::span<const Particle> particles) {
+  double w = 0.0, x = 0.0, y = 0.0;
+  for (const Particle& p : particles) {
+    w += p.weight;
+    x += p.weight * p.X_MR.x;
+    y += p.weight * p.X_MR.y;
+  }
+  if (!(w > 0.0)) return 0.0;
+  x /= w;
+  y /= w;
+  double sum = 0.0;
+  for (const Particle& p : particles) {
+    const double dx = p.X_MR.x - x, dy = p.X_MR.y - y;
+    sum += p.weight * (dx * dx + dy * dy);
+  }
+  return std::sqrt(sum / w);
+}
+
 }  // namespace retrace::nav

@@ -33,4 +33,8 @@ std::optional<ClusterMean> ClusterAround(std::span<const Particle> particles,
 /// lone heavy particle elsewhere could then outweigh each part. nullopt for no particles.
 std::optional<ClusterMean> MainCluster(std::span<const Particle> particles);
 
+/// The belief's spread: the weighted RMS distance (m) of the particles' positions from their
+/// weighted mean. 0 for no particles or no weight.
+double ParticleSpread(std::span<const Particle> particles);
+
 }  // namespace retrace::nav

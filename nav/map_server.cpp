@@ -12,8 +12,7 @@ namespace retrace::nav {
 namespace {
 
 std::shared_ptr<const TeachBundle> Linked(TeachBundle bundle, const MapServerConfig& config) {
-  if (bundle.maps.empty())
-    throw core::ConfigError("maps", "the teach bundle holds no partial map");
+  if (bundle.maps.empty()) throw core::ConfigError("maps", "the teach bundle holds no partial map");
   if (!bundle.linked) {
     RouteLinkConfig link;
     link.drift = config.drift;
@@ -64,8 +63,13 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
     if (!IsLast()) {
       // The common case: path k+1 begins where path k ends, at the switch pose (eq. 1).
       d.step = MapStep::kSwitch;
-      d.place = {index_ + 1,  TransformToNextMap(current().X_MS, X_MR),
-                 current().X_MS.Inverse(), 0.0, 0.0, 0.0, false};
+      d.place = {index_ + 1,
+                 TransformToNextMap(current().X_MS, X_MR),
+                 current().X_MS.Inverse(),
+                 0.0,
+                 0.0,
+                 0.0,
+                 false};
       return d;
     }
     if (!loops_) {
@@ -104,8 +108,7 @@ RoutePlace MapServer::Resume(const core::Pose2& X_MR) const {
                            });
 }
 
-MapSwitch MapServer::Switch(const RoutePlace& place, Localizer& localizer,
-                            PathFollower& follower) {
+MapSwitch MapServer::Switch(const RoutePlace& place, Localizer& localizer, PathFollower& follower) {
   RETRACE_CHECK(place.map < size());
   MapSwitch s;
   s.from = index_;
@@ -123,18 +126,39 @@ MapSwitch MapServer::Switch(const RoutePlace& place, Localizer& localizer,
   return s;
 }
 
-MapSwitch MapServer::WrapToFirst(const MapDecision& decision, Localizer& localizer,
-                                 PathFollower& follower) {
+void MapServer::Prepare(const RoutePlace& place, const core::Pose2& X_MkR,
+                        Localizer& belief) const {
+  RETRACE_CHECK(place.map < size());
+  belief.SetMap(bundle_->maps[place.map].grid);
+  belief.SetRecoveryPoses(graph_.PosesInReach(place.map, config_.max_sigma));
+  belief.Initialize(place.X_jk * X_MkR, std::max(place.sigma, config_.min_sigma_xy),
+                    config_.min_sigma_theta);
+}
+
+MapSwitch MapServer::Commit(const RoutePlace& place, Localizer&& settled, Localizer& localizer,
+                            PathFollower& follower) {
+  RETRACE_CHECK(place.map < size());
+  MapSwitch s;
+  s.from = index_;
+  s.to = place.map;
+  s.X_MkR = localizer.Estimate();
+  s.sigma = place.sigma;
+  index_ = place.map;
+  localizer = std::move(settled);
+  HandOver(localizer, follower, place.s);
+  s.X_MnR = localizer.Estimate();
+  return s;
+}
+
+RoutePlace MapServer::WrapPlace(const MapDecision& decision) const {
   RETRACE_CHECK(IsLast());
-  if (decision.place.map == 0 && decision.place.via_revisit) {
-    return Switch(decision.place, localizer, follower);
-  }
+  if (decision.place.map == 0 && decision.place.via_revisit) return decision.place;
   // By the chain over the whole loop, which carries the maps' drift over the route.
   RoutePlace place;
   place.map = 0;
   place.X_jk = LastMapInFirst();
   place.sigma = std::max(config_.min_sigma_xy, 0.5 * config_.drift * graph_.Length());
-  return Switch(place, localizer, follower);
+  return place;
 }
 
 }  // namespace retrace::nav

@@ -44,9 +44,9 @@ struct MapSwitch {
 /// path lies, through a revisit edge or the chain of switch poses, within closure_radius + drift
 /// × the route's length of map 0's start.
 struct MapServerConfig {
-  bool loop = false;               ///< a loop is driven again after its last map
-  double closure_radius = 3.0;     ///< m (route.revisit_radius)
-  double drift = 0.03;             ///< odometry error per metre driven (route.online_drift)
+  bool loop = false;            ///< a loop is driven again after its last map
+  double closure_radius = 3.0;  ///< m (route.revisit_radius)
+  double drift = 0.03;          ///< odometry error per metre driven (route.online_drift)
   /// m: the largest expected error of a transform the graph composes: farther along the route
   /// (at 3 % drift, 33 m of route between the two places) a map is not handed over by place.
   double max_sigma = 1.0;
@@ -54,6 +54,16 @@ struct MapServerConfig {
   /// over σ (and min_sigma_theta in heading), and the scans find the robot again.
   double min_sigma_xy = 0.1;        ///< m
   double min_sigma_theta = 0.0873;  ///< rad: the odometry's 1 % scale error over a full turn
+  /// Such a switch settles before it commits (nav::Navigator): a second belief, spread in the
+  /// map entered, takes the same odometry and scans while the estimate stays in the map left.
+  /// The switch commits once that belief has had settle_updates updates and its particles lie
+  /// within settle_rms of their mean (weighted RMS distance), or after settle_wait s whatever
+  /// it holds. One update is not enough: resampling can gather a wide cloud in one place, right
+  /// or not, at once. So the estimate the robot drives on never converges in the new map by a
+  /// jump.
+  int settle_updates = 3;
+  double settle_rms = 0.2;    ///< m
+  double settle_wait = 10.0;  ///< s
 };
 
 /// What the map server does at a control tick (MapServer::Decide).
@@ -111,6 +121,19 @@ class MapServer {
   /// moved by place.X_jk (eq. (1) for the next map), spread over place.sigma when that exceeds
   /// min_sigma_xy; the follower gets its path with the progress at place.s.
   MapSwitch Switch(const RoutePlace& place, Localizer& localizer, PathFollower& follower);
+  /// A switch settles first (MapServerConfig::settle_rms) when it enters another map by a
+  /// transform whose expected error exceeds min_sigma_xy. (A wrap within one map, as in a single
+  /// or consistent map, spreads the belief where it is: there is no other map to settle in.)
+  bool Settles(const RoutePlace& place) const {
+    return place.map != index_ && place.sigma > config_.min_sigma_xy;
+  }
+  /// The belief a settling switch starts from: `belief` gets place.map's grid and recovery poses,
+  /// and particles spread over place.sigma around the estimate X_MkR carried by place.X_jk.
+  void Prepare(const RoutePlace& place, const core::Pose2& X_MkR, Localizer& belief) const;
+  /// Commits a settled switch: place.map becomes current, `settled` (Prepare'd for it, and
+  /// updated since) replaces the localizer, the follower gets its path at place.s.
+  MapSwitch Commit(const RoutePlace& place, Localizer&& settled, Localizer& localizer,
+                   PathFollower& follower);
 
   /// For a route driven again and again (a loop): the last map's frame in map 0's, chained
   /// through the switch poses by eq. (1), X_{M_0 M_n} = X_{M_0 S_0} * ... * X_{M_{n-1} S_{n-1}}
@@ -120,8 +143,12 @@ class MapServer {
   /// the revisit edge that closes the loop when Decide found one (`place`), else by the chain,
   /// X_{M_0 R} = LastMapInFirst() * X_{M_n R}, with the particles spread over the drift the
   /// chain may hold (drift × the route's length as two standard deviations). Requires IsLast().
-  MapSwitch WrapToFirst(const MapDecision& decision, Localizer& localizer,
-                        PathFollower& follower);
+  MapSwitch WrapToFirst(const MapDecision& decision, Localizer& localizer, PathFollower& follower) {
+    return Switch(WrapPlace(decision), localizer, follower);
+  }
+  /// Where a kWrap enters map 0: through its revisit edge, else by the chain with its sigma.
+  RoutePlace WrapPlace(const MapDecision& decision) const;
+  const MapServerConfig& config() const { return config_; }
 
  private:
   // Hands the current map's grid and path over; recovery's poses: the taught paths within

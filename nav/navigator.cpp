@@ -1,18 +1,25 @@
 #include "nav/navigator.hpp"
 
+#include <algorithm>
 #include <utility>
+#include <vector>
+
+#include "nav/cluster_estimate.hpp"
+#include "nav/place_search.hpp"
 
 namespace retrace::nav {
 
 Navigator::Navigator(const LocalizerConfig& localizer, const PathFollowerConfig& follower,
-                     const RobotGeometry& robot, TeachBundle bundle,
-                     const MapServerConfig& server, core::Rng localizer_rng)
+                     const RobotGeometry& robot, TeachBundle bundle, const MapServerConfig& server,
+                     core::Rng localizer_rng)
     : localizer_(localizer, robot, localizer_rng),
       follower_(follower),
-      server_(std::move(bundle), server) {}
+      server_(std::move(bundle), server),
+      settle_rng_(localizer_rng.Split("settle")) {}
 
 void Navigator::Start(std::size_t map, const core::Pose2& X_MR, double sigma_xy,
                       double sigma_theta) {
+  pending_.reset();
   server_.Start(localizer_, follower_, map, X_MR);
   localizer_.Initialize(X_MR, sigma_xy, sigma_theta);
 }
@@ -23,13 +30,23 @@ void Navigator::StartNearest(const core::Pose2& X_M0R, double sigma_xy, double s
 }
 
 std::optional<MapSwitch> Navigator::Resume() {
+  pending_.reset();
   const RoutePlace place = server_.Resume(localizer_.Estimate());
   if (place.map != server_.index()) return server_.Switch(place, localizer_, follower_);
   follower_.SetPathAt(server_.current().path, place.s);
   return std::nullopt;
 }
 
+void Navigator::OnOdometry(const core::OdometryDelta& delta) {
+  localizer_.Predict(delta);
+  if (pending_) pending_->belief.Predict(delta);
+}
+
 LocalizerUpdate Navigator::OnScan(const core::LaserScan& scan) {
+  if (pending_) {
+    if (!pending_->seeded) Seed(scan);
+    if (pending_->belief.Update(scan).ran) ++pending_->updates;
+  }
   LocalizerUpdate update = localizer_.Update(scan);
   if (update.reacquired) {
     confirming_ = localizer_.config().augmented.confirm_updates;
@@ -42,24 +59,30 @@ LocalizerUpdate Navigator::OnScan(const core::LaserScan& scan) {
 NavigatorTick Navigator::OnControlTick(double dt) {
   NavigatorTick tick;
   tick.follow = follower_.Compute(localizer_.Estimate(), dt);
-  const MapDecision decision = server_.Decide(tick.follow, localizer_.Estimate(),
-                                              follower_.config().progress_max_distance);
+  const MapDecision decision =
+      server_.Decide(tick.follow, localizer_.Estimate(), follower_.config().progress_max_distance);
+  if (pending_) pending_->waited += dt;
   switch (decision.step) {
     case MapStep::kStay:
       break;
     case MapStep::kDone:
+      pending_.reset();
       tick.route_done = true;
       break;
     case MapStep::kSwitch:
-      tick.map_switch = server_.Switch(decision.place, localizer_, follower_);
-      tick.follow = follower_.Compute(localizer_.Estimate(), dt);
+      tick.map_switch = SwitchTo(decision.place, false);
       break;
     case MapStep::kWrap:
-      tick.map_switch = server_.WrapToFirst(decision, localizer_, follower_);
-      tick.wrapped = true;
-      tick.follow = follower_.Compute(localizer_.Estimate(), dt);
+      tick.map_switch = SwitchTo(server_.WrapPlace(decision), true);
       break;
   }
+  if (pending_ && Settled(*pending_)) {
+    tick.wrapped = pending_->wrap;
+    tick.map_switch =
+        server_.Commit(pending_->place, std::move(pending_->belief), localizer_, follower_);
+    pending_.reset();
+  }
+  if (tick.map_switch) tick.follow = follower_.Compute(localizer_.Estimate(), dt);
   const double creep = follower_.config().creep_speed;
   core::Twist& command = tick.follow.command;
   if ((localizer_.lost() || confirming_ > 0) && command.v > creep) {
@@ -68,6 +91,44 @@ NavigatorTick Navigator::OnControlTick(double dt) {
     tick.creeping = true;
   }
   return tick;
+}
+
+std::optional<MapSwitch> Navigator::SwitchTo(const RoutePlace& place, bool wrap) {
+  if (!server_.Settles(place)) {
+    pending_.reset();
+    return server_.Switch(place, localizer_, follower_);
+  }
+  if (pending_ && pending_->place.map == place.map) {
+    pending_->place.s = place.s;  // the robot's progress on that path now
+    return std::nullopt;
+  }
+  const core::Rng rng = settle_rng_.Split(settles_++);
+  Localizer belief(localizer_.config(), localizer_.robot(), rng.Split("belief"));
+  server_.Prepare(place, localizer_.Estimate(), belief);
+  pending_.emplace(PendingSwitch{place, std::move(belief), rng.Split("seed"), wrap});
+  return std::nullopt;
+}
+
+void Navigator::Seed(const core::LaserScan& scan) {
+  PendingSwitch& p = *pending_;
+  p.seeded = true;
+  const LocalizerConfig& config = localizer_.config();
+  std::vector<double> xs, ys;
+  ScanEndPoints(scan, localizer_.robot(), config.beam_step, &xs, &ys);
+  const double sigma = std::max(p.place.sigma, server_.config().min_sigma_xy);
+  const std::vector<ScoredPlace> places =
+      SearchPlaces(p.belief.likelihood_field(), localizer_.robot(), xs, ys, p.belief.Estimate(),
+                   2.0 * sigma, 2.0 * server_.config().min_sigma_theta);
+  if (places.empty()) return;
+  const PlaceSearchConfig grid;
+  p.belief.SetParticles(
+      ParticlesAtPlaces(places, config.particles, grid.step_xy, grid.step_theta, p.rng));
+}
+
+bool Navigator::Settled(const PendingSwitch& p) const {
+  const MapServerConfig& c = server_.config();
+  if (p.waited >= c.settle_wait) return true;
+  return p.updates >= c.settle_updates && ParticleSpread(p.belief.particles()) <= c.settle_rms;
 }
 
 }  // namespace retrace::nav

@@ -7,6 +7,7 @@
 // switching maps or wrapping a loop. Obstacle avoidance, which needs a robot to command, stays
 // with the caller.
 
+#include <cstdint>
 #include <optional>
 
 #include "core/laser_scan.hpp"
@@ -45,12 +46,16 @@ class Navigator {
   /// As Start, in the map whose taught path lies nearest X_M0R, a pose given in map 0's frame
   /// (MapServer::NearestMap): a run that begins mid-route begins in the map that holds it.
   void StartNearest(const core::Pose2& X_M0R, double sigma_xy, double sigma_theta);
-  /// One odometry increment (robot frame).
-  void OnOdometry(const core::OdometryDelta& delta) { localizer_.Predict(delta); }
-  /// One scan (LiDAR frame); the update is gated on motion (Localizer::Update).
+  /// One odometry increment (robot frame), to the belief and to a settling switch's.
+  void OnOdometry(const core::OdometryDelta& delta);
+  /// One scan (LiDAR frame); the update is gated on motion (Localizer::Update). A settling
+  /// switch's belief takes it too.
   LocalizerUpdate OnScan(const core::LaserScan& scan);
   /// One control tick, dt s after the previous one: the follower on the estimate, then the map
   /// server's rule (MapServer::Decide); after a switch the follower runs again on the new path.
+  /// A switch whose transform may be off by more than min_sigma_xy settles first
+  /// (MapServerConfig::settle_rms): until it commits, the estimate and the follower stay in the
+  /// map left. The rule asking for another map restarts it; the end of the route abandons it.
   /// While the localizer is lost, and for augmented.confirm_updates updates after a
   /// re-acquisition, the command is held to follower.creep_speed (its turn rate scaled alike).
   NavigatorTick OnControlTick(double dt);
@@ -62,14 +67,38 @@ class Navigator {
 
   core::Pose2 Estimate() const { return localizer_.Estimate(); }
   const Localizer& localizer() const { return localizer_; }
+  /// A switch is settling (its belief converging in the map it enters).
+  bool settling() const { return pending_.has_value(); }
   const MapServer& server() const { return server_; }
   const PathFollower& follower() const { return follower_; }
 
  private:
+  // A switch settling before it commits: where it goes, the belief converging there (seeded at
+  // its first scan by a dense search, nav/place_search.hpp), its updates and the time it has
+  // waited.
+  struct PendingSwitch {
+    RoutePlace place;
+    Localizer belief;
+    core::Rng rng;
+    bool wrap = false;  // from the last map back to map 0
+    bool seeded = false;
+    int updates = 0;
+    double waited = 0.0;
+  };
+  // The switch (or wrap) the rule asks for at this tick: made now, or settling first (a new
+  // settling switch when it goes to another map than the one settling).
+  std::optional<MapSwitch> SwitchTo(const RoutePlace& place, bool wrap);
+  bool Settled(const PendingSwitch& p) const;
+  // The settling belief's particles at the best places for its first scan.
+  void Seed(const core::LaserScan& scan);
+
   Localizer localizer_;
   PathFollower follower_;
   MapServer server_;
-  int confirming_ = 0;  // updates a re-acquisition must still hold for
+  int confirming_ = 0;    // updates a re-acquisition must still hold for
+  core::Rng settle_rng_;  // each settling belief's stream: Split(settles_)
+  std::uint64_t settles_ = 0;
+  std::optional<PendingSwitch> pending_;
 };
 
 }  // namespace retrace::nav
