@@ -12,7 +12,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev
-  zlib1g-dev liblz4-dev libzstd-dev libsqlite3-dev
+  zlib1g-dev liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   clang libclang-rt-dev lld
 )
 for arg in "$@"; do
