@@ -35,9 +35,10 @@ class Ros1BagWriter {
   Ros1BagWriter(const Ros1BagWriter&) = delete;
   Ros1BagWriter& operator=(const Ros1BagWriter&) = delete;
 
-  /// Adds a connection on `topic` for messages of the ROS 1 type `type` ("sensor_msgs/LaserScan":
-  /// one with a Ros1MessageDefinition) and returns its id. Throws std::invalid_argument for
-  /// another type.
+  /// Adds a connection on `topic` for messages of the ROS 1 type `type`, one of those of
+  /// logs/ros1_messages.hpp ("sensor_msgs/LaserScan"), and returns its id. Its connection header
+  /// holds the type's md5sum and definition (Ros1TypeMd5, Ros1MessageDefinition). Throws
+  /// std::invalid_argument for another type.
   std::uint32_t AddConnection(std::string topic, std::string type);
 
   /// Writes one message (ROS 1 serialization) with the record time `log_time_ns` (ns since the

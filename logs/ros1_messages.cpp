@@ -75,8 +75,19 @@ const std::map<std::string_view, Ros1Definition>& Ros1Definitions() {
          "geometry_msgs/TwistWithCovariance"}}},
       {kRos1TfMessageType,
        {"geometry_msgs/TransformStamped[] transforms\n", {"geometry_msgs/TransformStamped"}}},
+      {kRos1LegacyTfMessageType,
+       {"geometry_msgs/TransformStamped[] transforms\n", {"geometry_msgs/TransformStamped"}}},
       {kRos1PoseStampedType,
        {"Header header\ngeometry_msgs/Pose pose\n", {"std_msgs/Header", "geometry_msgs/Pose"}}},
+      {kRos1PoseWithCovarianceStampedType,
+       {"Header header\ngeometry_msgs/PoseWithCovariance pose\n",
+        {"std_msgs/Header", "geometry_msgs/PoseWithCovariance"}}},
+      {"sensor_msgs/LaserEcho", {"float32[] echoes\n", {}}},
+      {kRos1MultiEchoLaserScanType,
+       {"Header header\nfloat32 angle_min\nfloat32 angle_max\nfloat32 angle_increment\n"
+        "float32 time_increment\nfloat32 scan_time\nfloat32 range_min\nfloat32 range_max\n"
+        "sensor_msgs/LaserEcho[] ranges\nsensor_msgs/LaserEcho[] intensities\n",
+        {"std_msgs/Header", "sensor_msgs/LaserEcho"}}},
   };
   return kDefinitions;
 }
@@ -208,10 +219,7 @@ void RequireRos1Md5(std::string_view type, std::string_view md5sum) {
 std::string_view Ros1MessageDefinition(std::string_view type) {
   static const std::map<std::string_view, std::string> kTexts = [] {
     std::map<std::string_view, std::string> texts;
-    for (std::string_view name :
-         {kRos1LaserScanType, kRos1OdometryType, kRos1TfMessageType, kRos1PoseStampedType}) {
-      texts.emplace(name, BuildRos1Definition(name));
-    }
+    for (const auto& [name, md5] : Md5Sums()) texts.emplace(name, BuildRos1Definition(name));
     return texts;
   }();
   const auto it = kTexts.find(type);

@@ -42,7 +42,7 @@ void RequireRos1Md5(std::string_view type, std::string_view md5sum);
 
 /// The message definition of `type` as a bag's connection header holds it (its fields, then for
 /// each type it depends on a line of 80 '=', a line "MSG: pkg/Type" and that type's fields), for
-/// the four types retrace writes; empty for any other type.
+/// the seven types above; empty for any other type.
 std::string_view Ros1MessageDefinition(std::string_view type);
 
 // The decoders take the serialized message and throw core::IoError "<type>: <reason>" for a
