@@ -37,6 +37,56 @@ std::string OpText(std::uint8_t op) {
   return "op " + std::to_string(op);
 }
 
+// Runs `parse`, locating an IoError it throws at the record at `offset` of `file`.
+template <class F>
+auto LocatedAt(const std::string& file, std::uint64_t offset, const std::string& what, F&& parse) {
+  try {
+    return parse();
+  } catch (const LocatedBagError&) {
+    throw;
+  } catch (const core::IoError& e) {
+    throw LocatedBagError(file + ": " + what + " (" + e.what() + ") at byte " +
+                          std::to_string(offset));
+  }
+}
+
+// A connection record's id and connection (the topic from its header, the type and md5sum from
+// the connection header in its data).
+std::pair<std::uint32_t, Ros1Connection> ParseConnection(const Ros1FieldList& header,
+                                                         std::span<const std::uint8_t> data) {
+  const std::uint32_t id = header.U32("conn");
+  Ros1Connection c;
+  c.topic = header.Text("topic");
+  const Ros1FieldList fields(data);
+  c.type = fields.Text("type");
+  c.md5sum = fields.Text("md5sum");
+  return {id, std::move(c)};
+}
+
+Ros1ChunkInfo ParseChunkInfo(const Ros1FieldList& header, std::span<const std::uint8_t> data) {
+  const std::uint32_t version = header.U32("ver");
+  if (version != 1)
+    throw core::IoError("chunk info version " + std::to_string(version) + ", not 1");
+  Ros1ChunkInfo info;
+  info.pos = header.U64("chunk_pos");
+  info.start_ns = header.TimeNs("start_time");
+  info.end_ns = header.TimeNs("end_time");
+  if (info.end_ns < info.start_ns) throw core::IoError("its end_time is before its start_time");
+  const std::uint32_t count = header.U32("count");
+  if (std::uint64_t{count} * 8 > data.size()) {
+    throw core::IoError(std::to_string(count) + " connections need " +
+                        std::to_string(std::uint64_t{count} * 8) + " bytes of data, it has " +
+                        std::to_string(data.size()));
+  }
+  ByteReader r(data);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t conn = r.U32();
+    info.counts[conn] += r.U32();
+  }
+  std::erase_if(info.counts, [](const auto& entry) { return entry.second == 0; });
+  return info;
+}
+
 }  // namespace
 
 struct Ros1BagFile::Record {
@@ -108,63 +158,6 @@ Ros1BagFile::Record Ros1BagFile::ReadRecord(std::uint64_t offset, bool with_data
   return r;
 }
 
-}  // namespace retrace::logs::internal
-
-namespace retrace::logs::internal {
-namespace {
-
-// Runs `parse`, locating an IoError it throws at the record at `offset` of `file`.
-template <class F>
-auto LocatedAt(const std::string& file, std::uint64_t offset, const std::string& what, F&& parse) {
-  try {
-    return parse();
-  } catch (const LocatedBagError&) {
-    throw;
-  } catch (const core::IoError& e) {
-    throw LocatedBagError(file + ": " + what + " (" + e.what() + ") at byte " +
-                          std::to_string(offset));
-  }
-}
-
-// A connection record's id and connection (the topic from its header, the type and md5sum from
-// the connection header in its data).
-std::pair<std::uint32_t, Ros1Connection> ParseConnection(const Ros1FieldList& header,
-                                                         std::span<const std::uint8_t> data) {
-  const std::uint32_t id = header.U32("conn");
-  Ros1Connection c;
-  c.topic = header.Text("topic");
-  const Ros1FieldList fields(data);
-  c.type = fields.Text("type");
-  c.md5sum = fields.Text("md5sum");
-  return {id, std::move(c)};
-}
-
-Ros1ChunkInfo ParseChunkInfo(const Ros1FieldList& header, std::span<const std::uint8_t> data) {
-  const std::uint32_t version = header.U32("ver");
-  if (version != 1)
-    throw core::IoError("chunk info version " + std::to_string(version) + ", not 1");
-  Ros1ChunkInfo info;
-  info.pos = header.U64("chunk_pos");
-  info.start_ns = header.TimeNs("start_time");
-  info.end_ns = header.TimeNs("end_time");
-  if (info.end_ns < info.start_ns) throw core::IoError("its end_time is before its start_time");
-  const std::uint32_t count = header.U32("count");
-  if (std::uint64_t{count} * 8 > data.size()) {
-    throw core::IoError(std::to_string(count) + " connections need " +
-                        std::to_string(std::uint64_t{count} * 8) + " bytes of data, it has " +
-                        std::to_string(data.size()));
-  }
-  ByteReader r(data);
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const std::uint32_t conn = r.U32();
-    info.counts[conn] += r.U32();
-  }
-  std::erase_if(info.counts, [](const auto& entry) { return entry.second == 0; });
-  return info;
-}
-
-}  // namespace
-
 Ros1BagFile::Ros1BagFile(const std::filesystem::path& file) : name_(file.string()) {
   in_.open(file, std::ios::binary);
   std::error_code ec;
@@ -182,6 +175,7 @@ Ros1BagFile::Ros1BagFile(const std::filesystem::path& file) : name_(file.string(
                         "rewrites it so)");
   }
   const Record header = ReadRecord(magic.size(), true);
+  std::string encryptor;
   LocatedAt(name_, magic.size(), "malformed bag header record", [&] {
     const Ros1FieldList fields(header.header);
     const std::uint8_t op = fields.Op();
@@ -191,7 +185,12 @@ Ros1BagFile::Ros1BagFile(const std::filesystem::path& file) : name_(file.string(
     index_pos_ = fields.U64("index_pos");
     conn_count_ = fields.U32("conn_count");
     chunk_count_ = fields.U32("chunk_count");
+    if (fields.Find("encryptor")) encryptor = fields.Text("encryptor");
   });
+  if (!encryptor.empty()) {
+    throw core::IoError(name_ + ": an encrypted bag (" + encryptor +
+                        "); retrace reads unencrypted bags (`rosbag decrypt` decrypts it)");
+  }
   first_record_ = header.end();
   if (index_pos_ != 0 && index_pos_ < first_record_) {
     Fail("the bag header puts the index at byte " + std::to_string(index_pos_) +
@@ -201,10 +200,6 @@ Ros1BagFile::Ros1BagFile(const std::filesystem::path& file) : name_(file.string(
 }
 
 Ros1BagLayout Ros1BagFile::ReadLayout() { return index_pos_ == 0 ? ScanChunks() : ReadIndex(); }
-
-}  // namespace retrace::logs::internal
-
-namespace retrace::logs::internal {
 
 Ros1BagLayout Ros1BagFile::ReadIndex() {
   if (index_pos_ > size_) {
@@ -293,10 +288,6 @@ Ros1BagLayout Ros1BagFile::ScanChunks() {
   if (!stopped.empty()) layout.notes.push_back(stopped);
   return layout;
 }
-
-}  // namespace retrace::logs::internal
-
-namespace retrace::logs::internal {
 
 Ros1ChunkInfo SummarizeChunk(std::uint64_t pos, const std::vector<Ros1MessageEntry>& messages) {
   Ros1ChunkInfo info;

@@ -337,6 +337,17 @@ TEST_F(Ros1BagTest, MalformedHeaderAndIndexAreRefused) {
   EXPECT_TRUE(Contains(IoErrorOf([&] { ReadAll(tmp_.Write("x.bag", "#ROSBAG V2.0\n\x05")); }),
                        "truncated: the file (14 bytes) ends within the header length of the "
                        "record at byte 13"));
+  // An encrypted bag (rosbag's encryptor fields in the bag header).
+  logs::internal::Ros1FieldWriter encrypted;
+  encrypted.U8("op", 0x03).U64("index_pos", 0).U32("conn_count", 0).U32("chunk_count", 0);
+  encrypted.Text("encryptor", "rosbag/AesCbcEncryptor");
+  Buffer bytes(logs::internal::kRos1BagMagic.begin(), logs::internal::kRos1BagMagic.end());
+  logs::internal::AppendRos1Record(bytes, encrypted.bytes(), Buffer(100, ' '));
+  const fs::path secret = WriteBytes(tmp_.path() / "secret.bag", bytes);
+  EXPECT_EQ(IoErrorOf([&] { ReadAll(secret); }),
+            secret.string() +
+                ": an encrypted bag (rosbag/AesCbcEncryptor); retrace reads unencrypted bags "
+                "(`rosbag decrypt` decrypts it)");
   // The index lists more records than it holds.
   Ros1BagBuilder b;
   b.Index({}, {}, 2, 1);
