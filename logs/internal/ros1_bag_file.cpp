@@ -343,15 +343,22 @@ void Ros1BagFile::ListChunkRecords(std::uint64_t pos, std::span<const std::uint8
                                    std::vector<Ros1MessageEntry>& messages) const {
   messages.clear();
   ByteReader r(records);
+  // The messages are many: the error's text is built only when there is one.
+  const auto fail = [&](std::string_view what, std::size_t at, const core::IoError& e) {
+    Fail(std::string(what) + " at offset " + std::to_string(at) + " of the chunk's records (" +
+             e.what() + ")",
+         pos);
+  };
   while (!r.AtEnd()) {
     const std::size_t at = r.offset();
-    const std::string where = " at offset " + std::to_string(at) + " of the chunk's records";
     std::span<const std::uint8_t> header, data;
-    LocatedAt(name_, pos, "truncated record" + where, [&] {
+    try {
       header = r.Bytes(r.U32());
       data = r.Bytes(r.U32());
-    });
-    LocatedAt(name_, pos, "malformed record" + where, [&] {
+    } catch (const core::IoError& e) {
+      fail("truncated record", at, e);
+    }
+    try {
       const Ros1FieldList fields(header);
       const std::uint8_t op = fields.Op();
       if (op == static_cast<std::uint8_t>(Ros1BagOp::kMessageData)) {
@@ -366,7 +373,9 @@ void Ros1BagFile::ListChunkRecords(std::uint64_t pos, std::span<const std::uint8
       } else if (op == static_cast<std::uint8_t>(Ros1BagOp::kConnection)) {
         connections.insert(ParseConnection(fields, data));
       }
-    });
+    } catch (const core::IoError& e) {
+      fail("malformed record", at, e);
+    }
   }
 }
 
