@@ -4,6 +4,7 @@
 #include <map>
 #include <utility>
 
+#include "core/errors.hpp"
 #include "logs/internal/ros1_bag_file.hpp"
 
 namespace retrace::logs {
@@ -41,6 +42,7 @@ struct Ros1BagReader::State {
   internal::Ros1BagLayout layout;
   std::size_t next_chunk = 0;
   std::vector<std::unique_ptr<OpenChunk>> open;  // few: the chunks overlapping in time
+  std::size_t held_bytes = 0;                    // their records
 
   // Reads the next chunk (by first message) and keeps it unless it holds no message.
   void OpenNextChunk() {
@@ -57,7 +59,24 @@ struct Ros1BagReader::State {
     if (!std::is_sorted(chunk->messages.begin(), chunk->messages.end(), by_time)) {
       std::stable_sort(chunk->messages.begin(), chunk->messages.end(), by_time);
     }
-    if (!chunk->messages.empty()) open.push_back(std::move(chunk));
+    if (chunk->messages.empty()) return;
+    held_bytes += chunk->data.size();
+    if (held_bytes > kRos1BagMaxChunkBytes) {
+      throw core::IoError(file.name() + ": the chunks that overlap in time up to the one at byte " +
+                          std::to_string(info.pos) + " hold more than " +
+                          std::to_string(kRos1BagMaxChunkBytes) +
+                          " bytes, too many to merge in time order");
+    }
+    open.push_back(std::move(chunk));
+  }
+
+  // Drops the chunks whose messages have all been handed out.
+  void DropDoneChunks() {
+    std::erase_if(open, [this](const std::unique_ptr<OpenChunk>& c) {
+      if (!c->done()) return false;
+      held_bytes -= c->data.size();
+      return true;
+    });
   }
 
   // The open chunk with the earliest next message, or none.
@@ -86,7 +105,7 @@ std::size_t Ros1BagReader::chunk_count() const { return state_->layout.chunks.si
 bool Ros1BagReader::Next(RawMessage& message) {
   State& s = *state_;
   // The message handed out last is no longer viewed: its chunk may go if it is done.
-  std::erase_if(s.open, [](const std::unique_ptr<OpenChunk>& c) { return c->done(); });
+  s.DropDoneChunks();
   for (;;) {
     OpenChunk* best = s.Earliest();
     // A chunk whose first message is not later than the earliest due one may hold earlier ones.

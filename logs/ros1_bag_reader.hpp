@@ -6,7 +6,7 @@
 // received the message) across chunks, also where chunks were stored out of order or overlap in
 // time; equal times in storage order. A chunk is read and decompressed when its first message is
 // due and dropped after its last, so that a bag is streamed, never held whole (chunks that overlap
-// in time are held together).
+// in time are held together, at most kRos1BagMaxChunkBytes of them).
 //
 // A bag that was never indexed (index_pos 0: a recording that was cut off, or a bag not closed)
 // is read by scanning its chunks first, up to the first one that was never closed or is cut off,
@@ -23,6 +23,11 @@
 
 namespace retrace::logs {
 
+/// The most bytes a chunk may hold uncompressed (a chunk declaring more is refused before anything
+/// is allocated; rosbag's chunks are 768 KiB by default), and the most that the chunks overlapping
+/// in time may hold together.
+inline constexpr std::uint64_t kRos1BagMaxChunkBytes = std::uint64_t{1} << 30;  // 1 GiB
+
 /// The messages of a ROS 1 bag. RawMessage::type is the connection's type
 /// ("sensor_msgs/LaserScan"), md5sum its md5sum, encoding "ros1", topic the connection's topic and
 /// log_time_ns the message record's time.
@@ -38,7 +43,8 @@ class Ros1BagReader final : public MessageSource {
 
   /// Throws core::IoError "<file>: <what> at byte <offset>" for a malformed chunk: cut off, not
   /// decompressing to its declared size, a record running past its end, a message on an unknown
-  /// connection, or a chunk that disagrees with its chunk info.
+  /// connection, or a chunk that disagrees with its chunk info; and for chunks overlapping in time
+  /// that would hold more than kRos1BagMaxChunkBytes at once.
   bool Next(RawMessage& message) override;
   const std::string& name() const override;
   std::vector<std::string> notes() const override;

@@ -14,11 +14,9 @@
 #include <string_view>
 #include <vector>
 
-namespace retrace::logs::internal {
+#include "logs/ros1_bag_reader.hpp"
 
-/// The most bytes a chunk may hold uncompressed; a chunk declaring more is refused before
-/// anything is allocated (rosbag's chunks are 768 KiB by default).
-inline constexpr std::uint64_t kRos1BagMaxChunkBytes = std::uint64_t{1} << 30;  // 1 GiB
+namespace retrace::logs::internal {
 
 /// A connection record: a topic's messages of one type.
 struct Ros1Connection {
