@@ -323,11 +323,26 @@ bool ChooseRosOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index,
   return true;
 }
 
+// The pose topics that can be a reference. Unless one is named, a topic of a single pose (an
+// /initialpose set in rviz, a goal) is none: it is noted, not taken, nor counted as a choice.
+std::vector<std::string> ReferenceCandidates(const StreamChoice& choice, const Gathered& g,
+                                             LogIndex& index) {
+  std::vector<std::string> candidates = Keys(g.poses);
+  if (!choice.reference_topic.empty()) return candidates;
+  std::erase_if(candidates, [&](const std::string& topic) {
+    if (g.poses.find(topic)->second.size() > 1) return false;
+    index.notes.push_back(Quote(topic) + " holds a single pose: not taken as the reference " +
+                          "(--reference-topic takes it)");
+    return true;
+  });
+  return candidates;
+}
+
 void ChooseRosReference(const StreamChoice& choice, Gathered& g, LogIndex& index,
                         std::string& ambiguous) {
   const std::string reference_topic =
       Choose(index.name, "poses (" + TypeNames(StreamKind::kPose, index) + ")", "--reference-topic",
-             choice.reference_topic, Keys(g.poses), index, ambiguous);
+             choice.reference_topic, ReferenceCandidates(choice, g, index), index, ambiguous);
   if (!reference_topic.empty()) {
     g.RequireForward(&g.poses[reference_topic], g.poses[reference_topic].size(), reference_topic,
                      index);

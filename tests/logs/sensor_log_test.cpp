@@ -104,6 +104,10 @@ fs::path WriteRos1Bag(const fs::path& file, bool multi_echo = false, bool close 
   TfMessage mount{{{0.0, "base_link", "laser_mount", core::Pose2(0.1, 0.0, 0.0)},
                    {0.0, "laser_mount", "laser", core::Pose2(0.1, 0.0, 0.0)}}};
   w.Write(tf_static, 0, EncodeRos1TfMessage(mount));
+  if (multi_echo) {  // one pose set in rviz: not a reference
+    const std::uint32_t initial = w.AddConnection("/initialpose", "geometry_msgs/PoseStamped");
+    w.Write(initial, 0, EncodeRos1PoseStamped({0.0, "map", Truth(0.0)}));
+  }
   for (int k = 0; k <= 250; ++k) {
     const double t = 0.02 * k;
     const auto ns = static_cast<std::int64_t>(std::llround(t * 1e9));
@@ -582,7 +586,7 @@ TEST(SensorLog, Ros1BagGivesTheStreamsOfTheSameMcap) {
 }
 
 // A MultiEchoLaserScan feeds the scans (first echo, noted), a PoseWithCovarianceStamped the
-// reference.
+// reference; a topic of a single pose (an /initialpose) is no reference, nor a choice to make.
 TEST(SensorLog, Ros1MultiEchoScansAndPoseWithCovarianceReference) {
   testing::TempDir tmp;
   const LogIndex index = IndexLog(WriteRos1Bag(tmp.path() / "echo.bag", true));
@@ -591,8 +595,11 @@ TEST(SensorLog, Ros1MultiEchoScansAndPoseWithCovarianceReference) {
   EXPECT_EQ(index.scan.scans, 51U);
   EXPECT_EQ(index.reference_source, "/amcl_pose (geometry_msgs/PoseWithCovarianceStamped)");
   ExpectNear(index.reference[100].pose, Truth(2.0), 1e-9);
-  ASSERT_EQ(index.notes.size(), 1U);
+  ASSERT_EQ(index.notes.size(), 2U);
   EXPECT_EQ(index.notes[0],
+            "'/initialpose' holds a single pose: not taken as the reference (--reference-topic "
+            "takes it)");
+  EXPECT_EQ(index.notes[1],
             "'/scan' holds sensor_msgs/MultiEchoLaserScan: the first echo of each beam is its "
             "range (a beam without echoes is no return)");
   std::size_t scans = 0;
