@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <set>
 #include <span>
 #include <string_view>
 
@@ -270,7 +269,14 @@ Ros1BagLayout Ros1BagFile::ScanChunks() {
                   std::to_string(size_ - pos) + " bytes not read)";
         break;
       }
-      LoadChunk(pos, layout.connections, data, messages);
+      // As `rosbag reindex`: a chunk that cannot be read ends what a cut recording holds.
+      try {
+        LoadChunk(pos, layout.connections, data, messages);
+      } catch (const core::IoError& e) {
+        stopped = std::string(e.what()).substr(name_.size() + 2) + ": the bag is read up to it (" +
+                  std::to_string(size_ - pos) + " bytes not read)";
+        break;
+      }
       if (!messages.empty()) layout.chunks.push_back(SummarizeChunk(pos, messages));
     } else if (op == static_cast<std::uint8_t>(Ros1BagOp::kConnection)) {
       const Record full = ReadRecord(pos, true);
@@ -280,11 +286,11 @@ Ros1BagLayout Ros1BagFile::ScanChunks() {
     }
     pos = r.end();
   }
-  layout.notes.push_back(
-      "the bag has no index (a recording that was cut off or not closed): "
-      "its " +
-      std::to_string(layout.chunks.size()) +
-      " chunks were read by scanning them (`rosbag reindex` writes the index)");
+  const std::string chunks = std::to_string(layout.chunks.size());
+  layout.notes.push_back("the bag has no index (a recording that was cut off or not closed): its " +
+                         chunks +
+                         " chunks were read by scanning them (`rosbag reindex` writes "
+                         "the index)");
   if (!stopped.empty()) layout.notes.push_back(stopped);
   return layout;
 }

@@ -63,7 +63,7 @@ class Ros1BagFile {
   /// The connections and chunks of the bag: its index, checked against the file (a truncated
   /// bag, whose header points at an index past its end, is refused naming the offsets), or,
   /// for a bag without one (index_pos 0: a recording cut off), rebuilt by reading every chunk,
-  /// up to the first one that was cut off or never closed, with notes saying so.
+  /// up to the first one that was cut off, never closed or cannot be read, with notes saying so.
   Ros1BagLayout ReadLayout();
 
   /// Reads and decompresses the chunk record at `pos` into `data` and lists its message records

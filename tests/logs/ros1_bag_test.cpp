@@ -224,6 +224,21 @@ TEST_F(Ros1BagTest, BagWithoutIndexIsReadByScanningItsChunksWithANote) {
                                      std::to_string(bytes.size() - open_at) + " bytes not read)");
   EXPECT_EQ(ReadAll(tmp_.path() / "unclosed.bag"), read);
 
+  // A last chunk that cannot be read (written whole, its data not): the bag is read up to it.
+  bytes = FileBytes(bag);
+  Ros1BagBuilder garbled;
+  garbled.Chunk({Buffer(40, 0xab)}, "lz4", 1000);
+  const std::size_t garbled_at = bytes.size();
+  bytes.insert(bytes.end(), garbled.bytes().begin() + static_cast<long>(garbled.chunk_pos(0)),
+               garbled.bytes().end());
+  const Ros1BagReader unreadable(WriteBytes(tmp_.path() / "garbled.bag", bytes));
+  ASSERT_EQ(unreadable.notes().size(), 2U);
+  EXPECT_TRUE(Contains(unreadable.notes()[1],
+                       "lz4 chunk (lz4 data corrupt: ERROR_frameType_unknown) at byte " +
+                           std::to_string(garbled_at) + ": the bag is read up to it"))
+      << unreadable.notes()[1];
+  EXPECT_EQ(ReadAll(tmp_.path() / "garbled.bag"), read);
+
   // A record cut off by the end of the file.
   bytes = FileBytes(bag);
   bytes.insert(bytes.end(), {200, 0, 0, 0, 1, 2});
