@@ -1,7 +1,8 @@
 // Logs as the log commands read them: both passes of logs/sensor_log.hpp over every stream the
 // first pass picks. Built once per container (fuzz/CMakeLists.txt) with RETRACE_FUZZ_LOG_FILE
 // naming the input file: `input.log` (CARMEN), `input.mcap` (MCAP), `input.db3` (rosbag2
-// SQLite). The reader is chosen by the content, as `retrace log-info` chooses it.
+// SQLite), `input.bag` (ROS 1 bag). The reader is chosen by the content, as `retrace log-info`
+// chooses it.
 #include "fuzz/fuzz_input.hpp"
 #include "logs/sensor_log.hpp"
 

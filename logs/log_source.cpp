@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "logs/carmen_reader.hpp"
 #include "logs/mcap_reader.hpp"
+#include "logs/ros1_bag_reader.hpp"
 #include "logs/rosbag2_metadata.hpp"
 #include "logs/sqlite_bag_reader.hpp"
 
@@ -18,6 +19,9 @@ namespace {
 
 constexpr std::array<std::uint8_t, 8> kMcapMagic = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
 constexpr std::string_view kSqliteMagic{"SQLite format 3\0", 16};
+// The start of a ROS bag's version line, of any format ("#ROSBAG V2.0\n", "#ROSBAG V1.2\n"): the
+// reader names a format it does not read.
+constexpr std::string_view kRosBagLine{"#ROSBAG V"};
 
 // A rosbag2 folder: the files its metadata lists, one after the other.
 class Rosbag2Source final : public MessageSource {
@@ -61,6 +65,8 @@ std::string_view LogFormatName(LogFormat format) {
       return "rosbag2 SQLite 3 file";
     case LogFormat::kRosbag2:
       return "rosbag2 folder";
+    case LogFormat::kRos1Bag:
+      return "ROS 1 bag";
   }
   return "log";
 }
@@ -99,6 +105,7 @@ LogFormat DetectLogFormat(const std::filesystem::path& path) {
     return LogFormat::kMcap;
   if (n == kSqliteMagic.size() && std::string_view(head.data(), n) == kSqliteMagic)
     return LogFormat::kSqlite;
+  if (std::string_view(head.data(), n).starts_with(kRosBagLine)) return LogFormat::kRos1Bag;
   const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(head[i]); };
   if (n >= 2 && byte(0) == 0x1f && byte(1) == 0x8b) return LogFormat::kCarmen;  // gzip
   for (std::size_t i = 0; i < n; ++i) {
@@ -106,7 +113,7 @@ LogFormat DetectLogFormat(const std::filesystem::path& path) {
     if (c < 0x20 && c != '\n' && c != '\r' && c != '\t') {
       throw core::IoError(path.string() +
                           ": not a log retrace reads (CARMEN text or gzip, MCAP, rosbag2 SQLite "
-                          "3 or a rosbag2 folder)");
+                          "3, a rosbag2 folder or a ROS 1 bag)");
     }
   }
   return LogFormat::kCarmen;
@@ -120,6 +127,8 @@ std::unique_ptr<MessageSource> OpenLog(const std::filesystem::path& path) {
       return std::make_unique<McapReader>(path);
     case LogFormat::kSqlite:
       return std::make_unique<SqliteBagReader>(path);
+    case LogFormat::kRos1Bag:
+      return std::make_unique<Ros1BagReader>(path);
     case LogFormat::kRosbag2:
       if (IsBagMetadata(path)) {
         const std::filesystem::path folder = path.parent_path();

@@ -5,6 +5,7 @@
 //   a file named metadata.yaml             the rosbag2 bag of its folder
 //   a file starting with MCAP's magic      an MCAP file (ROS 2 bags record these since Iron)
 //   a file starting with SQLite's magic    a rosbag2 .db3 file
+//   a file starting with "#ROSBAG V"       a ROS 1 bag (.bag; only format 2.0 is read)
 //   a gzip file or a text file             a CARMEN log (.log, .clf, plain or gzipped)
 
 #include <filesystem>
@@ -15,9 +16,9 @@
 
 namespace retrace::logs {
 
-enum class LogFormat { kCarmen, kMcap, kSqlite, kRosbag2 };
+enum class LogFormat { kCarmen, kMcap, kSqlite, kRosbag2, kRos1Bag };
 
-/// "CARMEN log", "MCAP file", "rosbag2 SQLite 3 file", "rosbag2 folder".
+/// "CARMEN log", "MCAP file", "rosbag2 SQLite 3 file", "rosbag2 folder", "ROS 1 bag".
 std::string_view LogFormatName(LogFormat format);
 
 /// The format of the log at `path`. Throws core::IoError "<path>: ..." when it is missing,

@@ -1,8 +1,6 @@
 #include "logs/mcap_reader.hpp"
 
-#include <lz4frame.h>
 #include <zlib.h>
-#include <zstd.h>
 
 #include <algorithm>
 #include <array>
@@ -16,19 +14,18 @@
 
 #include "core/errors.hpp"
 #include "logs/internal/byte_reader.hpp"
+#include "logs/internal/decompression.hpp"
 #include "logs/internal/mcap_format.hpp"
 
 namespace retrace::logs {
 namespace {
 
 using internal::ByteReader;
+using internal::DecompressLz4;
+using internal::DecompressZstd;
 using internal::kMcapMagic;
 using internal::kMcapRecordPrefixBytes;
 using internal::McapOp;
-
-// Size of the first output buffer of a decompression; it doubles up to the declared size, so
-// that a chunk that lies about its size costs no more memory than its real contents.
-constexpr std::size_t kFirstOutputBytes = std::size_t{1} << 16;
 
 std::string Hex32(std::uint32_t v) {
   char buf[16];
@@ -70,113 +67,6 @@ std::string OpName(std::uint8_t op) {
       return "Data End";
   }
   return "opcode " + std::to_string(op);
-}
-
-// The output buffer of a decompression: grows on demand up to `limit`, then any further output
-// goes to a scratch byte and means the data holds more than declared.
-class GrowingOutput {
- public:
-  GrowingOutput(std::vector<std::uint8_t>& out, std::size_t limit, std::size_t input_bytes)
-      : out_(out), limit_(limit) {
-    out_.clear();
-    out_.resize(std::min(limit_, std::max(kFirstOutputBytes, 4 * input_bytes)));
-  }
-  // Where the next output goes and how much room there is.
-  std::uint8_t* data() { return Full() ? &scratch_ : out_.data() + produced_; }
-  std::size_t room() {
-    if (produced_ == out_.size() && out_.size() < limit_) {
-      out_.resize(std::min(limit_, 2 * out_.size()));
-    }
-    return Full() ? 1 : out_.size() - produced_;
-  }
-  // Records `n` bytes written at data(); false if they went past the declared size.
-  bool Advance(std::size_t n, bool was_full) {
-    if (was_full) return n == 0;
-    produced_ += n;
-    return true;
-  }
-  bool Full() const { return produced_ == limit_; }
-  std::size_t produced() const { return produced_; }
-  void Finish() { out_.resize(produced_); }
-
- private:
-  std::vector<std::uint8_t>& out_;
-  std::size_t limit_;
-  std::size_t produced_ = 0;
-  std::uint8_t scratch_ = 0;
-};
-
-// Decompresses zstd frames into `out` (exactly `size` bytes); throws core::IoError with a
-// short reason otherwise.
-void DecompressZstd(std::span<const std::uint8_t> in, std::size_t size,
-                    std::vector<std::uint8_t>& out) {
-  std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> ctx(ZSTD_createDCtx(), ZSTD_freeDCtx);
-  if (!ctx) throw core::IoError("cannot create a zstd decompression context");
-  GrowingOutput output(out, size, in.size());
-  ZSTD_inBuffer input{in.data(), in.size(), 0};
-  for (;;) {
-    const std::size_t room = output.room();
-    const bool was_full = output.Full();
-    ZSTD_outBuffer o{output.data(), room, 0};
-    const std::size_t in_before = input.pos;
-    const std::size_t ret = ZSTD_decompressStream(ctx.get(), &o, &input);
-    if (ZSTD_isError(ret)) {
-      throw core::IoError(std::string("zstd data corrupt: ") + ZSTD_getErrorName(ret));
-    }
-    if (!output.Advance(o.pos, was_full)) {
-      throw core::IoError("zstd data holds more than the declared " + std::to_string(size) +
-                          " bytes");
-    }
-    if (ret == 0 && input.pos == input.size) break;
-    if (input.pos == in_before && o.pos == 0) {
-      throw core::IoError("zstd data truncated after " + std::to_string(output.produced()) +
-                          " bytes");
-    }
-  }
-  if (output.produced() != size) {
-    throw core::IoError("zstd data holds " + std::to_string(output.produced()) +
-                        " bytes, the chunk declares " + std::to_string(size));
-  }
-  output.Finish();
-}
-
-// Decompresses LZ4 frames into `out` (exactly `size` bytes); throws core::IoError with a
-// short reason otherwise.
-void DecompressLz4(std::span<const std::uint8_t> in, std::size_t size,
-                   std::vector<std::uint8_t>& out) {
-  LZ4F_dctx* raw = nullptr;
-  if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) {
-    throw core::IoError("cannot create an lz4 decompression context");
-  }
-  std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> ctx(
-      raw, LZ4F_freeDecompressionContext);
-  GrowingOutput output(out, size, in.size());
-  std::size_t in_pos = 0;
-  for (;;) {
-    std::size_t room = output.room();
-    const bool was_full = output.Full();
-    std::size_t consumed = in.size() - in_pos;
-    const std::size_t ret =
-        LZ4F_decompress(ctx.get(), output.data(), &room, in.data() + in_pos, &consumed, nullptr);
-    if (LZ4F_isError(ret)) {
-      throw core::IoError(std::string("lz4 data corrupt: ") + LZ4F_getErrorName(ret));
-    }
-    in_pos += consumed;
-    if (!output.Advance(room, was_full)) {
-      throw core::IoError("lz4 data holds more than the declared " + std::to_string(size) +
-                          " bytes");
-    }
-    if (ret == 0 && in_pos == in.size()) break;
-    if (consumed == 0 && room == 0) {
-      throw core::IoError("lz4 data truncated after " + std::to_string(output.produced()) +
-                          " bytes");
-    }
-  }
-  if (output.produced() != size) {
-    throw core::IoError("lz4 data holds " + std::to_string(output.produced()) +
-                        " bytes, the chunk declares " + std::to_string(size));
-  }
-  output.Finish();
 }
 
 // An error that already names the file and the offset.

@@ -224,6 +224,31 @@ double YawFromQuaternion(double x, double y, double z, double w) {
   return *yaw;
 }
 
+void CheckScanGeometry(ScanMessage& m, float angle_max) {
+  const std::size_t n = m.scan.ranges.size();
+  if (n > static_cast<std::size_t>(core::kMaxBeams)) {
+    throw core::IoError("the scan has " + std::to_string(n) + " ranges; retrace's limit is " +
+                        std::to_string(core::kMaxBeams));
+  }
+  if (n == 0) return;
+  const double expected = m.scan.Angle(n - 1);
+  // A little for the float32 rounding of the three angles.
+  const double rounding = 1e-6 * (1.0 + std::abs(expected));
+  const double increment = std::abs(m.scan.angle_increment);
+  const double off = std::abs(static_cast<double>(angle_max) - expected);
+  if (!(off <= kAngleMaxSlackIncrements * increment + rounding)) {
+    throw core::IoError("angle_max " + NumF(angle_max) +
+                        " does not match angle_min + (n - 1) * angle_increment = " +
+                        NumF(static_cast<float>(expected)) + " for n = " + std::to_string(n) +
+                        " ranges (more than " + Num(kAngleMaxSlackIncrements) +
+                        " increments apart)");
+  }
+  // Drivers that count n increments instead of n - 1 (or round the field of view): the beams are
+  // at angle_min + i * angle_increment all the same, as every ROS consumer reads them; the caller
+  // notes it.
+  if (off > 0.5 * increment + rounding) m.angle_max = angle_max;
+}
+
 ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr) {
   return DecodeAs(kLaserScanType, cdr, [](CdrReader& r) {
     ScanMessage m;
@@ -241,29 +266,7 @@ ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr) {
     r.ReadFloat32Sequence();  // intensities
     m.scan.angle_min = angle_min;
     m.scan.angle_increment = angle_increment;
-    const std::size_t n = m.scan.ranges.size();
-    if (n > static_cast<std::size_t>(core::kMaxBeams)) {
-      throw core::IoError("the scan has " + std::to_string(n) + " ranges; retrace's limit is " +
-                          std::to_string(core::kMaxBeams));
-    }
-    if (n > 0) {
-      const double expected = m.scan.Angle(n - 1);
-      // A little for the float32 rounding of the three angles.
-      const double rounding = 1e-6 * (1.0 + std::abs(expected));
-      const double increment = std::abs(m.scan.angle_increment);
-      const double off = std::abs(static_cast<double>(angle_max) - expected);
-      if (!(off <= kAngleMaxSlackIncrements * increment + rounding)) {
-        throw core::IoError("angle_max " + NumF(angle_max) +
-                            " does not match angle_min + (n - 1) * angle_increment = " +
-                            NumF(static_cast<float>(expected)) + " for n = " + std::to_string(n) +
-                            " ranges (more than " + Num(kAngleMaxSlackIncrements) +
-                            " increments apart)");
-      }
-      // Drivers that count n increments instead of n - 1 (or round the field of view): the
-      // beams are at angle_min + i * angle_increment all the same, as every ROS consumer reads
-      // them; the caller notes it.
-      if (off > 0.5 * increment + rounding) m.angle_max = angle_max;
-    }
+    CheckScanGeometry(m, angle_max);
     return m;
   });
 }

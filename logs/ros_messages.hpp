@@ -54,6 +54,11 @@ double YawFromQuaternion(double x, double y, double z, double w);
 ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr);
 /// How far (in increments) a LaserScan's angle_max may lie from angle_min + (n − 1)·increment.
 inline constexpr double kAngleMaxSlackIncrements = 2.0;
+/// The checks of DecodeLaserScan on a decoded scan of either ROS whose ranges, angle_min and
+/// angle_increment are set: at most core::kMaxBeams beams, and the message's `angle_max` within
+/// kAngleMaxSlackIncrements increments of the last beam's angle. Sets m.angle_max where it is
+/// more than half an increment off. Throws core::IoError otherwise.
+void CheckScanGeometry(ScanMessage& m, float angle_max);
 /// angle_max = angle_min + (n − 1)·angle_increment; no intensities; time_increment and scan_time
 /// 0. Throws core::IoError for a stamp ToRosTime refuses.
 std::vector<std::uint8_t> EncodeLaserScan(const ScanMessage& message);

@@ -10,16 +10,12 @@
 #include "core/config.hpp"
 #include "core/errors.hpp"
 #include "logs/carmen_reader.hpp"
-#include "logs/ros_messages.hpp"
+#include "logs/ros1_messages.hpp"
+#include "logs/stream_messages.hpp"
 
 namespace retrace::logs {
 
 namespace {
-
-constexpr std::string_view kLaserScanType = "sensor_msgs/msg/LaserScan";
-constexpr std::string_view kOdometryType = "nav_msgs/msg/Odometry";
-constexpr std::string_view kTfType = "tf2_msgs/msg/TFMessage";
-constexpr std::string_view kPoseType = "geometry_msgs/msg/PoseStamped";
 
 // CARMEN laser messages, in the order a scan topic is chosen automatically (front first).
 constexpr std::string_view kCarmenLasers[] = {"FLASER",    "ROBOTLASER1", "RAWLASER1",
@@ -250,14 +246,27 @@ std::optional<core::Pose2> StaticChain(const Gathered& g, const std::string& bas
   return std::nullopt;  // a cycle
 }
 
+// The types a stream is read from in the log's ROS, for people.
+std::string TypeNames(StreamKind kind, const LogIndex& index) {
+  return StreamTypeNames(kind, index.format == LogFormat::kRos1Bag);
+}
+
+// The type of `topic`'s messages.
+std::string TopicType(const LogIndex& index, const std::string& topic) {
+  for (const LogTopic& t : index.topics) {
+    if (t.topic == topic) return t.type;
+  }
+  return "";
+}
+
 void ChooseRosScans(const StreamChoice& choice, Gathered& g, LogIndex& index,
                     std::string& ambiguous) {
   const std::string& log = index.name;
-  index.scan_topic = Choose(log, "laser scans (sensor_msgs/msg/LaserScan)", "--scan-topic",
-                            choice.scan_topic, Keys(g.scans), index, ambiguous);
+  const std::string types = TypeNames(StreamKind::kScan, index);
+  index.scan_topic = Choose(log, "laser scans (" + types + ")", "--scan-topic", choice.scan_topic,
+                            Keys(g.scans), index, ambiguous);
   if (index.scan_topic.empty() && ambiguous.empty())
-    throw core::IoError(log +
-                        ": no sensor_msgs/msg/LaserScan topic: nothing to map or localize with");
+    throw core::IoError(log + ": no " + types + " topic: nothing to map or localize with");
   if (!index.scan_topic.empty()) {
     g.RequireForward(&g.scans[index.scan_topic], g.scans[index.scan_topic].scans, index.scan_topic,
                      index);
@@ -282,8 +291,8 @@ void ChooseTfOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index) 
   }
   const auto it = g.tf_odometry.find(base);
   if (it == g.tf_odometry.end()) {
-    index.odometry_missing = "no nav_msgs/msg/Odometry topic, no tf from " +
-                             Quote(choice.odom_frame) +
+    index.odometry_missing = "no " + TypeNames(StreamKind::kOdometry, index) +
+                             " topic, no tf from " + Quote(choice.odom_frame) +
                              (base.empty() ? std::string() : " to " + Quote(base));
     index.base_frame = base;  // the mount is still found from the base chosen
     return;
@@ -298,14 +307,14 @@ void ChooseTfOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index) 
 bool ChooseRosOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index,
                        std::string& ambiguous) {
   const std::string odometry_topic =
-      Choose(index.name, "odometry (nav_msgs/msg/Odometry)", "--odometry-topic",
-             choice.odometry_topic, Keys(g.odometry), index, ambiguous);
+      Choose(index.name, "odometry (" + TypeNames(StreamKind::kOdometry, index) + ")",
+             "--odometry-topic", choice.odometry_topic, Keys(g.odometry), index, ambiguous);
   if (!odometry_topic.empty()) {
     g.RequireForward(&g.odometry[odometry_topic], g.odometry[odometry_topic].size(), odometry_topic,
                      index);
     index.odometry = std::move(g.odometry[odometry_topic]);
     index.base_frame = g.odometry_child[odometry_topic];
-    index.odometry_source = odometry_topic + " (nav_msgs/msg/Odometry)";
+    index.odometry_source = odometry_topic + " (" + TopicType(index, odometry_topic) + ")";
     return true;
   }
   // Several odometry topics: tf is not the odometry, and nothing more can be chosen.
@@ -314,17 +323,32 @@ bool ChooseRosOdometry(const StreamChoice& choice, Gathered& g, LogIndex& index,
   return true;
 }
 
+// The pose topics that can be a reference. Unless one is named, a topic of a single pose (an
+// /initialpose set in rviz, a goal) is none: it is noted, not taken, nor counted as a choice.
+std::vector<std::string> ReferenceCandidates(const StreamChoice& choice, const Gathered& g,
+                                             LogIndex& index) {
+  std::vector<std::string> candidates = Keys(g.poses);
+  if (!choice.reference_topic.empty()) return candidates;
+  std::erase_if(candidates, [&](const std::string& topic) {
+    if (g.poses.find(topic)->second.size() > 1) return false;
+    index.notes.push_back(Quote(topic) + " holds a single pose: not taken as the reference " +
+                          "(--reference-topic takes it)");
+    return true;
+  });
+  return candidates;
+}
+
 void ChooseRosReference(const StreamChoice& choice, Gathered& g, LogIndex& index,
                         std::string& ambiguous) {
   const std::string reference_topic =
-      Choose(index.name, "poses (geometry_msgs/msg/PoseStamped)", "--reference-topic",
-             choice.reference_topic, Keys(g.poses), index, ambiguous);
+      Choose(index.name, "poses (" + TypeNames(StreamKind::kPose, index) + ")", "--reference-topic",
+             choice.reference_topic, ReferenceCandidates(choice, g, index), index, ambiguous);
   if (!reference_topic.empty()) {
     g.RequireForward(&g.poses[reference_topic], g.poses[reference_topic].size(), reference_topic,
                      index);
     index.reference = std::move(g.poses[reference_topic]);
     index.reference_topic = reference_topic;
-    index.reference_source = reference_topic + " (geometry_msgs/msg/PoseStamped)";
+    index.reference_source = reference_topic + " (" + TopicType(index, reference_topic) + ")";
   }
 }
 
@@ -472,6 +496,50 @@ void ChooseCarmen(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   FindCarmenMount(g, index);
 }
 
+// A ROS message (either ROS) into the stream of its type; other messages are only counted.
+void GatherRos(const RawMessage& m, std::uint64_t number, const StreamChoice& choice,
+               const std::string& log, Gathered& g) {
+  const StreamKind kind = StreamKindOf(m);
+  if (kind == StreamKind::kNone) return;
+  const std::string topic(m.topic);
+  switch (kind) {
+    case StreamKind::kScan: {
+      const ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeStreamScan(m); });
+      ScanGeometry& geometry = g.scans[topic];
+      if (geometry.scans == 0) g.scan_frame[topic] = scan.frame_id;
+      AddScan(geometry, scan, m.log_time_ns, log, number, m.topic, g);
+      break;
+    }
+    case StreamKind::kOdometry: {
+      const OdometryMessage odom =
+          Decoded(log, number, m.topic, [&] { return DecodeStreamOdometry(m); });
+      AddPose(g.odometry[topic], odom.stamp, odom.pose, log, number, m.topic, g);
+      g.odometry_child.try_emplace(topic, odom.child_frame_id);
+      break;
+    }
+    case StreamKind::kTf: {
+      const TfMessage tf = Decoded(log, number, m.topic, [&] { return DecodeStreamTf(m); });
+      const bool is_static = m.topic.find("tf_static") != std::string_view::npos;
+      for (const TransformMessage& t : tf.transforms) {
+        if (is_static) {
+          g.tf_static[t.child] = t;
+        } else if (t.parent == choice.odom_frame) {
+          AddPose(g.tf_odometry[t.child], t.stamp, t.X_PC, log, number, m.topic, g);
+        }
+      }
+      break;
+    }
+    case StreamKind::kPose: {
+      const PoseStampedMessage pose =
+          Decoded(log, number, m.topic, [&] { return DecodeStreamPose(m); });
+      AddPose(g.poses[topic], pose.stamp, pose.pose, log, number, m.topic, g);
+      break;
+    }
+    case StreamKind::kNone:
+      break;
+  }
+}
+
 void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choice,
             const std::string& log, Gathered& g) {
   if (IsCarmen(m)) {
@@ -501,32 +569,7 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     }
     return;
   }
-  if (m.encoding != "cdr") return;
-  if (m.type == kLaserScanType) {
-    const ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeLaserScan(m.data); });
-    ScanGeometry& geometry = g.scans[std::string(m.topic)];
-    if (geometry.scans == 0) g.scan_frame[std::string(m.topic)] = scan.frame_id;
-    AddScan(geometry, scan, m.log_time_ns, log, number, m.topic, g);
-  } else if (m.type == kOdometryType) {
-    const OdometryMessage odom =
-        Decoded(log, number, m.topic, [&] { return DecodeOdometry(m.data); });
-    AddPose(g.odometry[std::string(m.topic)], odom.stamp, odom.pose, log, number, m.topic, g);
-    g.odometry_child.try_emplace(std::string(m.topic), odom.child_frame_id);
-  } else if (m.type == kTfType) {
-    const TfMessage tf = Decoded(log, number, m.topic, [&] { return DecodeTfMessage(m.data); });
-    const bool is_static = m.topic.find("tf_static") != std::string_view::npos;
-    for (const TransformMessage& t : tf.transforms) {
-      if (is_static) {
-        g.tf_static[t.child] = t;
-      } else if (t.parent == choice.odom_frame) {
-        AddPose(g.tf_odometry[t.child], t.stamp, t.X_PC, log, number, m.topic, g);
-      }
-    }
-  } else if (m.type == kPoseType) {
-    const PoseStampedMessage pose =
-        Decoded(log, number, m.topic, [&] { return DecodePoseStamped(m.data); });
-    AddPose(g.poses[std::string(m.topic)], pose.stamp, pose.pose, log, number, m.topic, g);
-  }
+  GatherRos(m, number, choice, log, g);
 }
 
 // Refuses a scan stream whose scans mostly repeat the stamp before them: stamps printed with too
@@ -655,6 +698,7 @@ void GatherLog(const std::filesystem::path& path, const StreamChoice& choice, Ga
   }
   if (number == 0) throw core::IoError(index.name + ": the log holds no message");
   index.start_ns = std::min(index.start_ns, index.end_ns);
+  for (std::string& note : source->notes()) index.notes.push_back(std::move(note));
 }
 
 // The scan streams, in the order of their topics' first messages.
@@ -732,6 +776,19 @@ void NoteInconsistentAngleMax(Gathered& g, LogIndex& index) {
   }
 }
 
+// Notes the scan streams (the chosen one, else all) that keep several echoes per beam.
+void NoteMultiEchoScans(LogIndex& index) {
+  for (const ScanStream& stream : index.scan_streams) {
+    if (!index.scan_topic.empty() && stream.topic != index.scan_topic) continue;
+    if (TopicType(index, stream.topic) == kRos1MultiEchoLaserScanType) {
+      index.notes.push_back(Quote(stream.topic) + " holds " +
+                            std::string(kRos1MultiEchoLaserScanType) +
+                            ": the first echo of each beam is its range (a beam without echoes "
+                            "is no return)");
+    }
+  }
+}
+
 }  // namespace
 
 LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice) {
@@ -747,6 +804,7 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice)
   const std::optional<ScanLogTimes> scans = FindScanLogTimes(index);
   SetLogOrigin(scans ? scans->first_ns : index.start_ns, index);
   NoteInconsistentAngleMax(g, index);
+  NoteMultiEchoScans(index);
   if (scans) {
     const std::string note = OtherClockNote(g, index, scans->first_ns, scans->last_ns);
     if (!note.empty()) index.notes.push_back(note);
@@ -778,7 +836,7 @@ void ReadScans(const LogIndex& index, double from_s, double to_s,
     const ScanMessage scan =
         IsCarmen(m) ? Decoded(index.name, number, m.topic,
                               [&] { return ParseCarmenLaser(Text(m), carmen_defaults).scan; })
-                    : Decoded(index.name, number, m.topic, [&] { return DecodeLaserScan(m.data); });
+                    : Decoded(index.name, number, m.topic, [&] { return DecodeStreamScan(m); });
     // As in IndexLog: a scan stamped before the one before it is not used.
     if (last_stamp && scan.scan.stamp < *last_stamp) continue;
     last_stamp = scan.scan.stamp;

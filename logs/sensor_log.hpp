@@ -3,15 +3,19 @@
 // LiDAR's mount on the robot and, when the log carries one, a reference trajectory. Which
 // messages give them:
 //
-//   stream     ROS 2 bag                                   CARMEN log
+//   stream     ROS 2 bag or ROS 1 bag                      CARMEN log
 //   ---------  ------------------------------------------  -----------------------------------
-//   scans      the sensor_msgs/msg/LaserScan topic          FLASER, else ROBOTLASER1, RAWLASER1
+//   scans      the sensor_msgs/msg/LaserScan topic (ROS 1:  FLASER, else ROBOTLASER1, RAWLASER1
+//              also MultiEchoLaserScan, its first echo)
 //   odometry   the nav_msgs/msg/Odometry topic, else the    the robot pose of the laser lines,
 //              tf transforms odom → base                    else ODOM lines
 //   mount X_RL static tf (tf_static) from the base to the   laser pose relative to robot pose in
 //              scan's frame, through any chain              the laser lines
 //   reference  the geometry_msgs/msg/PoseStamped topic      TRUEPOS lines
+//              (ROS 1: also PoseWithCovarianceStamped)
 //
+// ROS 1 types count as their ROS 2 twins (logs/stream_messages.hpp): sensor_msgs/LaserScan as
+// sensor_msgs/msg/LaserScan, tf/tfMessage and tf2_msgs/TFMessage as tf2_msgs/msg/TFMessage.
 // A topic is found automatically when it is the only one of its type; otherwise StreamChoice
 // names it. Stamps are the messages' own (header stamps; CARMEN: the ipc timestamp), in s;
 // times given by the user (--from, --to) count in s of log time from the first scan of the scan

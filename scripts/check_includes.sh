@@ -32,7 +32,7 @@ check nav '*' 'sim/|logs/|viz/|bench/|box2d|CLI/' "nav must never see the simula
 check logs '*' 'sim/|nav/|viz/|bench/|box2d|opencv2|CLI/' "logs depend on core and io only"
 check viz '*' 'sim/|nav/|logs/|bench/|box2d|CLI/' "viz depends on core and io only"
 for lib in sim nav viz logs; do
-  check "$lib" '*.hpp' 'box2d|opencv2|yaml-cpp|io/config_yaml|sqlite3|zstd|lz4|zlib' \
+  check "$lib" '*.hpp' 'box2d|opencv2|yaml-cpp|io/config_yaml|sqlite3|zstd|lz4|zlib|bzlib' \
     "third-party types stay out of $lib's public headers" '/internal/'
 done
 check bench/engine '*' "$above_engine|viz/|logs/|CLI/" \

@@ -43,6 +43,12 @@ seed route worlds/routes/*.txt
 seed mcap $(find tests/data/rosbag2 -name '*.mcap')
 seed db3 $(find tests/data/rosbag2 -name '*.db3')
 seed rosbag2_metadata $(find tests/data/rosbag2 -name metadata.yaml)
+# ROS 1 bags: the test bags of tests/cli/ros1_bag_test.sh, a tenth as long, as Debian's
+# python3-rosbag writes them (scripts/install_deps.sh --test installs it).
+if printf '%s\n' "${targets[@]}" | grep -qx bag; then
+  mkdir -p "$work/seeds/bag"
+  /usr/bin/python3 tests/cli/ros1_bags.py seeds "$work/seeds/bag"
+fi
 mkdir -p "$work/seeds/set_override" "$work/seeds/ros_map" "$work/seeds/path" "$work/seeds/tum" \
   "$work/seeds/csv" "$work/seeds/carmen" "$work/seeds/cdr" "$work/seeds/map_image"
 printf 'nav.localizer.particles=300\nroute.points=[[1, 1], [9, 1], [9, 5]]\nroute.points.1=[8, 1]\nsim.lidar={beams: 181}\n' >"$work/seeds/set_override/a"
@@ -60,6 +66,10 @@ dict="$work/keys.dict"
 {
   grep -rhoE 'v\("[a-z_0-9]+"' --include='*.hpp' core io logs sim nav viz bench | sed -E 's/v\("(.*)"/"\1:"/'
   printf '"[" \n"]"\n"{"\n"}"\n": "\n"- "\n"true"\n"false"\n"null"\n".nan"\n".inf"\n"-1e308"\n"1e308"\n'
+  # The field names of ROS 1 bag records and connection headers.
+  for f in op conn time topic type md5sum message_definition compression size index_pos \
+    conn_count chunk_count ver count chunk_pos start_time end_time; do printf '"%s="\n' "$f"; done
+  printf '"none"\n"bz2"\n"lz4"\n"#ROSBAG V2.0\\x0a"\n'
 } | sort -u >"$dict"
 
 run_one() {  # run_one <target>: one target for $seconds, its stats in logs/<target>.txt

@@ -3,7 +3,9 @@
 # Usage: install_deps.sh [--test]   (--test: also what the tests need beyond the build: Chromium,
 # which the system test tests/cli/report_browser_test.sh loads report.html in; junitparser and
 # jsonschema for the system's Python, with which tests/cli/bench_ci_files_test.sh reads
-# `retrace bench`'s JUnit and trend files)
+# `retrace bench`'s JUnit and trend files; ROS 1's rosbag and message packages for the system's
+# Python, the reference that tests/cli/ros1_bag_test.sh checks ROS 1 bags against and that
+# scripts/fuzz.sh writes the ROS 1 bag seeds with)
 set -euo pipefail
 
 packages=(
@@ -12,12 +14,15 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev
-  zlib1g-dev liblz4-dev libzstd-dev libsqlite3-dev
+  zlib1g-dev liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   clang libclang-rt-dev lld
 )
 for arg in "$@"; do
   case "$arg" in
-    --test) packages+=(chromium python3-junitparser python3-jsonschema) ;;
+    --test)
+      packages+=(chromium python3-junitparser python3-jsonschema python3-rosbag python3-sensor-msgs
+                 python3-nav-msgs python3-tf2-msgs python3-geometry-msgs)
+      ;;
     *) echo "install_deps.sh: unknown argument '$arg' (usage: install_deps.sh [--test])" >&2; exit 2 ;;
   esac
 done

@@ -96,7 +96,8 @@ constexpr CommandSpec kCommands[] = {
     {"merge", "Join the results folders of a sweep's shards into one",
      [](CLI::App* c) { return Declare(c, AddMergeOptions, RunMergeCommand); }},
     {"log-info",
-     "Describe a recorded log (CARMEN, MCAP, rosbag2): topics, scans, odometry, reference",
+     "Describe a recorded log (CARMEN, MCAP, rosbag2, ROS 1 bag): topics, scans, odometry, "
+     "reference",
      [](CLI::App* c) { return DeclareQuiet(c, AddLogInfoOptions, RunLogInfoCommand); }},
     {"log-teach", "Build the teach folders (partial maps, paths) of a recorded log's drive",
      [](CLI::App* c) { return Declare(c, AddLogTeachOptions, RunLogTeachCommand); }},

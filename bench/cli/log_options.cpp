@@ -10,8 +10,8 @@ namespace retrace::bench {
 
 void AddLogArgument(CLI::App* cmd, std::filesystem::path* log) {
   cmd->add_option("log", *log,
-                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, or a "
-                  "rosbag2 folder")
+                  "The log: a CARMEN .log/.clf (gzipped or not), an .mcap or .db3 file, a "
+                  "rosbag2 folder or a ROS 1 .bag")
       ->required();
 }
 
@@ -29,13 +29,15 @@ void AddReferenceOption(CLI::App* cmd, std::optional<std::filesystem::path>* ref
 
 void AddStreamOptions(CLI::App* cmd, logs::StreamChoice* choice) {
   cmd->add_option("--scan-topic", choice->scan_topic,
-                  "LaserScan topic (CARMEN: FLASER, ROBOTLASER1, RAWLASER1, RLASER); needed when "
-                  "the log has several");
+                  "LaserScan topic (ROS 1: also MultiEchoLaserScan; CARMEN: FLASER, ROBOTLASER1, "
+                  "RAWLASER1, RLASER); needed when the log has several");
   cmd->add_option("--odometry-topic", choice->odometry_topic,
                   "Odometry topic (CARMEN: ODOM or a laser message name); default: the only "
-                  "nav_msgs/msg/Odometry topic, else tf from --odom-frame");
+                  "nav_msgs/msg/Odometry (ROS 1: nav_msgs/Odometry) topic, else tf from "
+                  "--odom-frame");
   cmd->add_option("--reference-topic", choice->reference_topic,
-                  "PoseStamped topic with a reference trajectory (CARMEN: TRUEPOS)");
+                  "PoseStamped topic with a reference trajectory (ROS 1: also "
+                  "PoseWithCovarianceStamped; CARMEN: TRUEPOS)");
   cmd->add_option("--odom-frame", choice->odom_frame,
                   "Odometry frame of the tf transforms used when there is no odometry topic")
       ->default_str("odom");

@@ -10,7 +10,7 @@ namespace retrace::bench {
 
 void AddLogSimulateOptions(CLI::App* cmd, LogSimulateOptions* options) {
   LogRunOptions& run = options->request.run;
-  cmd->add_option("log", run.log, "The log (CARMEN, MCAP, rosbag2)")->required();
+  cmd->add_option("log", run.log, "The log (CARMEN, MCAP, rosbag2, ROS 1 bag)")->required();
   cmd->add_option("--teach", options->request.teach_dir,
                   "The consistent map's teach folder (log-teach's consistent/teach): the world")
       ->required();

@@ -40,8 +40,9 @@ void AddRunOptions(CLI::App* command, RunOptions* options, RunPhases phases) {
   AddSetOption(command, &request.overrides, "a scenario key: a.b.c=value");
   if (phases != RunPhases::kPlaybackOnly) {
     command->add_option("--record-log", request.record_log,
-                        "Also write every drive as a CARMEN log and an MCAP bag into this folder: "
-                        "teach.log.gz, teach.mcap, <mode>/run_<i>.log.gz, <mode>/run_<i>.mcap");
+                        "Also write every drive as a CARMEN log, an MCAP file and a ROS 1 bag into "
+                        "this folder: teach.log.gz, teach.mcap, teach.bag, "
+                        "<mode>/run_<i>.{log.gz,mcap,bag}");
   }
   if (phases != RunPhases::kTeachOnly) {
     AddNoFiguresFlag(command, &request.figures,

@@ -6,6 +6,8 @@
 #include "logs/carmen_writer.hpp"
 #include "logs/mcap_writer.hpp"
 #include "logs/raw_message.hpp"
+#include "logs/ros1_bag_writer.hpp"
+#include "logs/ros1_messages.hpp"
 #include "logs/ros_messages.hpp"
 
 namespace retrace::bench {
@@ -20,18 +22,61 @@ constexpr const char* kWorldFrame = "world";
 }  // namespace
 
 struct LogRecorder::Files {
+  // The same ROS messages into an MCAP file (ROS 2: CDR) and a ROS 1 bag.
+  class RosLogs {
+   public:
+    struct Topic {
+      std::uint16_t mcap;
+      std::uint32_t bag;
+    };
+
+    RosLogs(const std::filesystem::path& folder, const std::string& name)
+        : mcap_(folder / (name + ".mcap"), logs::McapCompression::kZstd),
+          bag_(folder / (name + ".bag"), logs::Ros1BagCompression::kLz4) {}
+
+    Topic Add(const std::string& topic, const std::string& ros2_type,
+              const std::string& ros1_type) {
+      return {mcap_.AddChannel(topic, ros2_type), bag_.AddConnection(topic, ros1_type)};
+    }
+    void Scan(Topic t, std::int64_t ns, const logs::ScanMessage& m) {
+      mcap_.Write(t.mcap, ns, logs::EncodeLaserScan(m));
+      bag_.Write(t.bag, ns, logs::EncodeRos1LaserScan(m));
+    }
+    void Odometry(Topic t, std::int64_t ns, const logs::OdometryMessage& m, const core::Twist& v) {
+      mcap_.Write(t.mcap, ns, logs::EncodeOdometry(m, v));
+      bag_.Write(t.bag, ns, logs::EncodeRos1Odometry(m, v));
+    }
+    void Tf(Topic t, std::int64_t ns, const logs::TfMessage& m) {
+      mcap_.Write(t.mcap, ns, logs::EncodeTfMessage(m));
+      bag_.Write(t.bag, ns, logs::EncodeRos1TfMessage(m));
+    }
+    void Pose(Topic t, std::int64_t ns, const logs::PoseStampedMessage& m) {
+      mcap_.Write(t.mcap, ns, logs::EncodePoseStamped(m));
+      bag_.Write(t.bag, ns, logs::EncodeRos1PoseStamped(m));
+    }
+    void Close() {
+      mcap_.Close();
+      bag_.Close();
+    }
+
+   private:
+    logs::McapWriter mcap_;
+    logs::Ros1BagWriter bag_;
+  };
+
   Files(const std::filesystem::path& folder, const std::string& name)
       : carmen(folder / (name + ".log.gz")),
-        mcap(folder / (name + ".mcap"), logs::McapCompression::kZstd),
-        scan(mcap.AddChannel("/scan", "sensor_msgs/msg/LaserScan")),
-        odom(mcap.AddChannel("/odom", "nav_msgs/msg/Odometry")),
-        tf(mcap.AddChannel("/tf", "tf2_msgs/msg/TFMessage")),
-        tf_static(mcap.AddChannel("/tf_static", "tf2_msgs/msg/TFMessage")),
-        truth(mcap.AddChannel("/ground_truth", "geometry_msgs/msg/PoseStamped")) {}
+        ros(folder, name),
+        scan(ros.Add("/scan", "sensor_msgs/msg/LaserScan", "sensor_msgs/LaserScan")),
+        odom(ros.Add("/odom", "nav_msgs/msg/Odometry", "nav_msgs/Odometry")),
+        tf(ros.Add("/tf", "tf2_msgs/msg/TFMessage", "tf2_msgs/TFMessage")),
+        tf_static(ros.Add("/tf_static", "tf2_msgs/msg/TFMessage", "tf2_msgs/TFMessage")),
+        truth(ros.Add("/ground_truth", "geometry_msgs/msg/PoseStamped",
+                      "geometry_msgs/PoseStamped")) {}
 
   logs::CarmenWriter carmen;
-  logs::McapWriter mcap;
-  std::uint16_t scan, odom, tf, tf_static, truth;
+  RosLogs ros;
+  RosLogs::Topic scan, odom, tf, tf_static, truth;
   bool static_written = false;
 };
 
@@ -60,24 +105,22 @@ void LogRecorder::OnOdometry(double time, const core::Pose2& X_OR, const core::P
   const std::int64_t ns = logs::LogTimeNs(time);
   if (!f.static_written) {
     f.static_written = true;
-    logs::TfMessage mount{{{time, kBaseFrame, kLaserFrame, robot_.X_RL}}};
-    f.mcap.Write(f.tf_static, ns, logs::EncodeTfMessage(mount));
+    f.ros.Tf(f.tf_static, ns, {{{time, kBaseFrame, kLaserFrame, robot_.X_RL}}});
   }
-  f.mcap.Write(f.odom, ns,
-               logs::EncodeOdometry({time, kOdomFrame, kBaseFrame, X_OR}, core::Twist{tv_, rv_}));
-  f.mcap.Write(f.tf, ns, logs::EncodeTfMessage({{{time, kOdomFrame, kBaseFrame, X_OR}}}));
-  f.mcap.Write(f.truth, ns, logs::EncodePoseStamped({time, kWorldFrame, X_WR}));
+  f.ros.Odometry(f.odom, ns, {time, kOdomFrame, kBaseFrame, X_OR}, core::Twist{tv_, rv_});
+  f.ros.Tf(f.tf, ns, {{{time, kOdomFrame, kBaseFrame, X_OR}}});
+  f.ros.Pose(f.truth, ns, {time, kWorldFrame, X_WR});
 }
 
 void LogRecorder::OnScan(const core::LaserScan& scan, const core::Pose2& X_OR, const core::Pose2&) {
   Files& f = *files_;
   f.carmen.WriteLaser(scan, X_OR, robot_.X_RL, tv_, rv_);
-  f.mcap.Write(f.scan, logs::LogTimeNs(scan.stamp), logs::EncodeLaserScan({scan, kLaserFrame}));
+  f.ros.Scan(f.scan, logs::LogTimeNs(scan.stamp), {scan, kLaserFrame});
 }
 
 void LogRecorder::OnEnd() {
   files_->carmen.Close();
-  files_->mcap.Close();
+  files_->ros.Close();
 }
 
 }  // namespace retrace::bench

@@ -9,6 +9,9 @@
 //                   /odom nav_msgs/msg/Odometry (odom -> base_link), /tf tf2_msgs/msg/TFMessage
 //                   (odom -> base_link), /tf_static (base_link -> laser), /ground_truth
 //                   geometry_msgs/msg/PoseStamped (frame world)
+//   <name>.bag      ROS 1 (lz4 chunks): the same topics and messages in their ROS 1 types
+//                   (sensor_msgs/LaserScan, nav_msgs/Odometry, tf2_msgs/TFMessage,
+//                   geometry_msgs/PoseStamped), for rosbag, rqt_bag and ROS 1 nodes
 //
 // Times are the drive's simulated seconds (stamps and log times alike).
 
@@ -23,8 +26,8 @@ namespace retrace::bench {
 
 class LogRecorder final : public SensorTap {
  public:
-  /// Creates `<folder>/<name>.log.gz` and `<folder>/<name>.mcap` (the folder is created). Throws
-  /// core::IoError if they cannot be created.
+  /// Creates `<folder>/<name>.log.gz`, `<name>.mcap` and `<name>.bag` (the folder is created).
+  /// Throws core::IoError if they cannot be created.
   LogRecorder(const std::filesystem::path& folder, const std::string& name,
               const nav::RobotGeometry& robot);
   ~LogRecorder() override;
@@ -32,7 +35,7 @@ class LogRecorder final : public SensorTap {
   void OnOdometry(double time, const core::Pose2& X_OR, const core::Pose2& X_WR) override;
   void OnScan(const core::LaserScan& scan, const core::Pose2& X_OR,
               const core::Pose2& X_WR) override;
-  /// Closes both files (complete only now). Throws core::IoError if writing failed.
+  /// Closes the files (complete only now). Throws core::IoError if writing failed.
   void OnEnd() override;
 
  private:

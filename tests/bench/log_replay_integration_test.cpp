@@ -1,6 +1,7 @@
-// A simulated drive recorded as logs (`retrace run --record-log`), read back through both
-// formats, taught and localized with the log commands' engine: the same scans and odometry from
-// CARMEN and MCAP, maps like the live teaching drive's, errors like the live run's.
+// A simulated drive recorded as logs (`retrace run --record-log`), read back through every
+// format, taught and localized with the log commands' engine: the same scans and odometry from
+// CARMEN, MCAP and the ROS 1 bag, maps like the live teaching drive's, errors like the live
+// run's, and the same metrics from the MCAP file and the ROS 1 bag.
 
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -125,6 +127,34 @@ void BothFormatsGiveTheSameScansAndOdometry() {
   }
 }
 
+// The ROS 1 bag holds what the MCAP file holds, to the bit: the same stamps, poses and scans.
+void TheRos1BagGivesTheMcapsStreams() {
+  const Recorded& r = Drive();
+  const logs::LogIndex mcap = logs::IndexLog(r.tmp.path() / "teach.mcap");
+  const logs::LogIndex bag = logs::IndexLog(r.tmp.path() / "teach.bag");
+  ASSERT_EQ(bag.problem, "");
+  EXPECT_EQ(bag.format, logs::LogFormat::kRos1Bag);
+  EXPECT_EQ(bag.scan.scans, mcap.scan.scans);
+  EXPECT_EQ(bag.X_RL, mcap.X_RL);
+  EXPECT_EQ(bag.origin_ns, mcap.origin_ns);
+  ASSERT_EQ(bag.odometry.size(), mcap.odometry.size());
+  for (std::size_t i = 0; i < bag.odometry.size(); ++i) {
+    ASSERT_EQ(bag.odometry[i].t, mcap.odometry[i].t) << i;
+    ASSERT_EQ(bag.odometry[i].pose, mcap.odometry[i].pose) << i;
+  }
+  ASSERT_EQ(bag.reference.size(), mcap.reference.size());
+  EXPECT_EQ(bag.reference.back().pose, mcap.reference.back().pose);
+  std::vector<core::LaserScan> a, b;
+  logs::ReadScans(mcap, 0.0, 1e9, [&](const logs::ScanMessage& m, double) { a.push_back(m.scan); });
+  logs::ReadScans(bag, 0.0, 1e9, [&](const logs::ScanMessage& m, double) { b.push_back(m.scan); });
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].stamp, b[i].stamp) << i;
+    ASSERT_EQ(a[i].angle_min, b[i].angle_min) << i;
+    ASSERT_EQ(a[i].ranges, b[i].ranges) << i;
+  }
+}
+
 void TeachingFromTheLogMakesTheLiveDrivesMaps() {
   const Recorded& r = Drive();
   const logs::LogIndex index = logs::IndexLog(r.tmp.path() / "teach.mcap");
@@ -218,6 +248,42 @@ void ReplayingTheRunLogTickByTickGivesTheLiveEstimates() {
   EXPECT_LT(max_difference, 0.05);
 }
 
+// log-localize's metrics but the timings, with the estimate at every scan.
+struct LocalizedLog {
+  nlohmann::json metrics;
+  std::vector<core::Pose2> estimates;
+};
+
+LocalizedLog LocalizeRunLog(const char* file) {
+  const Recorded& r = Drive();
+  const ModeResult& live = r.experiment.modes.front();
+  const logs::LogIndex index = logs::IndexLog(r.tmp.path() / file);
+  const LogConfig config = r.Config();
+  const LogStreams streams = PrepareLogStreams(index, config, false, std::nullopt);
+  const LogLocalizeResult run = RunLogLocalize(index, streams, live.teach, config, {});
+  LocalizedLog out;
+  out.metrics = ToJson(ComputeLogMetrics(run, ComputeLogSeries(run, live.teach.trace),
+                                         live.teach.bundle, config.metrics));
+  out.metrics.erase("update_time_ms");
+  out.metrics.erase("real_time_factor");
+  for (const LogLocalizeSample& s : run.samples) out.estimates.push_back(s.X_MR);
+  return out;
+}
+
+// The same drive recorded as MCAP and as a ROS 1 bag: log-localize gives identical metrics and
+// estimates on both.
+void LocalizingTheRos1BagGivesTheMcapsMetrics() {
+  const LocalizedLog mcap = LocalizeRunLog("run_0.mcap");
+  const LocalizedLog bag = LocalizeRunLog("run_0.bag");
+  EXPECT_EQ(bag.metrics, mcap.metrics)
+      << "bag: " << bag.metrics.dump() << "\nmcap: " << mcap.metrics.dump();
+  ASSERT_EQ(bag.estimates.size(), mcap.estimates.size());
+  for (std::size_t i = 0; i < bag.estimates.size(); ++i)
+    ASSERT_EQ(bag.estimates[i], mcap.estimates[i]) << i;
+  std::printf("[ report ] run_0.mcap and run_0.bag: %zu estimates identical; rms error %s m\n",
+              bag.estimates.size(), mcap.metrics["localization_error_m"]["rms"].dump().c_str());
+}
+
 // Clutter beside the route (log-simulate's clutter block) ends some readings well short of the
 // clutter-free ones, the same readings for the same seed.
 void ClutterEndsSomeReadingsShort(const logs::LogIndex& index, const LogStreams& streams,
@@ -288,15 +354,17 @@ void SimulatedScansOfTheLogLocalizeInItsConsistentMap() {
                core::ConfigError);
 }
 
-// Two tests, not five: each test is a process of its own, and each would record the drive again.
+// Two tests, not seven: each test is a process of its own, and each would record the drive again.
 TEST(LogReplay, RecordedDriveReadsBackAndTeachesLikeTheLiveOne) {
   RecordingDoesNotChangeTheDrive();
   BothFormatsGiveTheSameScansAndOdometry();
+  TheRos1BagGivesTheMcapsStreams();
   TeachingFromTheLogMakesTheLiveDrivesMaps();
 }
 
 TEST(LogReplay, RecordedAndResimulatedRunsLocalizeLikeTheLiveOne) {
   LocalizingTheRunLogMatchesTheLiveRun();
+  LocalizingTheRos1BagGivesTheMcapsMetrics();
   ReplayingTheRunLogTickByTickGivesTheLiveEstimates();
   SimulatedScansOfTheLogLocalizeInItsConsistentMap();
 }

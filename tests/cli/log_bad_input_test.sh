@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `retrace log-info`, `log-teach` and `log-localize` on bad logs and options: each case must print
 # exactly one line on stderr that names the file (and the record) or the option, exit with code 2
-# and leave no output folder (nor its staging folder) behind.
+# and leave no output folder (nor its staging folder) behind. Among them the ROS 1 bag of a
+# recorded drive cut at every chunk boundary: one line naming the offset, never a crash.
 # Usage: log_bad_input_test.sh <retrace binary> <source dir>
 . "$(dirname "$0")/lib.sh" || exit 1
 
@@ -18,6 +19,43 @@ head -c $((size / 2)) "$mcap" >"$tmp/truncated.mcap"
 # A byte flipped in the middle of the data: a chunk that fails to decompress or its CRC.
 cp "$mcap" "$tmp/corrupt.mcap"
 printf '\xff\xff\xff\xff' | dd of="$tmp/corrupt.mcap" bs=1 seek=$((size / 3)) conv=notrunc status=none
+# The ROS 1 bag of the drive, cut at every chunk boundary (where each chunk record starts and
+# where its data ends, and within it), its first chunk's lz4 data corrupted, and an old format's
+# version line. The boundaries from the bag's index, by Python's standard library.
+bag="$tmp/logs/teach.bag"
+boundaries=$(/usr/bin/python3 - "$bag" <<'EOF'
+import struct, sys
+data = open(sys.argv[1], 'rb').read()
+def fields(header):
+    out, i = {}, 0
+    while i < len(header):
+        (n,) = struct.unpack_from('<I', header, i)
+        name, _, value = header[i + 4:i + 4 + n].partition(b'=')
+        out[name.decode()], i = value, i + 4 + n
+    return out
+def record(pos):  # (header fields, data start, data end)
+    (h,) = struct.unpack_from('<I', data, pos)
+    (d,) = struct.unpack_from('<I', data, pos + 4 + h)
+    return fields(data[pos + 4:pos + 4 + h]), pos + 8 + h, pos + 8 + h + d
+(index_pos,) = struct.unpack('<Q', record(13)[0]['index_pos'])
+pos, cuts = index_pos, []
+while pos < len(data):
+    header, _, end = record(pos)
+    if header['op'] == b'\x06':
+        (chunk,) = struct.unpack('<Q', header['chunk_pos'])
+        cuts += [chunk, record(chunk)[1] + 1000, record(chunk)[2]]
+    pos = end
+print(' '.join(map(str, sorted(cuts) + [index_pos])), record(min(cuts))[1])
+EOF
+)
+read -r -a cuts <<<"$boundaries"
+first_chunk_data=${cuts[-1]}
+unset 'cuts[-1]'
+[ ${#cuts[@]} -ge 4 ] || die "teach.bag: no chunks found (${boundaries})"
+for cut in "${cuts[@]}"; do head -c "$cut" "$bag" >"$tmp/cut_$cut.bag"; done
+cp "$bag" "$tmp/corrupt.bag"
+printf '\xff\xff\xff\xff' | dd of="$tmp/corrupt.bag" bs=1 seek=$((first_chunk_data + 4)) conv=notrunc status=none
+{ printf '#ROSBAG V1.2\n'; tail -c +14 "$bag"; } >"$tmp/old.bag"
 # CARMEN lines: time going backwards, a NaN range.
 printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nODOM 1 0 0 0 0 0 2.0 h 2.0\nODOM 2 0 0 0 0 0 1.5 h 1.5\nFLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 2.0 h 2.0\n' >"$tmp/backwards.log"
 printf 'ODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 nan 1.0 0 0 0 0 0 0 1.0 h 1.0\n' >"$tmp/nan.log"
@@ -42,6 +80,11 @@ expect_bad nan-range "nan.log" log-info "$tmp/nan.log"
 expect_bad bad-param "badparam.log: message 1 on 'PARAM': PARAM robot_front_laser_max: 'far' is not a finite number" log-info "$tmp/badparam.log"
 bad_suffix=(--out "$tmp/out")
 expect_bad truncated "truncated.mcap" log-teach "$tmp/truncated.mcap"
+for cut in "${cuts[@]}"; do
+  expect_bad "bag-cut-at-$cut" "cut_$cut.bag: truncated: " log-teach "$tmp/cut_$cut.bag"
+done
+expect_bad bag-corrupt-chunk "corrupt.bag: lz4 chunk (lz4 data corrupt" log-localize "$tmp/corrupt.bag" --teach "$teach"
+expect_bad bag-old-format "old.bag: a ROS bag of format 1.2; retrace reads format 2.0" log-teach "$tmp/old.bag"
 expect_bad corrupt-chunk "corrupt.mcap" log-teach "$tmp/corrupt.mcap"
 expect_bad reference-topic "--reference-topic '/nope' is not in the log" log-teach "$mcap" --reference-topic /nope
 expect_bad corrupt-chunk-data "corrupt.mcap" log-localize "$tmp/corrupt.mcap" --teach "$teach"

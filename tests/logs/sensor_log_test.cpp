@@ -13,8 +13,13 @@
 #include "logs/carmen_writer.hpp"
 #include "logs/log_source.hpp"
 #include "logs/mcap_writer.hpp"
+#include "logs/ros1_bag_writer.hpp"
+#include "logs/ros1_messages.hpp"
+#include "logs/ros1_serialization.hpp"
 #include "logs/ros_messages.hpp"
+#include "tests/support/io_error_of.hpp"
 #include "tests/support/mocap_bag.hpp"
+#include "tests/support/ros1_bag_builder.hpp"
 #include "tests/support/source_dir.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -80,6 +85,66 @@ fs::path WriteMcap(const fs::path& file, std::vector<std::string> scan_topics = 
     }
   }
   w.Close();
+  return file;
+}
+
+// The same drive as WriteMcap as a ROS 1 bag: tf through tf/tfMessage (the old tf package's
+// name), and with `multi_echo`, the scans as sensor_msgs/MultiEchoLaserScan (each beam's range
+// then a farther second echo) and the reference as a PoseWithCovarianceStamped on /amcl_pose.
+fs::path WriteRos1Bag(const fs::path& file, bool multi_echo = false, bool close = true) {
+  Ros1BagWriter w(file, Ros1BagCompression::kLz4, 16 * 1024);
+  const std::uint32_t scan = w.AddConnection(
+      "/scan", multi_echo ? "sensor_msgs/MultiEchoLaserScan" : "sensor_msgs/LaserScan");
+  const std::uint32_t odom = w.AddConnection("/odom", "nav_msgs/Odometry");
+  const std::uint32_t tf = w.AddConnection("/tf", "tf/tfMessage");
+  const std::uint32_t tf_static = w.AddConnection("/tf_static", "tf2_msgs/TFMessage");
+  const std::uint32_t truth =
+      multi_echo ? w.AddConnection("/amcl_pose", "geometry_msgs/PoseWithCovarianceStamped")
+                 : w.AddConnection("/ground_truth", "geometry_msgs/PoseStamped");
+  TfMessage mount{{{0.0, "base_link", "laser_mount", core::Pose2(0.1, 0.0, 0.0)},
+                   {0.0, "laser_mount", "laser", core::Pose2(0.1, 0.0, 0.0)}}};
+  w.Write(tf_static, 0, EncodeRos1TfMessage(mount));
+  if (multi_echo) {  // one pose set in rviz: not a reference
+    const std::uint32_t initial = w.AddConnection("/initialpose", "geometry_msgs/PoseStamped");
+    w.Write(initial, 0, EncodeRos1PoseStamped({0.0, "map", Truth(0.0)}));
+  }
+  for (int k = 0; k <= 250; ++k) {
+    const double t = 0.02 * k;
+    const auto ns = static_cast<std::int64_t>(std::llround(t * 1e9));
+    w.Write(odom, ns, EncodeRos1Odometry({t, "odom", "base_link", Odometry(t)}));
+    w.Write(tf, ns, EncodeRos1TfMessage({{{t, "odom", "base_link", Odometry(t)}}}));
+    if (!multi_echo) {
+      w.Write(truth, ns, EncodeRos1PoseStamped({t, "world", Truth(t)}));
+    } else {
+      Ros1Writer p;  // geometry_msgs/PoseWithCovarianceStamped
+      p.Write<std::uint32_t>(0);
+      p.WriteTime(ToRos1Time(t));
+      p.WriteString("map");
+      const core::Pose2 X = Truth(t);
+      p.WriteFloat64Values(std::vector<double>{X.x, X.y, 0.0, 0.0, 0.0, std::sin(0.5 * X.theta),
+                                               std::cos(0.5 * X.theta)});
+      p.WriteFloat64Values(std::vector<double>(36, 0.0));
+      w.Write(truth, ns, p.Take());
+    }
+    if (k % 5 != 0) continue;
+    if (!multi_echo) {
+      w.Write(scan, ns, EncodeRos1LaserScan({Scan(t), "laser"}));
+      continue;
+    }
+    const core::LaserScan s = Scan(t);
+    Ros1Writer e;  // sensor_msgs/MultiEchoLaserScan
+    e.Write<std::uint32_t>(0);
+    e.WriteTime(ToRos1Time(t));
+    e.WriteString("laser");
+    const double angle_max = s.Angle(s.size() - 1);
+    for (double v : {s.angle_min, angle_max, s.angle_increment, 0.0, 0.0, s.range_min, s.range_max})
+      e.Write<float>(static_cast<float>(v));
+    e.WriteArrayLength(static_cast<std::uint32_t>(s.size()));
+    for (float r : s.ranges) e.WriteFloat32Array(std::vector<float>{r, r + 1.0f});
+    e.WriteArrayLength(0);
+    w.Write(scan, ns, e.Take());
+  }
+  if (close) w.Close();
   return file;
 }
 
@@ -474,6 +539,113 @@ TEST(SensorLog, ABagWithoutScansIsDescribedButNotUsable) {
   EXPECT_EQ(index.topics.size(), 2U);
   EXPECT_NE(index.problem.find("no sensor_msgs/msg/LaserScan topic"), std::string::npos);
   EXPECT_THROW(RequireUsable(index), core::IoError);
+}
+
+// A ROS 1 bag gives the streams the MCAP file of the same drive gives, scan for scan.
+TEST(SensorLog, Ros1BagGivesTheStreamsOfTheSameMcap) {
+  testing::TempDir tmp;
+  const LogIndex mcap = IndexLog(WriteMcap(tmp.path() / "drive.mcap"));
+  const LogIndex bag = IndexLog(WriteRos1Bag(tmp.path() / "drive.bag"));
+  EXPECT_EQ(bag.problem, "");
+  EXPECT_EQ(bag.format, LogFormat::kRos1Bag);
+  EXPECT_TRUE(bag.notes.empty());
+  EXPECT_EQ(bag.scan_topic, mcap.scan_topic);
+  EXPECT_EQ(bag.scan.scans, mcap.scan.scans);
+  EXPECT_EQ(bag.scan.angle_increment, mcap.scan.angle_increment);
+  EXPECT_EQ(bag.laser_frame, mcap.laser_frame);
+  EXPECT_EQ(bag.base_frame, mcap.base_frame);
+  EXPECT_EQ(bag.X_RL, mcap.X_RL);
+  EXPECT_EQ(bag.mount_source, mcap.mount_source);
+  EXPECT_EQ(bag.odometry_source, "/odom (nav_msgs/Odometry)");
+  EXPECT_EQ(bag.reference_source, "/ground_truth (geometry_msgs/PoseStamped)");
+  EXPECT_EQ(bag.origin_ns, mcap.origin_ns);
+  ASSERT_EQ(bag.odometry.size(), mcap.odometry.size());
+  for (std::size_t i = 0; i < bag.odometry.size(); ++i) {
+    EXPECT_EQ(bag.odometry[i].t, mcap.odometry[i].t);
+    EXPECT_EQ(bag.odometry[i].pose, mcap.odometry[i].pose);
+  }
+  ASSERT_EQ(bag.reference.size(), mcap.reference.size());
+  EXPECT_EQ(bag.reference.back().pose, mcap.reference.back().pose);
+  ASSERT_EQ(bag.topics.size(), mcap.topics.size());
+  EXPECT_EQ(bag.topics[2].type, "tf/tfMessage");
+  std::vector<core::LaserScan> a, b;
+  ReadScans(mcap, 0.0, 1e9, [&](const ScanMessage& m, double) { a.push_back(m.scan); });
+  ReadScans(bag, 0.0, 1e9, [&](const ScanMessage& m, double) { b.push_back(m.scan); });
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].stamp, b[i].stamp);
+    EXPECT_EQ(a[i].ranges, b[i].ranges);
+  }
+
+  // Without its index (a recording cut off) the bag is read all the same, with a note.
+  const LogIndex cut = IndexLog(WriteRos1Bag(tmp.path() / "cut.bag", false, false));
+  EXPECT_EQ(cut.problem, "");
+  ASSERT_FALSE(cut.notes.empty());
+  EXPECT_TRUE(cut.notes[0].starts_with("the bag has no index")) << cut.notes[0];
+  EXPECT_LT(cut.scan.scans, bag.scan.scans);
+}
+
+// A MultiEchoLaserScan feeds the scans (first echo, noted), a PoseWithCovarianceStamped the
+// reference; a topic of a single pose (an /initialpose) is no reference, nor a choice to make.
+TEST(SensorLog, Ros1MultiEchoScansAndPoseWithCovarianceReference) {
+  testing::TempDir tmp;
+  const LogIndex index = IndexLog(WriteRos1Bag(tmp.path() / "echo.bag", true));
+  EXPECT_EQ(index.problem, "");
+  EXPECT_EQ(index.scan_topic, "/scan");
+  EXPECT_EQ(index.scan.scans, 51U);
+  EXPECT_EQ(index.reference_source, "/amcl_pose (geometry_msgs/PoseWithCovarianceStamped)");
+  ExpectNear(index.reference[100].pose, Truth(2.0), 1e-9);
+  ASSERT_EQ(index.notes.size(), 2U);
+  EXPECT_EQ(index.notes[0],
+            "'/initialpose' holds a single pose: not taken as the reference (--reference-topic "
+            "takes it)");
+  EXPECT_EQ(index.notes[1],
+            "'/scan' holds sensor_msgs/MultiEchoLaserScan: the first echo of each beam is its "
+            "range (a beam without echoes is no return)");
+  std::size_t scans = 0;
+  ReadScans(index, 0.0, 1e9, [&](const ScanMessage& m, double) {
+    EXPECT_EQ(m.scan.ranges, Scan(m.scan.stamp).ranges);
+    ++scans;
+  });
+  EXPECT_EQ(scans, 51U);
+}
+
+// A type of a known name with another md5sum is another definition: refused in one line.
+TEST(SensorLog, Ros1TypeWithAnotherMd5sumIsRefusedNamingIt) {
+  testing::TempDir tmp;
+  testing::Ros1BagBuilder b;
+  const auto c0 = testing::Ros1BagBuilder::Connection(0, "/scan", "sensor_msgs/LaserScan",
+                                                      "00112233445566778899aabbccddeeff");
+  const std::uint64_t pos =
+      b.Chunk({c0, testing::Ros1BagBuilder::Message(0, 5, EncodeRos1LaserScan({Scan(0.0), "l"}))});
+  b.Index({c0}, {{pos, 5, 5, {{0, 1}}}});
+  const fs::path bag = tmp.Write("other.bag", b.Text());
+  EXPECT_EQ(testing::IoErrorOf([&] { IndexLog(bag); }),
+            bag.string() +
+                ": message 1 on '/scan': sensor_msgs/LaserScan: md5sum "
+                "'00112233445566778899aabbccddeeff' is not the md5sum of the sensor_msgs/LaserScan "
+                "retrace reads (90c7ef2dc6895d81024acba2ac42f369): another definition of the type");
+}
+
+// Messages name the types in the bag's ROS.
+TEST(SensorLog, Ros1BagWithoutScansIsDescribedInRos1Names) {
+  testing::TempDir tmp;
+  const fs::path bag = tmp.path() / "odom.bag";
+  {
+    Ros1BagWriter w(bag, Ros1BagCompression::kNone);
+    const std::uint32_t odom = w.AddConnection("/odom", "nav_msgs/Odometry");
+    for (int k = 0; k < 3; ++k)
+      w.Write(odom, k, EncodeRos1Odometry({1.0 * k, "odom", "base_link", Odometry(k)}));
+    w.Close();
+  }
+  const LogIndex index = IndexLog(bag);
+  ASSERT_EQ(index.topics.size(), 1U);
+  EXPECT_EQ(index.topics[0].type, "nav_msgs/Odometry");
+  EXPECT_EQ(index.topics[0].messages, 3U);
+  EXPECT_EQ(index.problem,
+            bag.string() +
+                ": no sensor_msgs/LaserScan or MultiEchoLaserScan topic: nothing to map or "
+                "localize with");
 }
 
 TEST(SensorLog, PoseAtInterpolatesInsideAndRefusesOutside) {
