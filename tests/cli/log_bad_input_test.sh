@@ -20,8 +20,8 @@ head -c $((size / 2)) "$mcap" >"$tmp/truncated.mcap"
 cp "$mcap" "$tmp/corrupt.mcap"
 printf '\xff\xff\xff\xff' | dd of="$tmp/corrupt.mcap" bs=1 seek=$((size / 3)) conv=notrunc status=none
 # The ROS 1 bag of the drive, cut at every chunk boundary (where each chunk record starts and
-# where its data ends, and within it), its first chunk's lz4 data corrupted, and an old format's
-# version line. The boundaries from the bag's index, by Python's standard library.
+# where its data ends) and where its index starts, its first chunk's lz4 data corrupted, and an
+# old format's version line. The boundaries from the bag's index, by Python's standard library.
 bag="$tmp/logs/teach.bag"
 boundaries=$(/usr/bin/python3 - "$bag" <<'EOF'
 import struct, sys
@@ -43,7 +43,7 @@ while pos < len(data):
     header, _, end = record(pos)
     if header['op'] == b'\x06':
         (chunk,) = struct.unpack('<Q', header['chunk_pos'])
-        cuts += [chunk, record(chunk)[1] + 1000, record(chunk)[2]]
+        cuts += [chunk, record(chunk)[2]]
     pos = end
 print(' '.join(map(str, sorted(cuts) + [index_pos])), record(min(cuts))[1])
 EOF

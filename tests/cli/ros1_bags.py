@@ -3,14 +3,14 @@
 python3-rosbag (the ROS 1 library itself, with the message packages python3-sensor-msgs,
 python3-nav-msgs, python3-tf2-msgs and python3-geometry-msgs).
 
-    ros1_bags.py write <folder>         the test bags (below), 10 to 90 KiB each
-    ros1_bags.py seeds <folder>         the same, a tenth as long: the fuzz target's seeds
+    ros1_bags.py write <folder>            the test bags (below), 10 to 100 KiB each
+    ros1_bags.py seeds <folder>            the same, a tenth as long: the fuzz target's seeds
     ros1_bags.py compare <bag> <dump>...   rosbag's reading of each <bag> against retrace's (the
-                                        JSON lines of retrace_log_dump), field for field; exit 1
-                                        on a difference
-    ros1_bags.py refuses <file>...      exit 0 if rosbag refuses to open or read every <file>
-    ros1_bags.py reindex <bag> <copy>   a bag without index reindexed by rosbag, as `rosbag
-                                        reindex` does it (what rosbag reads of a cut recording)
+                                           JSON lines of retrace_log_dump), field for field;
+                                           exit 1 on a difference
+    ros1_bags.py refuses <file>...         exit 0 if rosbag refuses to open or read every <file>
+    ros1_bags.py reindex <bag> <copy>      a bag without index reindexed by rosbag, as `rosbag
+                                           reindex` does it (what rosbag reads of a cut recording)
 
 The bags, written with rosbag.Bag as `rosbag record` writes them (small chunks: several each):
     drive_none.bag, drive_bz2.bag, drive_lz4.bag   1 s of a drive: /scan sensor_msgs/LaserScan

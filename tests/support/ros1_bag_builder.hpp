@@ -7,6 +7,7 @@
 //   b.Index({{b.chunk_pos(0), 5, 5, {{0, 1}}}});
 //   const auto bag = tmp.Write("a.bag", b.Text());
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <span>
