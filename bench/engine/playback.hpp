@@ -1,10 +1,12 @@
 #pragma once
 // One playback run: the robot drives the taught route by itself with the navigation stack in
-// the loop. The tick loop (RunPlayback in playback.cpp) is the one place where the simulated
-// world and the navigation stack meet; read it top to bottom.
+// the loop. The tick loop (PlaybackEpisode's Sense and Act, playback_episode.cpp) is the one
+// place where the simulated world and the navigation stack meet; read it top to bottom.
 
 #include <cstdint>
+#include <memory>
 
+#include "bench/engine/navigation_stack.hpp"
 #include "bench/engine/playback_observer.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/sensor_tap.hpp"
@@ -17,6 +19,11 @@ namespace retrace::bench {
 /// The seed of playback run `run`: the same in every map mode, so that the modes' runs are
 /// paired (same start offset, same pedestrians, same sensor noise draws).
 core::Rng PlaybackRng(const ScenarioConfig& config, int run);
+
+/// The stack playback run `run` drives with (playback.stack): retrace's navigator on `bundle`,
+/// seeded for the run, or the odometry baseline.
+std::unique_ptr<NavigationStack> MakeStack(const Scenario& scenario, const nav::TeachBundle& bundle,
+                                           int run);
 
 /// Runs playback run `run` on the maps and paths of `bundle`, measuring against `teach` (the
 /// teaching drive's ground truth and the bundle's references). `timeout_s` ends a run that has

@@ -49,6 +49,22 @@ struct retrace::core::EnumTraits<retrace::bench::SwitchPlanning> {
 
 namespace retrace::bench {
 
+/// The navigation stack a playback run drives with (bench/engine/navigation_stack.hpp): retrace's
+/// navigator (localization in the taught maps, map switching, path following, avoidance), or
+/// the baseline that replays the taught path on odometry alone (no localization).
+enum class StackKind : std::uint8_t { kRetrace, kOdometry };
+
+}  // namespace retrace::bench
+
+template <>
+struct retrace::core::EnumTraits<retrace::bench::StackKind> {
+  static constexpr std::array<std::pair<retrace::bench::StackKind, std::string_view>, 2> kNames{
+      {{retrace::bench::StackKind::kRetrace, "retrace"},
+       {retrace::bench::StackKind::kOdometry, "odometry"}}};
+};
+
+namespace retrace::bench {
+
 /// The taught route: a polyline in W, from a route file or inline, and where the operator
 /// starts a new partial map (modes `partial` and `scan_matched`).
 struct RouteConfig {
@@ -206,10 +222,12 @@ struct PlaybackConfig {
   double start_offset_yaw_deg = 2.0;  ///< std of the start's heading offset
   double initial_sigma_xy = 0.2;      ///< m, the localizer's initial spread at map 0's origin
   double initial_sigma_yaw_deg = 3.0;
+  StackKind stack = StackKind::kRetrace;  ///< the navigation stack the runs drive with
 
   template <class V>
   void Reflect(V& v) {
     v("repeats", repeats);
+    v("stack", stack);
     v("start_offset_xy", start_offset_xy);
     v("start_offset_yaw_deg", start_offset_yaw_deg);
     v("initial_sigma_xy", initial_sigma_xy);

@@ -1,0 +1,63 @@
+#include "bench/engine/retrace_stack.hpp"
+
+#include "core/angle.hpp"
+
+namespace retrace::bench {
+namespace {
+
+nav::Navigator StartNavigator(const Scenario& scenario, const nav::TeachBundle& bundle,
+                              const core::Rng& rng) {
+  const ScenarioConfig& config = scenario.config;
+  nav::MapServerConfig server;
+  server.closure_radius = config.route.revisit_radius;
+  server.drift = config.route.online_drift;
+  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle, server,
+                     rng.Split("localizer"));
+  nav.Start(0, core::Pose2::Identity(), config.playback.initial_sigma_xy,
+            core::DegToRad(config.playback.initial_sigma_yaw_deg));
+  return nav;
+}
+
+}  // namespace
+
+RetraceStack::RetraceStack(const Scenario& scenario, const nav::TeachBundle& bundle,
+                           const core::Rng& rng)
+    : nav_(StartNavigator(scenario, bundle, rng)),
+      avoidance_(scenario.config.nav.avoidance, scenario.robot) {}
+
+void RetraceStack::OnOdometry(double /*t*/, const core::OdometryDelta& delta) {
+  nav_.OnOdometry(delta);
+}
+
+const nav::LocalizerUpdate* RetraceStack::OnScan(const core::LaserScan& scan) {
+  update_ = nav_.OnScan(scan);
+  latest_scan_ = scan;
+  return &update_;
+}
+
+StackOutput RetraceStack::OnControlTick(double /*t*/, double dt) {
+  const nav::NavigatorTick tick = nav_.OnControlTick(dt);
+  StackOutput out;
+  out.drive = {.command = tick.follow.command};
+  if (latest_scan_) out.drive = avoidance_.Filter(tick.follow.command, *latest_scan_);
+  Report(&out);
+  out.route_done = tick.route_done;
+  out.remaining = tick.follow.remaining;
+  out.map_switch = tick.map_switch;
+  return out;
+}
+
+std::optional<nav::MapSwitch> RetraceStack::Resume(StackOutput* out) {
+  std::optional<nav::MapSwitch> sw = nav_.Resume();
+  Report(out);
+  return sw;
+}
+
+void RetraceStack::Report(StackOutput* out) const {
+  out->X_MR = nav_.Estimate();
+  out->map = nav_.server().index();
+  out->lost = nav_.localizer().lost();
+  out->last_map = nav_.server().IsLast();
+}
+
+}  // namespace retrace::bench
