@@ -1,0 +1,103 @@
+#pragma once
+// One playback run stepped by its caller (docs/PYTHON.md, "Your own stack in the loop"): the
+// scenario's teaching drive is run and recorded (scans, odometry, reference poses) so that the
+// caller can build its own maps; then each step hands out the sensor data since the last control
+// tick and takes the caller's command and estimate. The loop is the one `retrace run` drives
+// (bench/engine/playback_episode.hpp), so the run is measured exactly as `retrace run`'s; with
+// `builtin`, retrace's own stack (playback.stack) answers and the caller only watches.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/engine/scenario.hpp"
+#include "bench/engine/teach_drive.hpp"
+#include "bench/engine/trace.hpp"
+#include "bench/metrics/metrics.hpp"
+#include "core/laser_scan.hpp"
+#include "core/pose2.hpp"
+#include "core/twist.hpp"
+
+namespace retrace::bench {
+
+struct EpisodeRequest {
+  std::filesystem::path scenario;
+  std::string mode = "partial";        ///< the map mode whose maps and paths are taught
+  int run = 0;                         ///< playback run index (its seed: PlaybackRng)
+  std::optional<std::uint64_t> seed;   ///< the scenario's seed unless given
+  std::vector<std::string> overrides;  ///< a.b.c=value
+  bool builtin = false;                ///< retrace's own stack answers each step
+};
+
+/// An odometry reading: the wheel odometry's pose X_OR (its own frame O) at time t.
+struct OdometryReading {
+  double time = 0.0;
+  core::Pose2 X_OR;
+};
+
+/// The teaching drive, as a stack that builds its own maps sees it: every scan and odometry
+/// reading, and the reference (ground truth in W) at each odometry reading. The taught maps
+/// and paths retrace built for the mode (frames: map k starts at the odometry pose where the
+/// drive began it) are in `teach.bundle`.
+struct TeachRecording {
+  std::vector<core::LaserScan> scans;
+  std::vector<OdometryReading> odometry;
+  std::vector<core::Pose2> X_WR;  ///< the reference at each odometry reading
+};
+
+/// What the sensors gave between two control ticks.
+struct Observation {
+  double time = 0.0;  ///< s since the run started: the control tick's
+  std::vector<OdometryReading> odometry;
+  std::vector<core::LaserScan> scans;
+};
+
+/// The caller's answer at a control tick.
+struct StackAnswer {
+  core::Twist command;
+  /// Its estimate in map `map`'s frame, the taught maps' (or the teaching drive's odometry
+  /// frame O for a stack without maps: map 0, whose frame is O).
+  core::Pose2 X_MR;
+  std::size_t map = 0;
+  bool lost = false;
+  bool route_done = false;  ///< it believes it has reached the end of the route
+};
+
+class SteppedEpisode {
+ public:
+  /// Loads the scenario, runs and records the teaching drive. Throws core::ConfigError /
+  /// core::IoError like `retrace run`, core::WorldError when the route cannot be driven.
+  explicit SteppedEpisode(const EpisodeRequest& request);
+  ~SteppedEpisode();
+  SteppedEpisode(const SteppedEpisode&) = delete;
+  SteppedEpisode& operator=(const SteppedEpisode&) = delete;
+
+  const Scenario& scenario() const;
+  const ModeTeach& teach() const;
+  const TeachRecording& recording() const;
+  /// The number of maps of the taught route (the answer's map is below it).
+  std::size_t maps() const;
+
+  /// Steps the world to the next control tick; the sensor data on the way. Throws
+  /// core::ConfigError("step") when the run is done, or when Act was not called since.
+  const Observation& Observe();
+  /// The control tick with the caller's answer (ignored with `builtin`: pass nullopt). Throws
+  /// core::ConfigError("answer") for an answer without a builtin stack missing, a map index out
+  /// of range or a non-finite value; ("step") before Observe. Returns done().
+  bool Act(const std::optional<StackAnswer>& answer);
+  bool done() const;
+  /// The run's trace and metrics (as `retrace run` computes them), once done(); throws
+  /// core::ConfigError("step") before.
+  const RunTrace& trace();
+  RunMetrics Metrics();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace retrace::bench

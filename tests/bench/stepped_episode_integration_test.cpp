@@ -1,0 +1,87 @@
+// The stepping API: retrace's own stack stepped by a caller gives exactly RunPlayback's run and
+// metrics; the teaching drive's recording is handed out; misuse is refused with one message.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "bench/engine/playback.hpp"
+#include "bench/run/stepped_episode.hpp"
+#include "core/errors.hpp"
+#include "tests/support/source_dir.hpp"
+#include "tests/support/trajectory_hash.hpp"
+
+namespace retrace::bench {
+namespace {
+
+EpisodeRequest SmallRequest(bool builtin) {
+  EpisodeRequest r;
+  r.scenario = retrace::testing::kSource / "scenarios/small.yaml";
+  r.mode = "partial";
+  r.run = 1;
+  r.builtin = builtin;
+  return r;
+}
+
+TEST(SteppedEpisode, TheBuiltinStackSteppedByTheCallerGivesRunPlaybacksRunAndMetrics) {
+  SteppedEpisode episode(SmallRequest(true));
+  int steps = 0;
+  std::size_t scans = 0;
+  while (!episode.done()) {
+    scans += episode.Observe().scans.size();
+    episode.Act(std::nullopt);
+    ++steps;
+  }
+  const RunTrace reference =
+      RunPlayback(episode.scenario(), episode.teach().bundle, episode.teach().trace, 1, 1e9);
+  EXPECT_EQ(retrace::testing::TrajectoryHash(episode.trace()),
+            retrace::testing::TrajectoryHash(reference));
+  EXPECT_EQ(steps, static_cast<int>(reference.samples.size()));
+  EXPECT_EQ(episode.trace().updates.size(), reference.updates.size());
+  EXPECT_GT(scans, reference.updates.size());
+  const RunMetrics a = episode.Metrics();
+  const RunMetrics b =
+      ComputeRunMetrics(episode.teach().trace, reference, episode.scenario().config.metrics);
+  EXPECT_EQ(a.success, b.success);
+  EXPECT_DOUBLE_EQ(a.tracking_error_m.rms, b.tracking_error_m.rms);
+  EXPECT_DOUBLE_EQ(a.localization_error_m.rms, b.localization_error_m.rms);
+  EXPECT_EQ(a.collisions.pedestrian_incidents, b.collisions.pedestrian_incidents);
+  // The teaching drive's recording: scans, odometry and the reference at each odometry reading.
+  const TeachRecording& rec = episode.recording();
+  EXPECT_GT(rec.scans.size(), 100u);
+  EXPECT_EQ(rec.odometry.size(), rec.X_WR.size());
+  EXPECT_GT(rec.odometry.size(), rec.scans.size());
+}
+
+TEST(SteppedEpisode, MisuseIsRefusedWithOneMessage) {
+  SteppedEpisode episode(SmallRequest(false));
+  const auto key = [](const auto& call) {
+    try {
+      call();
+    } catch (const core::ConfigError& e) {
+      return e.key_path();
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(key([&] { episode.Act(StackAnswer{}); }), "step");  // act before observe
+  EXPECT_GT(episode.Observe().odometry.size(), 0u);
+  EXPECT_EQ(key([&] { episode.Observe(); }), "step");  // observe twice
+  EXPECT_EQ(key([&] { episode.Act(std::nullopt); }), "answer");
+  StackAnswer beyond;
+  beyond.map = 7;
+  EXPECT_EQ(key([&] { episode.Act(beyond); }), "answer");
+  StackAnswer nan_estimate;
+  nan_estimate.X_MR.x = std::nan("");
+  EXPECT_EQ(key([&] { episode.Act(nan_estimate); }), "answer");
+  EXPECT_EQ(key([&] { episode.trace(); }), "step");  // not done
+  StackAnswer forward;
+  forward.command = {0.3, 0.0};
+  EXPECT_FALSE(episode.Act(forward));
+  EpisodeRequest all = SmallRequest(false);
+  all.mode = "all";
+  EXPECT_EQ(key([&] { SteppedEpisode bad(all); }), "mode");
+}
+
+}  // namespace
+}  // namespace retrace::bench
