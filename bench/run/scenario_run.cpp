@@ -36,8 +36,14 @@ std::vector<MapMode> ResolveModes(const std::vector<std::string>& names,
 // One staged folder per mode: a video is written into it while its run drives.
 using ModeFolders = std::map<MapMode, std::unique_ptr<StagedFolder>>;
 
-// --video-run names a run that is played back.
-void RequireVideoRunPlayed(const ScenarioRunRequest& request, int repeats) {
+// --video-run names a run that is played back, by retrace's navigator (the video shows its
+// particles and maps).
+void RequireVideoRunPlayed(const ScenarioRunRequest& request, int repeats, StackKind stack) {
+  if (request.video && stack != StackKind::kRetrace) {
+    throw core::ConfigError("--video",
+                            "the video shows retrace's navigator, and playback.stack is " +
+                                std::string(core::EnumName(stack)));
+  }
   if (request.video && request.video_run >= repeats) {
     throw core::ConfigError("--video-run", "run " + std::to_string(request.video_run) +
                                                " is not played back (" + std::to_string(repeats) +
@@ -188,7 +194,7 @@ Prepared Prepare(const ScenarioRunRequest& request, ProgressSink* progress) {
   p.out = request.out.empty() ? std::filesystem::path("results") / config.name : request.out;
   for (const std::string& warning : p.scenario.warnings) Warn(progress, warning);
   p.repeats = phases == RunPhases::kTeachOnly ? 0 : config.playback.repeats;
-  RequireVideoRunPlayed(request, p.repeats);
+  RequireVideoRunPlayed(request, p.repeats, config.playback.stack);
   if (!request.record_log.empty()) RequireLogFolderApart(request.record_log, p.out);
   if (phases == RunPhases::kPlaybackOnly)
     p.reused.push_back(ReadReusedTeach(request.teach_dir, config.modes.front()));

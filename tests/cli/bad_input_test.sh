@@ -59,6 +59,8 @@ expect_bad run-route-through-box "route is not drivable" run "$tmp/through_box.y
 expect_bad run-switch-beyond-end "beyond_end.yaml: route.switch_points: switch point 1 (12) must lie inside the route" run "$tmp/beyond_end.yaml" "${out[@]}"
 expect_bad run-start-inside "route is not drivable" run "$tmp/inside.yaml" "${out[@]}"
 expect_bad run-switch-decreasing "must be strictly increasing" run "$tmp/decreasing.yaml" "${out[@]}"
+expect_bad run-video-odometry-stack "--video: the video shows retrace's navigator, and playback.stack is odometry" run "$src/scenarios/small.yaml" --video --set playback.stack=odometry "${out[@]}"
+expect_bad run-unknown-stack "playback.stack: unknown value 'foo'; expected one of: retrace, odometry" run "$src/scenarios/small.yaml" --set playback.stack=foo "${out[@]}"
 expect_bad run-bad-mode "unknown value 'slam'" run "$tmp/bad_mode.yaml" "${out[@]}"
 expect_bad run-missing-world "nowhere.yaml: cannot open file" run "$tmp/missing_world.yaml" "${out[@]}"
 expect_bad run-bad-mode-flag "unknown mode 'slam'" run "$src/scenarios/small.yaml" --mode slam "${out[@]}"
