@@ -21,12 +21,12 @@ py::object JsonToPython(const nlohmann::json& value) {
     case nlohmann::json::value_t::array: {
       py::list list;
       for (const nlohmann::json& item : value) list.append(JsonToPython(item));
-      return std::move(list);
+      return list;
     }
     case nlohmann::json::value_t::object: {
       py::dict dict;
       for (const auto& [key, item] : value.items()) dict[py::str(key)] = JsonToPython(item);
-      return std::move(dict);
+      return dict;
     }
     case nlohmann::json::value_t::binary:
       break;

@@ -177,7 +177,8 @@ void BindRun(py::module_& m) {
       [](const Path& scenario, py::object modes, py::object seed, py::object set,
          const std::optional<Path>& out, const std::optional<Path>& record_log,
          py::object progress) {
-        const RunArguments a{scenario, modes, seed, py::none(), set, py::int_(0), out, record_log};
+        const RunArguments a{scenario,   modes, seed, py::none(), set, py::int_(0), out,
+                             record_log, {},    true, false,      0,   10.0};
         return Run(a, bench::RunPhases::kTeachOnly, false, progress, "teach");
       },
       py::arg("scenario"), py::kw_only(), py::arg("modes") = py::none(),
