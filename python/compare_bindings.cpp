@@ -10,6 +10,7 @@
 
 #include "bench/compare/comparison_study.hpp"
 #include "bench/output/html_report.hpp"
+#include "io/json_writer.hpp"
 #include "python/arguments.hpp"
 #include "python/bindings.hpp"
 #include "python/call_text.hpp"
@@ -65,7 +66,8 @@ ComparisonResult Compare(const Path& scenario, const py::object& modes,
     }
     return done;
   });
-  return {study.out, study.markdown, JsonToPython(bench::ComparisonJson(study.comparison))};
+  // What the folder holds (the study and its provenance), as load_results would read it.
+  return {study.out, study.markdown, JsonToPython(io::ReadJsonFile(study.out / "comparison.json"))};
 }
 
 }  // namespace

@@ -79,3 +79,20 @@ def test_a_scenario_warning_is_a_retrace_warning(tmp_path):
         retrace.teach(SMALL, modes="partial", out=tmp_path, progress=False,
                       set="route.switch_points=[30]")
     assert (tmp_path / "partial" / "teach").is_dir()
+
+
+def test_compare_writes_the_study_the_command_line_writes(tmp_path, retrace_binary):
+    args = dict(modes="partial,consistent", seeds=2, repeats=1, set=SHORT_ROUTE, report=False)
+    study = retrace.compare(SMALL, out=tmp_path / "py", progress=False, **args)
+    assert study.data == read_json(tmp_path / "py" / "comparison.json")
+    assert "partial" in study.markdown and study.data["seeds"] == [1, 2]
+    cli = run_cli(retrace_binary, "compare", SMALL, "--modes", "partial,consistent", "--seeds", "2",
+                  "--repeats", "1", "--set", SHORT_ROUTE[0], "--set", SHORT_ROUTE[1],
+                  "--no-report", "--out", tmp_path / "cli")
+    assert cli.returncode == 0, cli.stderr
+    navigation = {mode: {k: v for k, v in metrics.items() if not k.startswith("cpu.")}
+                  for mode, metrics in study.data["modes"].items()}
+    cli_data = read_json(tmp_path / "cli" / "comparison.json")
+    assert navigation == {mode: {k: v for k, v in metrics.items() if not k.startswith("cpu.")}
+                          for mode, metrics in cli_data["modes"].items()}
+    assert isinstance(retrace.load_results(study.out), retrace.Comparison)
