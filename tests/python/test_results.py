@@ -68,3 +68,12 @@ def test_a_malformed_file_raises_the_readers_line(tmp_path):
         retrace.read_tum(bad)
     with pytest.raises(FileNotFoundError):
         retrace.read_csv(tmp_path / "missing.csv")
+
+
+def test_render_and_report_draw_a_run_folder(small_runs):
+    figures = retrace.render(small_runs["py"])
+    assert figures and all(f.suffix == ".png" and f.stat().st_size > 0 for f in figures)
+    page = retrace.report(small_runs["py"])
+    assert page == small_runs["py"] / "report.html" and "<html" in page.read_text()[:200]
+    with pytest.raises(OSError):
+        retrace.report(small_runs["py"] / "missing")
