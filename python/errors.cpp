@@ -1,7 +1,9 @@
 // retrace's errors as Python exceptions, translated once for every binding (docs/PYTHON.md,
 // "Errors"), each with the one line the command line prints after "retrace: error: ":
 //
-//   core::ConfigError            ValueError, with `key` the dotted key path (or option) it names
+//   core::ConfigError            ValueError, with `key` the dotted key path or the argument it
+//                                names (an option the library names, "--video-run", as Python's
+//                                argument, "video_run"; the message keeps the option)
 //   core::WorldError             ValueError (bad input: a robot in a wall, a blocked route)
 //   core::IoError                FileNotFoundError when the file it names is missing, else OSError
 //   core::Error (any other)      RuntimeError
@@ -57,6 +59,17 @@ bool NamesMissingFile(std::string_view message) {
   return !path.empty() && !std::filesystem::exists(path, ec);
 }
 
+// The key of a ConfigError as Python spells it: a key path as it is; a command-line option that
+// the library names ("--video-run", "--from") as the argument that gives it ("video_run",
+// "from_s").
+std::string PythonKey(const std::string& key) {
+  if (!key.starts_with("--")) return key;
+  std::string name = key.substr(2);
+  for (char& c : name) c = c == '-' ? '_' : c;
+  if (name == "from" || name == "to") name += "_s";
+  return name;
+}
+
 void RaiseIoError(const core::IoError& e) {
   PyErr_SetString(NamesMissingFile(e.what()) ? PyExc_FileNotFoundError : PyExc_OSError, e.what());
 }
@@ -77,7 +90,7 @@ void Translate(std::exception_ptr error) {
     if (error) std::rethrow_exception(error);
   } catch (const core::ConfigError& e) {
     py::dict attributes;
-    attributes["key"] = e.key_path();
+    attributes["key"] = PythonKey(e.key_path());
     RaiseWith(PyExc_ValueError, py::make_tuple(e.what()), attributes);
   } catch (const core::WorldError& e) {
     PyErr_SetString(PyExc_ValueError, e.what());

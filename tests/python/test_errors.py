@@ -66,6 +66,8 @@ def test_a_wrong_type_is_a_type_error(call, message):
     ({"jobs": -2}, "jobs", "jobs: must be a number >= 0, got '-2'"),
     ({"modes": "partial,bogus"}, "modes", "modes: "),
     ({"video_speed": 0.0}, "video_speed", "must be a number > 0"),
+    # Checked by the library, which names the command line's option: `key` is the argument.
+    ({"video": True, "video_run": 5}, "video_run", "--video-run: run 5 is not played back"),
 ])
 def test_a_wrong_value_is_a_value_error_before_anything_runs(tmp_path, kwargs, key, message):
     with pytest.raises(ValueError) as error:
