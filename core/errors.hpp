@@ -46,4 +46,12 @@ class WorldError : public Error {
   using Error::Error;
 };
 
+/// The caller asked long work to stop (Ctrl-C in the Python module: ProgressSink::Cancelled in
+/// bench/engine/progress.hpp). Not a core::Error: it is no bad input, and what names, wraps or
+/// turns errors into warnings (an episode's job name, FinishOrWarn) must let it pass unchanged.
+class Interrupted : public std::runtime_error {
+ public:
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
 }  // namespace retrace::core

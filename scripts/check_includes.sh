@@ -6,7 +6,10 @@
 #   core → io → sim, nav, viz, logs → bench/engine → bench/metrics → bench/output, bench/suite
 #   → bench/sweep, bench/compare, bench/replay, bench/worldgen (on output) → bench/calibration,
 #   bench/run → bench/cli (bench/crowd: on core, io, sim and viz; logs: only bench/replay,
-#   bench/calibration and bench/cli read logs; only bench/cli includes bench/calibration)
+#   bench/calibration, bench/cli and python read logs; only bench/cli and python include
+#   bench/calibration). python/ (the Python module) binds the library calls beside bench/cli:
+#   it includes what bench/cli's commands call, never bench/cli itself, and only it includes
+#   pybind11.
 #
 # The table of docs/DESIGN.md §1 checks every library's CMake links (parsed from the document
 # itself, below), so that a link cannot quietly allow what the includes may not do.
@@ -56,6 +59,11 @@ check bench/calibration '*' 'bench/(suite|sweep|compare|run|cli|worldgen|crowd)/
 check bench/run '*' 'bench/(suite|sweep|compare|calibration|cli|worldgen|crowd)/|CLI/' \
   "a scenario run depends on replay, output, metrics, the engine and viz only"
 check bench/micro '*' "$harness|CLI/" "the micro benchmarks measure sim, nav and logs kernels only"
+check python '*' 'bench/(cli|worldgen|crowd|micro)/|sim/|nav/|viz/|CLI/' \
+  "the Python module binds the library calls (run, sweep, compare, suite, replay, calibration, output, metrics, engine, logs, io, core), not the command line"
+for dir in core io sim nav viz logs bench fuzz; do
+  check "$dir" '*' 'python/|pybind11|Python\.h' "only python/ includes pybind11 and the module's headers"
+done
 # The CMake links against the table of docs/DESIGN.md §1 ("The dependency picture"): each
 # row's target may link the targets its row lists, what those may use in turn, and core and io.
 # The table is parsed here, so the check and the design cannot disagree.

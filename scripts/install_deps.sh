@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages retrace needs, only if some are missing.
-# Usage: install_deps.sh [--test]   (--test: also what the tests need beyond the build: Chromium,
+# Usage: install_deps.sh [--test]   (--test: also what the tests need beyond the build: pytest and
+# matplotlib for the Python module's tests and the examples of docs/PYTHON.md; Chromium,
 # which the system test tests/cli/report_browser_test.sh loads report.html in; junitparser and
 # jsonschema for the system's Python, with which tests/cli/bench_ci_files_test.sh reads
 # `retrace bench`'s JUnit and trend files; ROS 1's rosbag and message packages for the system's
@@ -16,11 +17,13 @@ packages=(
   libosmesa6-dev
   zlib1g-dev liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   clang libclang-rt-dev lld
+  pybind11-dev python3-dev python3-numpy
 )
 for arg in "$@"; do
   case "$arg" in
     --test)
-      packages+=(chromium python3-junitparser python3-jsonschema python3-rosbag python3-sensor-msgs
+      packages+=(python3-pytest python3-matplotlib
+                 chromium python3-junitparser python3-jsonschema python3-rosbag python3-sensor-msgs
                  python3-nav-msgs python3-tf2-msgs python3-geometry-msgs)
       ;;
     *) echo "install_deps.sh: unknown argument '$arg' (usage: install_deps.sh [--test])" >&2; exit 2 ;;

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, checks the include rules, then:
-#  - a Release build (GCC, what users run) of the program, the micro benchmarks and the system
-#    tests; runs the system tests and the CI regression suite against its committed baseline
-#    (navigation metrics gated, timing reported);
+#  - a Release build (GCC, what users run) of the program, the micro benchmarks, the system
+#    tests and the Python module; runs the system tests, the CI regression suite against its
+#    committed baseline (navigation metrics gated, timing reported) and the Python module's tests;
 #  - an AddressSanitizer + UndefinedBehaviorSanitizer build (Clang) of the program, the unit
 #    and integration tests and the fuzz targets; runs the tests, then every fuzz target for
 #    RETRACE_FUZZ_SECONDS (default 10) seconds.
@@ -29,18 +29,24 @@ stage() {  # stage <title>: closes the previous stage's timing, opens the next
 stage "Packages and include rules"
 scripts/install_deps.sh --test
 scripts/check_includes.sh
-scripts/check_function_length.py core io sim nav viz logs bench fuzz
+scripts/check_function_length.py core io sim nav viz logs bench fuzz python
 
-stage "Release build (program, micro benchmarks, system tests)"
+stage "Release build (program, micro benchmarks, system tests, Python module)"
 # Unity builds (CMake batches of 8 files per translation unit): the heavy headers (GoogleTest,
 # CLI11, Eigen, nlohmann-json, yaml-cpp) are parsed once per batch, not once per file.
-scripts/build.sh build -DRETRACE_WERROR=ON -DCMAKE_UNITY_BUILD=ON -DRETRACE_TEST_TIERS=system
+# The Python module is built here only (docs/PYTHON.md): not under the sanitizers.
+scripts/build.sh build -DRETRACE_WERROR=ON -DCMAKE_UNITY_BUILD=ON -DRETRACE_TEST_TIERS=system \
+  -DRETRACE_PYTHON=ON
 
 stage "System tests (Release)"
 ctest --test-dir build --output-on-failure -j "$jobs" -L system
 
 stage "Regression suite bench/suites/ci.yaml against results/baselines/ci.json"
 ./build/retrace bench bench/suites/ci.yaml --jobs "$jobs"
+
+stage "Python module tests (Release: pytest tests/python)"
+# What ctest runs as python.pytest where the integration tier is built with the module.
+PYTHONPATH=build/python /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
 
 stage "AddressSanitizer + UBSan build (Clang: program, unit and integration tests)"
 # Clang, so that a second compiler's warnings are errors too, and because it builds the

@@ -7,6 +7,8 @@
 #include <functional>
 #include <string>
 
+#include "core/errors.hpp"
+
 namespace retrace::bench {
 
 class ProgressSink {
@@ -27,6 +29,11 @@ class ProgressSink {
   /// Something the user should know that is not an error (a scenario's warning, a figure that
   /// could not be rendered): one line, without "warning: ". By default dropped. Thread-safe.
   virtual void Warning(const std::string& text) { (void)text; }
+  /// Whether the caller asked the work to stop (the Python module on Ctrl-C). Checked from any
+  /// thread every 10 s of simulated time of every episode (SimTimeReporter), which then throws
+  /// core::Interrupted; results folders are staged, so none is left half-written. By default
+  /// never. Thread-safe.
+  virtual bool Cancelled() const { return false; }
 };
 
 /// sink->Warning(text) when there is a sink.
@@ -44,13 +51,14 @@ void FinishOrWarn(const char* what, const char* retry, const std::filesystem::pa
 using ProgressFn = std::function<void(double sim_time_s)>;
 
 /// A callback for a loop that reports the absolute simulated time it has reached: adds the
-/// increments to `sink`. Empty when `sink` is null. One callback per loop (it keeps the last
-/// time it was told).
+/// increments to `sink`, and throws core::Interrupted when the sink is Cancelled(). Empty when
+/// `sink` is null. One callback per loop (it keeps the last time it was told).
 inline ProgressFn SimTimeReporter(ProgressSink* sink) {
   if (sink == nullptr) return {};
   return [sink, last = 0.0](double t) mutable {
     sink->AddSimTime(t - last);
     last = t;
+    if (sink->Cancelled()) throw core::Interrupted();
   };
 }
 

@@ -127,10 +127,28 @@ struct CaseSlot {
   Clock::time_point start;
 };
 
+// What the cases' episodes report to the sweep's sink: their simulated time and whether to
+// stop (ProgressSink::Cancelled), but not the scheduler's phases and units, which would replace
+// the sweep's countdown of cases.
+class CaseEpisodeProgress : public ProgressSink {
+ public:
+  explicit CaseEpisodeProgress(ProgressSink* sweep) : sweep_(sweep) {}
+  void Phase(const std::string&, int) override {}
+  void AddSimTime(double seconds) override { sweep_->AddSimTime(seconds); }
+  void UnitDone() override {}
+  void Warning(const std::string& text) override { sweep_->Warning(text); }
+  bool Cancelled() const override { return sweep_->Cancelled(); }
+
+ private:
+  ProgressSink* sweep_;
+};
+
 // Runs the cases `todo` through the one scheduler (bench/engine/scheduler.hpp) on `jobs`
 // threads: each case is a job that loads its scenario, teaches its mode and plays it back once.
-// `done` gets each finished case's rows, from a worker thread.
+// `done` gets each finished case's rows, from a worker thread. `progress` (may be null) gets the
+// episodes' simulated time and can stop them.
 void RunCases(const SweepPlan& plan, const std::vector<std::size_t>& todo, int jobs,
+              ProgressSink* progress,
               const std::function<void(std::size_t id, const CaseOutput& output)>& done) {
   const SweepSpec& s = plan.spec;
   std::vector<CaseSlot> slots(todo.size());
@@ -161,7 +179,10 @@ void RunCases(const SweepPlan& plan, const std::vector<std::size_t>& todo, int j
     done(todo[i], CaseRows(plan, todo[i], FlatMetrics(aggregate), SecondsSince(slot.start)));
     slot = CaseSlot{};
   };
-  RunEpisodes(std::move(episodes), jobs, nullptr, callbacks);
+  std::optional<CaseEpisodeProgress> episode_progress;
+  if (progress != nullptr) episode_progress.emplace(progress);
+  RunEpisodes(std::move(episodes), jobs, episode_progress ? &*episode_progress : nullptr,
+              callbacks);
 }
 
 // sweep.json at the start: the plan, the command and how many cases the folder holds already.
@@ -208,7 +229,7 @@ void RunAndAppend(const SweepPlan& plan, const std::vector<std::size_t>& todo, i
     progress->CountdownPhase("sweep " + spec.name, static_cast<int>(shard_cases),
                              static_cast<int>(shard_cases - todo.size()));
   }
-  RunCases(plan, todo, jobs, [&](std::size_t id, const CaseOutput& output) {
+  RunCases(plan, todo, jobs, progress, [&](std::size_t id, const CaseOutput& output) {
     // results.csv first: a case counts as done once its row is there; its timing row is
     // informative only.
     results.Append(output.results);
