@@ -109,6 +109,11 @@ RoutePlace MapServer::Resume(const core::Pose2& X_MR) const {
 }
 
 MapSwitch MapServer::Switch(const RoutePlace& place, Localizer& localizer, PathFollower& follower) {
+  return Enter(place, localizer, follower, nullptr);
+}
+
+MapSwitch MapServer::Enter(const RoutePlace& place, Localizer& localizer, PathFollower& follower,
+                           Localizer* settled) {
   RETRACE_CHECK(place.map < size());
   MapSwitch s;
   s.from = index_;
@@ -116,10 +121,14 @@ MapSwitch MapServer::Switch(const RoutePlace& place, Localizer& localizer, PathF
   s.X_MkR = localizer.Estimate();
   s.sigma = place.sigma;
   index_ = place.map;
-  localizer.ApplyMapSwitch(current().grid, place.X_jk);  // eq. (1) for the next map
-  if (place.sigma > config_.min_sigma_xy) {
-    // The transform may be off by about sigma here: let the scans find the robot again.
-    localizer.Initialize(localizer.Estimate(), place.sigma, config_.min_sigma_theta);
+  if (settled != nullptr) {
+    localizer = std::move(*settled);
+  } else {
+    localizer.ApplyMapSwitch(current().grid, place.X_jk);  // eq. (1) for the next map
+    if (place.sigma > config_.min_sigma_xy) {
+      // The transform may be off by about sigma here: let the scans find the robot again.
+      localizer.Initialize(localizer.Estimate(), place.sigma, config_.min_sigma_theta);
+    }
   }
   HandOver(localizer, follower, place.s);
   s.X_MnR = localizer.Estimate();
@@ -137,17 +146,7 @@ void MapServer::Prepare(const RoutePlace& place, const core::Pose2& X_MkR,
 
 MapSwitch MapServer::Commit(const RoutePlace& place, Localizer&& settled, Localizer& localizer,
                             PathFollower& follower) {
-  RETRACE_CHECK(place.map < size());
-  MapSwitch s;
-  s.from = index_;
-  s.to = place.map;
-  s.X_MkR = localizer.Estimate();
-  s.sigma = place.sigma;
-  index_ = place.map;
-  localizer = std::move(settled);
-  HandOver(localizer, follower, place.s);
-  s.X_MnR = localizer.Estimate();
-  return s;
+  return Enter(place, localizer, follower, &settled);
 }
 
 RoutePlace MapServer::WrapPlace(const MapDecision& decision) const {

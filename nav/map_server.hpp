@@ -155,6 +155,10 @@ class MapServer {
   // reach through the graph.
   void HandOver(Localizer& localizer, PathFollower& follower, double s);
   std::vector<core::Pose2> PosesInReach() const;
+  // Switch and Commit: place.map becomes current, the localizer carried by eq. (1) (and spread
+  // over place.sigma) or replaced by a settled belief, the follower on its path at place.s.
+  MapSwitch Enter(const RoutePlace& place, Localizer& localizer, PathFollower& follower,
+                  Localizer* settled);
 
   std::shared_ptr<const TeachBundle> bundle_;
   MapServerConfig config_;
