@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "core/rng.hpp"
@@ -61,69 +62,73 @@ TeachBundle LoopOfTwo(double error) {
 // Drives from 2.4 m before the end of map 1's path across the wrap into map 0 (not to map 0's
 // end, where the bundle's wrong switch pose would carry the estimate 0.8 m off into map 1),
 // localizing on scans of the room. The wrap's transform is 0.8 m off and may be off by σ = 0.94 m
-// (drift 0.12 × the 15.7 m route / 2): the switch settles in map 0 before it commits, so the
-// estimate the robot drives on is never far from the truth in the map it is in, and never jumps.
-TEST(Navigator, AnUncertainWrapSettlesInTheMapItEntersBeforeItCommits) {
+// (drift 0.12 × the 15.7 m route / 2).
+struct WrapDrive {
+  static constexpr int kSteps = 300;  // 7.5 m: 2.4 m to the wrap, 5.1 m on path 0
   const Pose2 X_WM1 = OnCircle(std::numbers::pi);
-  MapServerConfig server;
-  server.loop = true;
-  server.drift = 0.12;
-  Navigator nav(testing_room::TestConfig(), PathFollowerConfig{}, testing_room::TestRobot(),
-                LoopOfTwo(0.8), server, core::Rng(7));
-  testing_room::Drive drive(7);
-  drive.X_WR = OnCircle(2.0 * std::numbers::pi - 0.96);
-  nav.Start(1, X_WM1.Inverse() * drive.X_WR, 0.05, 0.02);
+  testing_room::Drive drive{7};
+  Navigator nav;
 
-  int settling_ticks = 0;
-  bool wrapped = false;
-  double worst = 0.0;
-  for (int i = 0; i < 300; ++i) {  // 7.5 m: 2.4 m to the wrap, 5.1 m on path 0
+  explicit WrapDrive(double settle_wait)
+      : nav(testing_room::TestConfig(), PathFollowerConfig{}, testing_room::TestRobot(),
+            LoopOfTwo(0.8), Server(settle_wait), core::Rng(7)) {
+    drive.X_WR = OnCircle(2.0 * std::numbers::pi - 0.96);
+    nav.Start(1, X_WM1.Inverse() * drive.X_WR, 0.05, 0.02);
+  }
+  static MapServerConfig Server(double settle_wait) {
+    MapServerConfig server;
+    server.loop = true;
+    server.drift = 0.12;
+    server.settle_wait = settle_wait;
+    return server;
+  }
+  // Step i of the drive: odometry, a scan every second step, a control tick every fourth.
+  std::optional<NavigatorTick> Step(int i) {
     nav.OnOdometry(drive.Step());
     if (i % 2 == 0) {
       nav.OnScan(testing_room::MakeScan(drive.rects, {},
                                         drive.X_WR * testing_room::TestRobot().X_RL, drive.rng));
     }
-    if (i % 4 != 0) continue;
-    const NavigatorTick tick = nav.OnControlTick(0.1);
-    wrapped = wrapped || tick.wrapped;
-    if (nav.settling()) {
+    if (i % 4 != 0) return std::nullopt;
+    return nav.OnControlTick(0.1);
+  }
+};
+
+// The switch settles in map 0 before it commits, so the estimate the robot drives on is never
+// far from the truth in the map it is in, and never jumps.
+TEST(Navigator, AnUncertainWrapSettlesInTheMapItEntersBeforeItCommits) {
+  WrapDrive w(MapServerConfig{}.settle_wait);
+  int settling_ticks = 0;
+  bool wrapped = false;
+  double worst = 0.0;
+  for (int i = 0; i < WrapDrive::kSteps; ++i) {
+    const std::optional<NavigatorTick> tick = w.Step(i);
+    if (!tick) continue;
+    wrapped = wrapped || tick->wrapped;
+    if (w.nav.settling()) {
       ++settling_ticks;
-      EXPECT_EQ(nav.server().index(), 1u) << "the estimate stays in the map left while settling";
+      EXPECT_EQ(w.nav.server().index(), 1u) << "the estimate stays in the map left while settling";
     }
-    const Pose2 X_WM = nav.server().index() == 0 ? Pose2::Identity() : X_WM1;
-    const double error = core::Distance(nav.Estimate(), X_WM.Inverse() * drive.X_WR);
+    const Pose2 X_WM = w.nav.server().index() == 0 ? Pose2::Identity() : w.X_WM1;
+    const double error = core::Distance(w.nav.Estimate(), X_WM.Inverse() * w.drive.X_WR);
     worst = std::max(worst, error);
-    EXPECT_LT(error, 0.3) << "tick " << i / 4 << " in map " << nav.server().index();
+    EXPECT_LT(error, 0.3) << "tick " << i / 4 << " in map " << w.nav.server().index();
   }
   EXPECT_TRUE(wrapped);
   EXPECT_GT(settling_ticks, 0);
-  EXPECT_EQ(nav.server().index(), 0u);
-  EXPECT_FALSE(nav.settling());
+  EXPECT_EQ(w.nav.server().index(), 0u);
+  EXPECT_FALSE(w.nav.settling());
   RecordProperty("worst_error_m", std::to_string(worst));
 }
 
 // The same wrap made at once, as before settling existed (settle_wait 0 commits at the first
 // tick): the estimate enters map 0 as wrong as the chain is. This is what the test above guards.
 TEST(Navigator, AWrapThatDoesNotSettleCarriesTheChainsErrorIntoTheEstimate) {
-  const Pose2 X_WM1 = OnCircle(std::numbers::pi);
-  MapServerConfig server;
-  server.loop = true;
-  server.drift = 0.12;
-  server.settle_wait = 0.0;
-  Navigator nav(testing_room::TestConfig(), PathFollowerConfig{}, testing_room::TestRobot(),
-                LoopOfTwo(0.8), server, core::Rng(7));
-  testing_room::Drive drive(7);
-  drive.X_WR = OnCircle(2.0 * std::numbers::pi - 0.96);
-  nav.Start(1, X_WM1.Inverse() * drive.X_WR, 0.05, 0.02);
+  WrapDrive w(0.0);
   double error_at_wrap = 0.0;
-  for (int i = 0; i < 300 && error_at_wrap == 0.0; ++i) {
-    nav.OnOdometry(drive.Step());
-    if (i % 2 == 0) {
-      nav.OnScan(testing_room::MakeScan(drive.rects, {},
-                                        drive.X_WR * testing_room::TestRobot().X_RL, drive.rng));
-    }
-    if (i % 4 != 0) continue;
-    if (nav.OnControlTick(0.1).wrapped) error_at_wrap = core::Distance(nav.Estimate(), drive.X_WR);
+  for (int i = 0; i < WrapDrive::kSteps && error_at_wrap == 0.0; ++i) {
+    const std::optional<NavigatorTick> tick = w.Step(i);
+    if (tick && tick->wrapped) error_at_wrap = core::Distance(w.nav.Estimate(), w.drive.X_WR);
   }
   EXPECT_GT(error_at_wrap, 0.5);
 }
