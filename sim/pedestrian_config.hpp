@@ -9,6 +9,7 @@
 
 #include "core/config.hpp"
 #include "core/pose2.hpp"
+#include "sim/pedestrian_behaviour.hpp"
 
 namespace retrace::sim {
 
@@ -39,7 +40,10 @@ struct PedestrianGroupConfig {
   std::vector<core::Vec2> waypoints;
   double speed_mean = 1.34;  ///< desired speed (m/s), drawn per person
   double speed_std = 0.26;
-  double radius = 0.3;       ///< m
+  double radius = 0.3;  ///< m
+  /// How the group's people react to the robot (sim/pedestrian_behaviour.hpp; a group of one
+  /// sets one person's).
+  RobotBehaviour behaviour = RobotBehaviour::kRegular;
 
   template <class V>
   void Reflect(V& v) {
@@ -51,6 +55,7 @@ struct PedestrianGroupConfig {
     v("speed_mean", speed_mean);
     v("speed_std", speed_std);
     v("radius", radius);
+    v("behaviour", behaviour);
   }
   void Validate() const;
 };

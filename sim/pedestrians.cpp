@@ -130,6 +130,10 @@ std::string PlacementFailure(const PedestrianGroupConfig& group, const char* nam
 
 void CrowdConfig::Validate() const {
   ValidateNested("social_force", social_force);
+  ValidateNested("ttc", ttc);
+  ValidateNested("lanes", lanes);
+  ValidateNested("headway", headway);
+  ValidateNested("behaviour", behaviour);
   ValidateNested("planner", planner);
   core::RequirePositive("mass", mass);
   core::RequirePositive("waypoint_tolerance", waypoint_tolerance);
@@ -157,12 +161,21 @@ struct Pedestrians::Walker {
   double yield_until = -1.0;   // stepping aside after getting stuck until then (s)
   Vec2 yield_point{0.0, 0.0};  // where to stand meanwhile (W)
   bool line_clear = false;     // the straight line to the next waypoint was clear at last check
+  // Model `ttc`: where the line of the route towards the next waypoint starts (the last waypoint
+  // passed, or where the path was planned from), and whether the straight line to the point
+  // beside the waypoint (LaneAimPoint) was clear at the last check.
+  Vec2 segment_start{0.0, 0.0};
+  bool aim_clear = false;
   // Progress window: distance to the current waypoint and waypoints passed at its start.
   double window_start = 0.0;
   double window_distance = 0.0;
   int window_passed = 0;
   int window_goals = 0;
   int stuck_count = 0;
+  // The reaction to the robot: until when it lasts (s; scared: while the robot is near) and until
+  // when the person does not react again.
+  double react_until = 0.0;
+  double rest_until = -1.0;
 };
 
 // A pedestrian drawn but not yet in the physics world.
@@ -180,6 +193,9 @@ Pedestrians::Pedestrians(const std::vector<PedestrianGroupConfig>& groups,
       runtime_rng_(rng.Split("runtime")),
       constructor_groups_(static_cast<int>(groups.size())) {
   config_.Validate();
+  scared_force_ = config_.social_force;
+  scared_force_.robot_strength = config_.behaviour.scared_strength;
+  scared_force_.robot_range = config_.behaviour.scared_range;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     try {
       groups[g].Validate();
@@ -244,6 +260,7 @@ std::vector<Pedestrians::Placement> Pedestrians::PlaceGroup(
     status.group = group_index;
     status.radius = group.radius;
     status.standing = group.mode == PedestrianMode::kStand;
+    status.behaviour = group.behaviour;
     status.desired_speed = DrawDesiredSpeed(group, walker.rng);
 
     const std::optional<Vec2> spawn =
@@ -471,6 +488,15 @@ void Pedestrians::Replan(std::size_t i, const Vec2& position) {
   // progress check will pick another goal if that does not work either.
   s.path = path ? std::move(*path) : std::vector<Vec2>{s.goal};
   walkers_[i].line_clear = PlannerOf(i).ClearPath(position, s.path.front(), s.radius);
+  // The route's line: a loop walker heading straight for its loop waypoint keeps to the loop's
+  // edge (from the waypoint before); otherwise the line starts here.
+  Walker& w = walkers_[i];
+  w.segment_start = position;
+  if (w.mode == PedestrianMode::kLoop && s.path.size() == 1 && !w.loop.empty() &&
+      (s.path.front() - w.loop[w.loop_index]).squaredNorm() < 1e-12) {
+    w.segment_start = w.loop[(w.loop_index + w.loop.size() - 1) % w.loop.size()];
+  }
+  CheckAim(i, position);
 }
 
 void Pedestrians::Update(PhysicsWorld& world) {
@@ -479,14 +505,18 @@ void Pedestrians::Update(PhysicsWorld& world) {
   const double dt = world.time_step();
 
   agents_.resize(status_.size());
+  headings_.resize(status_.size(), Vec2::Zero());
   for (std::size_t i = 0; i < status_.size(); ++i) {
     agents_[i] = {world.PedestrianPosition(status_[i].id), world.PedestrianVelocity(status_[i].id),
-                  status_[i].radius};
+                  status_[i].radius, headings_[i]};
   }
   const bool has_robot = world.has_robot();
   if (has_robot) {
     robot_ =
         SocialAgent{world.RobotPose().translation(), world.RobotVelocityW(), world.robot_radius()};
+    const double theta = world.RobotPose().theta;
+    robot_disc_ = {robot_->position, robot_->radius, Vec2(std::cos(theta), std::sin(theta)),
+                   robot_->velocity};
   }
   const SocialAgent* robot = has_robot ? &*robot_ : nullptr;
   const auto check_period =
@@ -497,11 +527,22 @@ void Pedestrians::Update(PhysicsWorld& world) {
     const Vec2 p = agents_[i].position;
     if (walkers_[i].mode == PedestrianMode::kStand) {
       new_velocities_[i] = Vec2::Zero();  // standing still, whatever pushed it
+      headings_[i] = Vec2::Zero();
       continue;
     }
+    if (Reacts(status_[i].behaviour)) {
+      if (has_robot) {
+        UpdateReaction(i, p, t, robot_disc_);
+      } else if (status_[i].reacting) {
+        status_[i].reacting = false;
+        Replan(i, p);
+      }
+    }
     // The line to the next waypoint is checked every check_period steps, staggered over
-    // pedestrians to spread the cost.
-    UpdateWaypoints(i, p, t, (world.step_count() + i) % check_period == 0);
+    // pedestrians to spread the cost. A reacting person follows its reaction instead.
+    if (!status_[i].reacting) {
+      UpdateWaypoints(i, p, t, (world.step_count() + i) % check_period == 0);
+    }
     new_velocities_[i] = SocialVelocity(i, dt, robot);
   }
   // Set after computing all, so that the result does not depend on the update order.
@@ -542,17 +583,36 @@ void Pedestrians::PassReachedWaypoints(std::size_t i, const Vec2& p, double t) {
   PedestrianStatus& s = status_[i];
   while (!s.path.empty()) {
     const bool last = s.path.size() == 1;
-    const double tol = last ? config_.goal_tolerance : config_.waypoint_tolerance;
-    if ((s.path.front() - p).norm() >= tol) break;
+    if (!Reached(i, p, last)) break;
     if (last) {
       ++s.goals_reached;
+      const Vec2 reached = s.path.front();
       ChooseNextGoal(i, p, t);
+      // The route's line goes on from the goal reached, not from where the walker stands.
+      if (!s.path.empty()) {
+        walkers_[i].segment_start = reached;
+        CheckAim(i, p);
+      }
       break;  // the new path starts afresh; checked next step
     }
     ++s.waypoints_passed;
+    walkers_[i].segment_start = s.path.front();
     s.path.erase(s.path.begin());
+    CheckAim(i, p);
     walkers_[i].line_clear = PlannerOf(i).ClearPath(p, s.path.front(), s.radius);
   }
+}
+
+bool Pedestrians::Reached(std::size_t i, const Vec2& p, bool last) const {
+  const Vec2& w = status_[i].path.front();
+  const double distance = (w - p).norm();
+  if (config_.model != CrowdModel::kTtc || config_.lanes.tolerance <= 0.0) {
+    return distance < (last ? config_.goal_tolerance : config_.waypoint_tolerance);
+  }
+  // Walking beside the route's line, a waypoint is passed once the walker is abreast of it.
+  const Vec2 line = w - walkers_[i].segment_start;
+  return distance < config_.waypoint_tolerance ||
+         (p - walkers_[i].segment_start).dot(line) >= line.squaredNorm();
 }
 
 void Pedestrians::CheckLineToWaypoint(std::size_t i, const Vec2& p) {
@@ -563,6 +623,23 @@ void Pedestrians::CheckLineToWaypoint(std::size_t i, const Vec2& p) {
     Replan(i, p);
     w.window_distance = DistanceToNextWaypoint(s, p);
   }
+  CheckAim(i, p);
+}
+
+void Pedestrians::CheckAim(std::size_t i, const Vec2& p) {
+  const PedestrianStatus& s = status_[i];
+  Walker& w = walkers_[i];
+  w.aim_clear = false;
+  if (config_.model != CrowdModel::kTtc || config_.lanes.tolerance <= 0.0 || s.path.empty()) return;
+  w.aim_clear = PlannerOf(i).ClearPath(
+      p, LaneAimPoint(p, w.segment_start, s.path.front(), config_.lanes), s.radius);
+}
+
+Vec2 Pedestrians::AimPoint(std::size_t i, const Vec2& p) const {
+  const PedestrianStatus& s = status_[i];
+  const Walker& w = walkers_[i];
+  if (!w.aim_clear) return s.path.front();
+  return LaneAimPoint(p, w.segment_start, s.path.front(), config_.lanes);
 }
 
 void Pedestrians::CheckProgress(std::size_t i, const Vec2& p, double t) {
@@ -592,21 +669,93 @@ void Pedestrians::CheckProgress(std::size_t i, const Vec2& p, double t) {
   w.window_distance = DistanceToNextWaypoint(s, p);
 }
 
+void Pedestrians::UpdateReaction(std::size_t i, const Vec2& p, double t, const RobotDisc& robot) {
+  PedestrianStatus& s = status_[i];
+  Walker& w = walkers_[i];
+  const double gap = (p - robot.center).norm() - s.radius - robot.radius;
+  const RobotBehaviourConfig& b = config_.behaviour;
+  if (!s.reacting) {
+    if (t < w.rest_until || gap >= b.notice_distance) return;
+    s.reacting = true;
+    ++s.reactions;
+    w.react_until = t + ReactionTime(s.behaviour, b);
+    w.yield_until = -1.0;
+    return;
+  }
+  const bool over =
+      s.behaviour == RobotBehaviour::kScared ? gap >= b.notice_distance : t >= w.react_until;
+  if (!over) return;
+  // Back to the route, from here, with a fresh progress window.
+  s.reacting = false;
+  w.rest_until = t + b.rest_time;
+  w.stuck_count = 0;
+  if (w.idle_until < 0.0) Replan(i, p);
+  w.window_start = t;
+  w.window_passed = s.waypoints_passed;
+  w.window_goals = s.goals_reached;
+  w.window_distance = DistanceToNextWaypoint(s, p);
+}
+
+const SocialAgent* Pedestrians::RobotFor(std::size_t i, const SocialAgent* robot,
+                                         const SocialForceConfig** config) {
+  *config = &config_.social_force;
+  if (robot == nullptr) return nullptr;
+  const PedestrianStatus& s = status_[i];
+  switch (s.behaviour) {
+    case RobotBehaviour::kImpassive: {
+      // The robot's surface as an obstacle: kept off like a wall, not anticipated.
+      const Vec2 p = agents_[i].position;
+      const Vec2 d = p - robot->position;
+      const double n = d.norm();
+      if (n > 1e-9) obstacle_points_.push_back(robot->position + robot->radius * (d / n));
+      return nullptr;
+    }
+    case RobotBehaviour::kScared:
+      *config = &scared_force_;
+      return robot;
+    case RobotBehaviour::kCurious:
+    case RobotBehaviour::kThreatening:
+      return s.reacting ? nullptr : robot;  // they mean to come close
+    default:
+      return robot;
+  }
+}
+
+void Pedestrians::WalkTarget(std::size_t i, const Vec2& p, Vec2* direction, double* speed) const {
+  const PedestrianStatus& s = status_[i];
+  const Walker& w = walkers_[i];
+  *direction = Vec2::Zero();
+  *speed = s.desired_speed;
+  Vec2 target = p;
+  double min_distance = 1e-6;
+  if (s.reacting) {
+    const ReactionTarget r =
+        ReactionGoal(s.behaviour, p, s.radius, s.desired_speed, robot_disc_, config_.behaviour);
+    target = r.point;
+    *speed = r.speed;
+    min_distance = 0.05;
+  } else if (w.idle_until < 0.0 && w.yield_until >= 0.0) {
+    target = w.yield_point;
+    min_distance = 0.1;
+  } else if (w.idle_until < 0.0 && !s.path.empty()) {
+    target = config_.model == CrowdModel::kTtc ? AimPoint(i, p) : s.path.front();
+  }
+  const Vec2 to = target - p;
+  const double n = to.norm();
+  if (n > min_distance) *direction = to / n;
+}
+
 Vec2 Pedestrians::SocialVelocity(std::size_t i, double dt, const SocialAgent* robot) {
   const SocialForceConfig& sf = config_.social_force;
   const PedestrianStatus& s = status_[i];
   const Walker& w = walkers_[i];
   const Vec2 p = agents_[i].position;
-
-  Vec2 direction = Vec2::Zero();
-  const bool yielding = w.yield_until >= 0.0;
-  if (w.idle_until < 0.0 && (yielding || !s.path.empty())) {
-    const Vec2 to = (yielding ? w.yield_point : s.path.front()) - p;
-    const double n = to.norm();
-    if (n > (yielding ? 0.1 : 1e-6)) direction = to / n;
-  }
+  Vec2 direction;
+  double speed = 0.0;
+  WalkTarget(i, p, &direction, &speed);
   neighbours_.clear();
-  const double range2 = sf.interaction_range * sf.interaction_range;
+  const double range = config_.model == CrowdModel::kTtc ? config_.ttc.range : sf.interaction_range;
+  const double range2 = range * range;
   for (std::size_t j = 0; j < agents_.size(); ++j) {
     if (j != i && (agents_[j].position - p).squaredNorm() < range2)
       neighbours_.push_back(agents_[j]);
@@ -618,14 +767,25 @@ Vec2 Pedestrians::SocialVelocity(std::size_t i, double dt, const SocialAgent* ro
   }
   SelectObstaclePoints(p, &obstacle_points_);
   SocialForceInputs in;
+  const SocialForceConfig* forces = &sf;
+  in.robot = RobotFor(i, robot, &forces);  // may add the robot's surface to the obstacles
   in.self = agents_[i];
   in.direction = direction;
-  in.desired_speed = s.desired_speed;
+  in.desired_speed = speed;
   in.others = neighbours_;
-  in.robot = robot;
   in.obstacle_points = obstacle_points_;
-  in.walking_line_clear = w.line_clear && !yielding;
-  const Vec2 a = SocialForce(in, sf);
+  in.walking_line_clear = w.line_clear && w.yield_until < 0.0 && !s.reacting;
+  Vec2 a = Vec2::Zero();
+  if (config_.model == CrowdModel::kTtc) {
+    const WalkingChoice walk = s.reacting ? WalkingChoice{direction, speed}
+                                          : ChooseLane(in.self, direction, speed, neighbours_,
+                                                       in.robot, config_.lanes, config_.headway);
+    headings_[i] = walk.direction;
+    a = TtcForce(in, walk.speed * walk.direction, config_.ttc, *forces);
+  } else {
+    headings_[i] = direction;
+    a = SocialForce(in, *forces);
+  }
   return IntegrateVelocity(agents_[i].velocity, a, dt, sf.max_speed_factor * s.desired_speed);
 }
 

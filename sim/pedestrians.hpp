@@ -14,17 +14,42 @@
 #include "core/config.hpp"
 #include "core/rng.hpp"
 #include "sim/geometry_index.hpp"
+#include "sim/lane_choice.hpp"
 #include "sim/pedestrian_config.hpp"
 #include "sim/physics_world.hpp"
 #include "sim/social_force.hpp"
+#include "sim/speed_headway.hpp"
 #include "sim/static_geometry.hpp"
+#include "sim/ttc_force.hpp"
 #include "sim/walk_planner.hpp"
+
+namespace retrace::sim {
+
+/// How pedestrians react to each other: Helbing & Molnár's social force (social_force.hpp), or
+/// Karamouzas et al.'s time-to-collision power law with the speed-headway rule (ttc_force.hpp,
+/// speed_headway.hpp). Both treat walls and the robot alike (the social force's terms).
+enum class CrowdModel { kSocialForce, kTtc };
+
+}  // namespace retrace::sim
+
+template <>
+struct retrace::core::EnumTraits<retrace::sim::CrowdModel> {
+  static constexpr std::array<std::pair<retrace::sim::CrowdModel, std::string_view>, 2> kNames{
+      {{retrace::sim::CrowdModel::kSocialForce, "social_force"},
+       {retrace::sim::CrowdModel::kTtc, "ttc"}}};
+};
 
 namespace retrace::sim {
 
 /// Crowd-wide behaviour settings (the groups themselves come from the world file).
 struct CrowdConfig {
+  CrowdModel model = CrowdModel::kTtc;
+  /// The social force; with model `ttc` only its robot, wall, field-of-view and cap terms.
   SocialForceConfig social_force;
+  TtcForceConfig ttc;          ///< model `ttc`: the power law and its driving term
+  LaneChoiceConfig lanes;      ///< model `ttc`: overtaking, keeping right, walking beside the line
+  SpeedHeadwayConfig headway;  ///< model `ttc`: the speed the space ahead allows
+  RobotBehaviourConfig behaviour;  ///< how the behaviours toward the robot play out
   WalkPlannerConfig planner;
   double mass = 70.0;               ///< kg per pedestrian (an adult)
   double waypoint_tolerance = 0.4;  ///< m: an intermediate waypoint closer than this is passed
@@ -43,7 +68,12 @@ struct CrowdConfig {
 
   template <class V>
   void Reflect(V& v) {
+    v("model", model);
     v("social_force", social_force);
+    v("ttc", ttc);
+    v("lanes", lanes);
+    v("headway", headway);
+    v("behaviour", behaviour);
     v("planner", planner);
     v("mass", mass);
     v("waypoint_tolerance", waypoint_tolerance);
@@ -67,12 +97,15 @@ struct PedestrianStatus {
   double radius = 0.3;         ///< m
   double desired_speed = 0.0;  ///< m/s (drawn, but unused when `standing`)
   bool standing = false;       ///< of a group of mode `stand`: stands still by design
-  Vec2 goal{0.0, 0.0};         ///< current goal (W, m): wander target or loop waypoint
-  std::vector<Vec2> path;      ///< remaining waypoints to the goal (W, m), goal last
-  int goals_reached = 0;       ///< wander goals or loop waypoints reached
-  int waypoints_passed = 0;    ///< intermediate waypoints passed
-  int replans = 0;             ///< steps aside and re-plans after making no progress
-  int goals_abandoned = 0;     ///< goals given up after making no progress twice
+  RobotBehaviour behaviour = RobotBehaviour::kRegular;  ///< toward the robot, from its group
+  bool reacting = false;     ///< reacting to the robot now (its behaviour's reaction)
+  int reactions = 0;         ///< reactions to the robot started
+  Vec2 goal{0.0, 0.0};       ///< current goal (W, m): wander target or loop waypoint
+  std::vector<Vec2> path;    ///< remaining waypoints to the goal (W, m), goal last
+  int goals_reached = 0;     ///< wander goals or loop waypoints reached
+  int waypoints_passed = 0;  ///< intermediate waypoints passed
+  int replans = 0;           ///< steps aside and re-plans after making no progress
+  int goals_abandoned = 0;   ///< goals given up after making no progress twice
 };
 
 class Pedestrians {
@@ -151,9 +184,25 @@ class Pedestrians {
   // Steps of Update for pedestrian i at p (W), at time t (s).
   void UpdateWaypoints(std::size_t i, const Vec2& p, double t, bool check_line);
   void PassReachedWaypoints(std::size_t i, const Vec2& p, double t);
+  // Whether pedestrian i at p has reached its next waypoint (`last`: its goal).
+  bool Reached(std::size_t i, const Vec2& p, bool last) const;
   void CheckLineToWaypoint(std::size_t i, const Vec2& p);
   void CheckProgress(std::size_t i, const Vec2& p, double t);
   Vec2 SocialVelocity(std::size_t i, double dt, const SocialAgent* robot);
+  // Where pedestrian i at p means to walk: a unit direction (zero: stand) and a speed (m/s), from
+  // its reaction to the robot, its step aside, or its route.
+  void WalkTarget(std::size_t i, const Vec2& p, Vec2* direction, double* speed) const;
+  // Starts and ends pedestrian i's reaction to the robot at time t (its behaviour's).
+  void UpdateReaction(std::size_t i, const Vec2& p, double t, const RobotDisc& robot);
+  // The robot term of pedestrian i's behaviour: the robot as an agent (or nullptr), and the
+  // social-force config whose robot strength and range apply; an impassive person gets the
+  // robot's surface as an obstacle point instead.
+  const SocialAgent* RobotFor(std::size_t i, const SocialAgent* robot,
+                              const SocialForceConfig** config);
+  // Model `ttc`: the point pedestrian i at p walks towards (its next waypoint, or beside it), and
+  // the check that the straight line to it is clear.
+  Vec2 AimPoint(std::size_t i, const Vec2& p) const;
+  void CheckAim(std::size_t i, const Vec2& p);
 
   CrowdConfig config_;
   std::unique_ptr<GeometryIndex> index_;
@@ -165,11 +214,16 @@ class Pedestrians {
   std::vector<PedestrianStatus> status_;
   std::vector<Walker> walkers_;
   std::optional<SocialAgent> robot_;  // as of the last Update
+  RobotDisc robot_disc_;              // the same, with its heading
+  SocialForceConfig scared_force_;    // social_force with the scared behaviour's robot term
   // Scratch buffers reused every step.
   std::vector<SocialAgent> agents_;
   std::vector<SocialAgent> neighbours_;
   std::vector<Vec2> obstacle_points_;
   std::vector<Vec2> new_velocities_;
+  // The way each pedestrian meant to walk in the last Update (zero: standing, or not yet): what
+  // the others see of it (SocialAgent::heading).
+  std::vector<Vec2> headings_;
 };
 
 }  // namespace retrace::sim

@@ -112,18 +112,14 @@ void SelectObstaclePoints(const Vec2& position, std::vector<Vec2>* points) {
   pts.resize(kept);
 }
 
-Vec2 SocialForce(const SocialForceInputs& in, const SocialForceConfig& config) {
-  Vec2 total = GoalForce(in.self.velocity, in.direction, in.desired_speed, config);
-  for (const SocialAgent& other : in.others) {
-    const Vec2 f =
-        AgentRepulsion(in.self, other, config.pedestrian_strength, config.pedestrian_range, config);
-    total += FieldOfViewWeight(in.direction, f, config) * f;
-  }
-  if (in.robot != nullptr) {
-    const Vec2 f =
-        AgentRepulsion(in.self, *in.robot, config.robot_strength, config.robot_range, config);
-    total += FieldOfViewWeight(in.direction, f, config) * f;
-  }
+Vec2 RobotForce(const SocialForceInputs& in, const SocialForceConfig& config) {
+  if (in.robot == nullptr) return Vec2::Zero();
+  const Vec2 f =
+      AgentRepulsion(in.self, *in.robot, config.robot_strength, config.robot_range, config);
+  return FieldOfViewWeight(in.direction, f, config) * f;
+}
+
+Vec2 ObstacleForce(const SocialForceInputs& in, const SocialForceConfig& config) {
   // Walls act whatever the walking direction (no field-of-view weight): people do not back
   // into walls either.
   Vec2 obstacles = Vec2::Zero();
@@ -133,10 +129,24 @@ Vec2 SocialForce(const SocialForceInputs& in, const SocialForceConfig& config) {
     const double braking = obstacles.dot(in.direction);
     if (braking < 0.0) obstacles -= braking * in.direction;
   }
-  total += obstacles;
-  const double n = total.norm();
-  if (n > config.max_acceleration) total *= config.max_acceleration / n;
-  return total;
+  return obstacles;
+}
+
+Vec2 CapAcceleration(const Vec2& a, double max_acceleration) {
+  const double n = a.norm();
+  return n > max_acceleration ? Vec2(a * (max_acceleration / n)) : a;
+}
+
+Vec2 SocialForce(const SocialForceInputs& in, const SocialForceConfig& config) {
+  Vec2 total = GoalForce(in.self.velocity, in.direction, in.desired_speed, config);
+  for (const SocialAgent& other : in.others) {
+    const Vec2 f =
+        AgentRepulsion(in.self, other, config.pedestrian_strength, config.pedestrian_range, config);
+    total += FieldOfViewWeight(in.direction, f, config) * f;
+  }
+  if (in.robot != nullptr) total += RobotForce(in, config);
+  total += ObstacleForce(in, config);
+  return CapAcceleration(total, config.max_acceleration);
 }
 
 Vec2 IntegrateVelocity(const Vec2& velocity, const Vec2& acceleration, double dt,

@@ -74,11 +74,13 @@ struct SocialForceConfig {
   void Validate() const;
 };
 
-/// A disc-shaped agent at one instant: position (W, m), velocity (W, m/s), radius (m).
+/// A disc-shaped agent at one instant: position (W, m), velocity (W, m/s), radius (m), and the
+/// way it faces (unit vector in W towards where it means to walk; zero: nowhere, it stands).
 struct SocialAgent {
   Vec2 position{0.0, 0.0};
   Vec2 velocity{0.0, 0.0};
   double radius = 0.3;
+  Vec2 heading{0.0, 0.0};
 };
 
 /// Goal attraction (v0 e - v) / tau: relaxes `velocity` (m/s) to `desired_speed` (m/s) along
@@ -125,6 +127,16 @@ struct SocialForceInputs {
   /// repulsion then loses its component against `direction`.
   bool walking_line_clear = false;
 };
+
+/// The robot's repulsion on in.self (m/s²), weighted by the field of view; zero without a robot.
+Vec2 RobotForce(const SocialForceInputs& in, const SocialForceConfig& config);
+
+/// The walls' repulsion on in.self (m/s²): the sum over in.obstacle_points, without its component
+/// against in.direction when in.walking_line_clear.
+Vec2 ObstacleForce(const SocialForceInputs& in, const SocialForceConfig& config);
+
+/// `a` scaled down to at most `max_acceleration` (m/s²) in norm.
+Vec2 CapAcceleration(const Vec2& a, double max_acceleration);
 
 /// Total acceleration (m/s²) on a pedestrian, capped at config.max_acceleration.
 Vec2 SocialForce(const SocialForceInputs& in, const SocialForceConfig& config);

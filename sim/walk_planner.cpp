@@ -268,11 +268,16 @@ bool WalkPlanner::ClearPath(const Vec2& a, const Vec2& b, double min_clearance) 
 
 bool WalkPlanner::Traverse(const Vec2& a, const Vec2& b, double min_clearance,
                            bool skip_start) const {
+  return TraverseFraction(a, b, min_clearance, skip_start) >= 1.0;
+}
+
+double WalkPlanner::TraverseFraction(const Vec2& a, const Vec2& b, double min_clearance,
+                                     bool skip_start) const {
   // Amanatides & Woo grid traversal; when the segment passes exactly through a cell corner,
   // both cells beside the corner must pass.
   int c = CellOf(a);
   const int c_end = CellOf(b);
-  if (c < 0 || c_end < 0) return false;
+  if (c < 0 || c_end < 0) return 0.0;
   int x = c % nx_, y = c / nx_;
   const int x_end = c_end % nx_, y_end = c_end / nx_;
   auto free_at = [&](int cx, int cy) {
@@ -280,7 +285,7 @@ bool WalkPlanner::Traverse(const Vec2& a, const Vec2& b, double min_clearance,
     const std::size_t m = static_cast<std::size_t>(cy) * nx_ + cx;
     return min_clearance < 0.0 ? free_[m] != 0 : clearance_[m] >= min_clearance;
   };
-  if (!skip_start && !free_at(x, y)) return false;
+  if (!skip_start && !free_at(x, y)) return 0.0;
   const Vec2 d = b - a;
   const int step_x = d.x() > 0.0 ? 1 : (d.x() < 0.0 ? -1 : 0);
   const int step_y = d.y() > 0.0 ? 1 : (d.y() < 0.0 ? -1 : 0);
@@ -293,8 +298,9 @@ bool WalkPlanner::Traverse(const Vec2& a, const Vec2& b, double min_clearance,
   double t_y = step_y != 0 ? (by - a.y()) / d.y() : inf;
   const int max_steps = std::abs(x_end - x) + std::abs(y_end - y) + 2;
   for (int i = 0; i < max_steps && (x != x_end || y != y_end); ++i) {
+    const double t_enter = std::min(t_x, t_y);  // where the next cell begins (segment fraction)
     if (std::abs(t_x - t_y) < 1e-12) {
-      if (!free_at(x + step_x, y) || !free_at(x, y + step_y)) return false;
+      if (!free_at(x + step_x, y) || !free_at(x, y + step_y)) return t_enter;
       x += step_x;
       y += step_y;
       t_x += t_dx;
@@ -306,9 +312,16 @@ bool WalkPlanner::Traverse(const Vec2& a, const Vec2& b, double min_clearance,
       y += step_y;
       t_y += t_dy;
     }
-    if (!free_at(x, y)) return false;
+    if (!free_at(x, y)) return t_enter;
   }
-  return true;
+  return 1.0;
+}
+
+double WalkPlanner::FreeLength(const Vec2& from, const Vec2& direction, double max_length,
+                               double min_clearance) const {
+  const double fraction = TraverseFraction(from, from + max_length * direction,
+                                           std::min(min_clearance, inflation_), true);
+  return std::clamp(fraction, 0.0, 1.0) * max_length;
 }
 
 std::optional<int> WalkPlanner::NearestFreeCell(const Vec2& p, double max_distance,

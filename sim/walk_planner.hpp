@@ -75,6 +75,12 @@ class WalkPlanner {
   /// LineOfSight for "can I still walk straight to my waypoint from here".
   bool ClearPath(const Vec2& a, const Vec2& b, double min_clearance) const;
 
+  /// How far (m) one can walk from `from` along the unit vector `direction`, up to max_length,
+  /// before entering a cell whose centre clearance is below min_clearance (m; capped at
+  /// inflation_radius()); the cell holding `from` is not tested. 0 outside the grid.
+  double FreeLength(const Vec2& from, const Vec2& direction, double max_length,
+                    double min_clearance) const;
+
   /// Waypoints (W) from `from` to `to`, excluding `from` and ending at `to` (or at the nearest
   /// free cell centre if `to` is not free). A start or goal that is not free is snapped to the
   /// nearest free cell within max_snap (m). nullopt if no walkable path exists.
@@ -103,6 +109,9 @@ class WalkPlanner {
   std::vector<int> AStar(int start, int goal) const;
   // Grid traversal: min_clearance < 0 means "free cells only".
   bool Traverse(const Vec2& a, const Vec2& b, double min_clearance, bool skip_start) const;
+  // The fraction of a-b walked before the first cell that fails (1: none fails).
+  double TraverseFraction(const Vec2& a, const Vec2& b, double min_clearance,
+                          bool skip_start) const;
 
   double cell_;
   double inflation_;

@@ -1,6 +1,7 @@
 // fundamental_diagram.png: walking speed against density, reference curve and simulation.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <utility>
@@ -16,7 +17,11 @@ namespace {
 
 constexpr Rgba kFdBand{214, 230, 245};
 constexpr Rgba kFdCurve{0, 0, 0};
-constexpr Rgba kFdPoint{213, 94, 0};
+// One colour per series (Okabe-Ito: vermilion, blue, bluish green, reddish purple).
+constexpr std::array<Rgba, 4> kFdSeries{
+    {{213, 94, 0}, {0, 114, 178}, {0, 158, 115}, {204, 121, 167}}};
+// Horizontal offset (px) between neighbouring series, so that their bars do not overlap.
+constexpr double kFdSeriesOffset = 9.0;
 
 // Title, subtitle and the legend: reference curve, its band and the simulated points.
 internal::Header DiagramHeader(const FundamentalDiagramFigureData& data,
@@ -28,8 +33,10 @@ internal::Header DiagramHeader(const FundamentalDiagramFigureData& data,
       {data.curve_label, kFdCurve, internal::LegendSymbol::kLine, Marker::kDisc, 2.0});
   header.legend.push_back(
       {data.band_label, kFdBand, internal::LegendSymbol::kPatch, Marker::kDisc, 2.0});
-  header.legend.push_back(
-      {data.points_label, kFdPoint, internal::LegendSymbol::kMarker, Marker::kDisc, 3.0, true});
+  for (std::size_t k = 0; k < data.series.size(); ++k) {
+    header.legend.push_back({data.series[k].label, kFdSeries[k], internal::LegendSymbol::kMarker,
+                             Marker::kDisc, 3.0, true});
+  }
   return header;
 }
 
@@ -42,9 +49,11 @@ std::pair<double, double> DiagramExtent(const FundamentalDiagramFigureData& data
   for (std::size_t i = 0; i < n; ++i) {
     if (std::isfinite(data.band_high[i])) y_max = std::max(y_max, data.band_high[i]);
   }
-  for (const SpeedAtDensity& p : data.points) {
-    if (std::isfinite(p.density)) x_max = std::max(x_max, p.density);
-    if (std::isfinite(p.mean + p.sd)) y_max = std::max(y_max, p.mean + p.sd);
+  for (const SpeedSeries& series : data.series) {
+    for (const SpeedAtDensity& p : series.points) {
+      if (std::isfinite(p.density)) x_max = std::max(x_max, p.density);
+      if (std::isfinite(p.mean + p.sd)) y_max = std::max(y_max, p.mean + p.sd);
+    }
   }
   const double y_step = internal::NiceStep(std::max(y_max, 0.1), 6);
   const double y_top = y_step * std::ceil(std::max(y_max, 0.1) / y_step + 1e-9);
@@ -68,22 +77,26 @@ void DrawBand(cv::Mat& fig, const internal::Chart& chart, const FundamentalDiagr
                cv::LINE_AA, internal::kSubPixelBits);
 }
 
-// Each simulated point as a disc at its mean speed with a capped bar of +- one sd.
-void DrawSimulatedPoints(cv::Mat& fig, const internal::Chart& chart,
-                         const FundamentalDiagramFigureData& data, double y_top) {
-  for (const SpeedAtDensity& p : data.points) {
+// Each simulated point of `series` as a disc at its mean speed with a capped bar of +- one sd,
+// moved `dx` px sideways.
+void DrawSimulatedPoints(cv::Mat& fig, const internal::Chart& chart, const SpeedSeries& series,
+                         Rgba colour, double dx, double y_top) {
+  for (const SpeedAtDensity& p : series.points) {
     if (!std::isfinite(p.density) || !std::isfinite(p.mean)) continue;
     const double sd = std::isfinite(p.sd) ? p.sd : 0.0;
-    const cv::Point2d lo = chart.Px(p.density, std::clamp(p.mean - sd, 0.0, y_top));
-    const cv::Point2d hi = chart.Px(p.density, std::clamp(p.mean + sd, 0.0, y_top));
-    const cv::Scalar color = internal::ToScalar(kFdPoint);
+    const cv::Point2d lo =
+        chart.Px(p.density, std::clamp(p.mean - sd, 0.0, y_top)) + cv::Point2d(dx, 0.0);
+    const cv::Point2d hi =
+        chart.Px(p.density, std::clamp(p.mean + sd, 0.0, y_top)) + cv::Point2d(dx, 0.0);
+    const cv::Scalar color = internal::ToScalar(colour);
     cv::line(fig, internal::SubPixel(lo), internal::SubPixel(hi), color, 2, cv::LINE_AA,
              internal::kSubPixelBits);
     for (const cv::Point2d& end : {lo, hi}) {
       cv::line(fig, internal::SubPixel(end.x - 6.0, end.y), internal::SubPixel(end.x + 6.0, end.y),
                color, 2, cv::LINE_AA, internal::kSubPixelBits);
     }
-    const cv::Point c = internal::SubPixel(chart.Px(p.density, std::clamp(p.mean, 0.0, y_top)));
+    const cv::Point c = internal::SubPixel(chart.Px(p.density, std::clamp(p.mean, 0.0, y_top)) +
+                                           cv::Point2d(dx, 0.0));
     cv::circle(fig, c, 6 << internal::kSubPixelBits, color, cv::FILLED, cv::LINE_AA,
                internal::kSubPixelBits);
     cv::circle(fig, c, 6 << internal::kSubPixelBits, internal::ToScalar(palette::kText), 1,
@@ -102,7 +115,11 @@ FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& da
   internal::Require(
       data.curve_speed.size() == n && data.band_low.size() == n && data.band_high.size() == n, png,
       "the curve and its band must have one value per density");
-  internal::Require(!data.points.empty(), png, "the fundamental diagram needs a simulated point");
+  internal::Require(data.series.size() <= kFdSeries.size(), png,
+                    "the fundamental diagram draws at most 4 series");
+  bool any_point = false;
+  for (const SpeedSeries& series : data.series) any_point = any_point || !series.points.empty();
+  internal::Require(any_point, png, "the fundamental diagram needs a simulated point");
 
   const int W = options.width;
   const internal::Header header = DiagramHeader(data, options);
@@ -121,7 +138,11 @@ FigureInfo RenderFundamentalDiagramFigure(const FundamentalDiagramFigureData& da
   DrawBand(fig, chart, data, y_top);
   internal::DrawChartAxes(fig, chart, "density (persons/m^2)", "speed along the corridor (m/s)");
   internal::DrawChartLine(fig, chart, data.curve_density, data.curve_speed, kFdCurve, 2);
-  DrawSimulatedPoints(fig, chart, data, y_top);
+  for (std::size_t k = 0; k < data.series.size(); ++k) {
+    const double dx = kFdSeriesOffset *
+                      (static_cast<double>(k) - 0.5 * static_cast<double>(data.series.size() - 1));
+    DrawSimulatedPoints(fig, chart, data.series[k], kFdSeries[k], dx, y_top);
+  }
   return internal::FinishFigure(fig, png, {chart.Info("speed")});
 }
 

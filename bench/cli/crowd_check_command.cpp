@@ -17,6 +17,10 @@ void AddCrowdCheckOptions(CLI::App* cmd, CrowdCheckOptions* options) {
   cmd->add_option("--densities", options->densities,
                   "Densities (persons/m^2), comma-separated, each > 0 and < 5.4")
       ->capture_default_str();
+  cmd->add_option("--flows", options->flows,
+                  "Flows round the ring, comma-separated: one_way (everyone the same way), two_way "
+                  "(half each way)")
+      ->capture_default_str();
   AddSeedOption(cmd, &options->seed, "of the start points and desired speeds")
       ->capture_default_str();
   cmd->add_option("--duration", options->duration, "Seconds of measurement (default 40)")
@@ -31,6 +35,7 @@ void AddCrowdCheckOptions(CLI::App* cmd, CrowdCheckOptions* options) {
 int RunCrowdCheckCommand(const CrowdCheckOptions& options) {
   CrowdCheckRequest request;
   request.densities = ParseDensityList(options.densities);
+  request.flows = ParseFlowList(options.flows);
   request.seed = options.seed;
   request.duration = options.duration;
   request.warmup = options.warmup;
@@ -40,7 +45,7 @@ int RunCrowdCheckCommand(const CrowdCheckOptions& options) {
       RunCrowdCheck(request, [&](const FundamentalDiagramRow& r, std::size_t done) {
         if (!terminal) return;
         std::fprintf(stderr, "\rcrowd-check: %zu/%zu densities (last %.2f /m2, %d people)   ", done,
-                     request.densities.size(), r.density, r.count);
+                     request.densities.size() * request.flows.size(), r.density, r.count);
         std::fflush(stderr);
       });
   if (terminal) std::fprintf(stderr, "\n");

@@ -1,14 +1,16 @@
 #pragma once
 // The crowd checked against measurements: the fundamental diagram (walking speed against
-// density) of the social-force crowd in a closed bidirectional corridor, compared with
+// density) of the simulated crowd in a closed corridor, one-way and two-way, compared with
 // Weidmann's (1993) empirical curve (docs/METHOD.md, "Crowd check").
 //
 // The corridor is a ring without ends, so the density stays constant: a solid inner disc and an
-// outer wall of many thick segments. Half of the pedestrians walk counter-clockwise, half
-// clockwise, each along a loop of waypoints on a lane (radius) of its own, drawn at random. They
-// start on a staggered lattice (random spawning jams long before the densest cases), warm up, and
-// are then sampled: the speed along the corridor (the velocity's component along the ring's tangent
-// in the person's walking direction), averaged over pedestrians and samples. Nothing here prints.
+// outer wall of many thick segments. In one-way flow everyone walks counter-clockwise; in two-way
+// flow half of them walk clockwise. Each walks along a loop of waypoints on a lane (radius) of its
+// own, drawn at random. They start on a staggered lattice (random spawning jams long before the
+// densest cases), warm up, and are then sampled: the speed along the corridor (the velocity's
+// component along the ring's tangent in the person's walking direction), averaged over pedestrians
+// and samples, and how close people come to each other (closest_approach.hpp). Nothing here
+// prints.
 
 #include <cstdint>
 #include <functional>
@@ -17,8 +19,27 @@
 
 #include "core/config.hpp"
 #include "sim/pedestrians.hpp"
+#include "sim/physics_world.hpp"
 
 namespace retrace::bench {
+
+/// The stream round the ring: everyone one way, or half each way.
+enum class CrowdFlow { kOneWay, kTwoWay };
+
+}  // namespace retrace::bench
+
+template <>
+struct retrace::core::EnumTraits<retrace::bench::CrowdFlow> {
+  static constexpr std::array<std::pair<retrace::bench::CrowdFlow, std::string_view>, 2> kNames{
+      {{retrace::bench::CrowdFlow::kOneWay, "one_way"},
+       {retrace::bench::CrowdFlow::kTwoWay, "two_way"}}};
+};
+
+namespace retrace::bench {
+
+/// Share of the people walking clockwise (the rest counter-clockwise): 0 in one-way flow, 0.5 in
+/// two-way flow.
+double ClockwiseFraction(CrowdFlow flow);
 
 /// Weidmann's speed-density relation v(rho) = v0 (1 - exp(-gamma (1/rho - 1/rho_max))).
 struct WeidmannCurve {
@@ -43,9 +64,6 @@ struct FundamentalDiagramConfig {
   double pedestrian_radius = 0.2;
   double speed_mean = 1.34;    ///< desired speed (m/s), Weidmann's v0 (drawn per person)
   double speed_std = 0.26;     ///< m/s
-  /// Share of the people walking clockwise (the rest counter-clockwise): 0.5 is the two-way
-  /// corridor, 0 one-way flow.
-  double clockwise_fraction = 0.5;
   double warmup = 20.0;        ///< s before the measurement starts
   double duration = 40.0;      ///< s of measurement
   double sample_period = 0.2;  ///< s between speed samples
@@ -65,7 +83,6 @@ struct FundamentalDiagramConfig {
     v("pedestrian_radius", pedestrian_radius);
     v("speed_mean", speed_mean);
     v("speed_std", speed_std);
-    v("clockwise_fraction", clockwise_fraction);
     v("warmup", warmup);
     v("duration", duration);
     v("sample_period", sample_period);
@@ -91,8 +108,12 @@ sim::CrowdConfig DefaultCheckCrowd();
 /// core::ConfigError on an unknown key or an invalid value.
 FundamentalDiagramConfig ReadFundamentalDiagramConfig(const std::vector<std::string>& overrides);
 
+/// Centre distance (m) within which two people are in an encounter (ClosestApproachTracker).
+inline constexpr double kEncounterRadius = 2.0;
+
 /// The result at one density.
 struct FundamentalDiagramRow {
+  CrowdFlow flow = CrowdFlow::kTwoWay;
   double requested_density = 0.0;   ///< persons/m² asked for
   int count = 0;                    ///< pedestrians: round(requested density x area)
   double density = 0.0;             ///< count / area (persons/m²)
@@ -110,37 +131,52 @@ struct FundamentalDiagramRow {
   /// Times someone stepped aside after making no progress, and goals given up (whole run).
   int yields = 0;
   int goals_abandoned = 0;
+  /// Encounters (centres within kEncounterRadius) during the measurement, and the mean and 5th
+  /// percentile of their closest approaches (m between centres; NaN without encounters).
+  std::int64_t encounters = 0;
+  double closest_approach = 0.0;
+  double closest_approach_p05 = 0.0;
 };
 
+/// Relative deviation from Weidmann's speed allowed at every density.
+inline constexpr double kDiagramTolerance = 0.10;
+
 struct FundamentalDiagramResult {
+  CrowdFlow flow = CrowdFlow::kTwoWay;
   std::vector<FundamentalDiagramRow> rows;  ///< in the order asked for
-  double rms_deviation = 0.0;         ///< m/s, RMS of mean_speed - weidmann_speed over spawned rows
-  double free_speed_deviation = 0.0;  ///< relative deviation at the lowest spawned density
-  bool free_speed_pass = false;       ///< |free_speed_deviation| <= tolerance
-  double band_max_deviation = 0.0;    ///< largest |relative deviation| with 1 <= rho <= 2
-  bool band_pass = false;             ///< every row with 1 <= rho <= 2 within tolerance
-  int band_rows = 0;
-  double tolerance = 0.15;
+  double rms_deviation = 0.0;      ///< m/s, RMS of mean_speed - weidmann_speed over spawned rows
+  double max_abs_deviation = 0.0;  ///< largest |relative deviation| of a spawned row
+  int rows_within = 0;             ///< spawned rows within the tolerance
+  bool pass = false;               ///< every row spawned and within the tolerance
+  double tolerance = kDiagramTolerance;
 };
 
 /// Checks a density list: non-empty, every value > 0 and finite and below Weidmann's
 /// max_density. Throws core::ConfigError("densities").
 void ValidateDensities(const std::vector<double>& densities);
 
-/// Builds the ring at one density, spawns, warms up and measures; `seed` and the row's index
-/// decide every random draw. A density whose lattice does not fit gives a row with
+/// Called at every speed sample of RunDensity with the crowd, the world and the walking direction
+/// of each person (+1 counter-clockwise, -1 clockwise): a look at the ring while it runs.
+using RingObserver =
+    std::function<void(const sim::Pedestrians& crowd, const sim::PhysicsWorld& world,
+                       const std::vector<int>& direction)>;
+
+/// Builds the ring at one density, spawns, warms up and measures `flow`; `seed` and the row's
+/// index decide every random draw (the two flows share the lattice, the lanes and the desired
+/// speeds; only the directions differ). A density whose lattice does not fit gives a row with
 /// spawned = false and a note, not an exception.
-FundamentalDiagramRow RunDensity(const FundamentalDiagramConfig& config, double density,
-                                 std::uint64_t seed, std::size_t index);
+FundamentalDiagramRow RunDensity(const FundamentalDiagramConfig& config, CrowdFlow flow,
+                                 double density, std::uint64_t seed, std::size_t index,
+                                 const RingObserver& observer = {});
 
 /// Every density in turn (`on_row` is called after each, e.g. for progress), then the summary.
 /// Throws core::ConfigError on an invalid config or density list.
 FundamentalDiagramResult RunFundamentalDiagram(
-    const FundamentalDiagramConfig& config, const std::vector<double>& densities,
+    const FundamentalDiagramConfig& config, CrowdFlow flow, const std::vector<double>& densities,
     std::uint64_t seed, const std::function<void(const FundamentalDiagramRow&)>& on_row = {});
 
-/// The summary (RMS, pass flags) of rows; used by RunFundamentalDiagram.
-FundamentalDiagramResult SummarizeDiagram(std::vector<FundamentalDiagramRow> rows,
-                                          double tolerance = 0.15);
+/// The summary (RMS, largest deviation, pass) of one flow's rows; used by RunFundamentalDiagram.
+FundamentalDiagramResult SummarizeDiagram(CrowdFlow flow, std::vector<FundamentalDiagramRow> rows,
+                                          double tolerance = kDiagramTolerance);
 
 }  // namespace retrace::bench

@@ -37,6 +37,10 @@ void RecordNearby(const sim::Simulator& simulator, const std::vector<sim::Dynami
                                  [&](const sim::PedestrianStatus& st) { return st.id == c.id; });
     n.desired_speed = it != status.end() ? it->desired_speed : 0.0;
     n.standing = it != status.end() && it->standing;
+    if (it != status.end()) {
+      n.behaviour = it->behaviour;
+      n.reacting = it->reacting;
+    }
     out->push_back(n);
   }
 }

@@ -14,6 +14,7 @@
 #include "core/pose2.hpp"
 #include "core/twist.hpp"
 #include "sim/collision_event.hpp"
+#include "sim/pedestrian_behaviour.hpp"
 
 namespace retrace::bench {
 
@@ -73,6 +74,8 @@ struct NearbyPedestrian {
   double radius = 0.0;                         ///< m
   double desired_speed = 0.0;                  ///< m/s, the speed it walks at when free
   bool standing = false;  ///< stands still by design (pedestrian mode `stand`), never walks
+  sim::RobotBehaviour behaviour = sim::RobotBehaviour::kRegular;  ///< toward the robot
+  bool reacting = false;  ///< reacting to the robot now (its behaviour's reaction)
 };
 
 /// One localizer measurement update that ran, with the dynamic-point test scored against the

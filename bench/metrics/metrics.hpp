@@ -106,6 +106,14 @@
 //   the robot. wait_time_s sums the standing time of the walkers' encounters, max_wait_s is the
 //   longest. Aggregate: means over runs (zone times, jerk statistics), min (ttc), means
 //   over successful runs (efficiencies), sums (crowd counts and wait) and max (max wait).
+//   by_behaviour: the same per behaviour toward the robot (sim::RobotBehaviour) of the people met,
+//   for the behaviours met at all: people (distinct pedestrians in the 5 m record), min_gap_m (the
+//   closest any of them came), intimate_time_s / personal_time_s (time with one of them that
+//   close) and their crowd reactions. stopped_by: for a run that did not succeed, the behaviour
+//   of the reacting people (NearbyPedestrian::reacting) who spent the most time in the robot's
+//   personal zone during its last stopped_by_window (30 s), if any: the behaviour that stopped
+//   it. Aggregate: sums per behaviour (min of min_gap_m, means of the zone times over all runs)
+//   and, per behaviour, the runs it stopped.
 //
 // Aggregate (AggregateMetrics): success rate and counts per outcome; for each per-run Summary
 //   metric both `pooled` (the statistics of all samples of all runs together: what docs/RESULTS.md
@@ -134,6 +142,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "bench/engine/metrics_config.hpp"
@@ -216,6 +225,19 @@ struct CrowdReaction {
   double max_wait_s = 0.0;   ///< the longest one walker's encounter stood
 };
 
+/// The social metrics of the people of one behaviour toward the robot (definitions above).
+struct BehaviourSocial {
+  int people = 0;                 ///< distinct pedestrians of it met (aggregate: summed over runs)
+  double min_gap_m = kMetricNaN;  ///< closest edge-to-edge gap to the robot; NaN: none met
+  double intimate_time_s = 0.0;   ///< time with one of them within intimate_zone
+  double personal_time_s = 0.0;   ///< time with one of them within personal_zone
+  CrowdReaction crowd;
+  int runs_stopped = 0;  ///< runs whose stopped_by is this behaviour
+};
+
+/// Window (s) at a failed run's end in which stopped_by looks for reacting people.
+inline constexpr double kStoppedByWindow = 30.0;
+
 /// Social navigation metrics (definitions at the top of this file).
 struct SocialStats {
   double intimate_time_s = 0.0;   ///< time with a pedestrian's edge within intimate_zone
@@ -225,6 +247,10 @@ struct SocialStats {
   double time_efficiency = kMetricNaN;  ///< taught time / playback time (successful runs)
   Summary jerk_m_s3;                    ///< |d³p/dt³| of the ground-truth position
   CrowdReaction crowd;
+  /// Per sim::RobotBehaviour, in its order.
+  std::array<BehaviourSocial, core::EnumTraits<sim::RobotBehaviour>::kNames.size()> by_behaviour;
+  /// A failed run: the behaviour that stopped it (none: nothing reacting stood in its way).
+  std::optional<sim::RobotBehaviour> stopped_by;
 };
 
 /// Per-sample series of one run (one entry per PlaybackSample), for metrics and figures.

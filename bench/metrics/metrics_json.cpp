@@ -39,22 +39,51 @@ nlohmann::json ToJson(const CpuStats& c) {
           {"real_time_factor", io::JsonNumber(c.real_time_factor)}};
 }
 
+nlohmann::json ToJson(const CrowdReaction& c) {
+  return {{"encounters", c.encounters},
+          {"passed", c.passed},
+          {"yielded", c.yielded},
+          {"blocked", c.blocked},
+          {"standing", c.standing},
+          {"wait_time_s", io::JsonNumber(c.wait_time_s)},
+          {"max_wait_s", io::JsonNumber(c.max_wait_s)}};
+}
+
+// The behaviours met (people > 0), by name.
+nlohmann::json BehavioursJson(const SocialStats& s) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [behaviour, name] : core::EnumTraits<sim::RobotBehaviour>::kNames) {
+    const BehaviourSocial& b = s.by_behaviour[static_cast<std::size_t>(behaviour)];
+    if (b.people == 0 && b.runs_stopped == 0) continue;
+    out[std::string(name)] = {{"people", b.people},
+                              {"min_gap_m", io::JsonNumber(b.min_gap_m)},
+                              {"intimate_time_s", io::JsonNumber(b.intimate_time_s)},
+                              {"personal_time_s", io::JsonNumber(b.personal_time_s)},
+                              {"crowd", ToJson(b.crowd)},
+                              {"runs_stopped", b.runs_stopped}};
+  }
+  return out;
+}
+
 nlohmann::json ToJson(const SocialStats& s) {
   const CrowdReaction& c = s.crowd;
-  return {{"intimate_time_s", io::JsonNumber(s.intimate_time_s)},
-          {"personal_time_s", io::JsonNumber(s.personal_time_s)},
-          {"min_ttc_s", io::JsonNumber(s.min_ttc_s)},
-          {"path_efficiency", io::JsonNumber(s.path_efficiency)},
-          {"time_efficiency", io::JsonNumber(s.time_efficiency)},
-          {"jerk_m_s3", ToJson(s.jerk_m_s3)},
-          {"crowd",
-           {{"encounters", c.encounters},
-            {"passed", c.passed},
-            {"yielded", c.yielded},
-            {"blocked", c.blocked},
-            {"standing", c.standing},
-            {"wait_time_s", io::JsonNumber(c.wait_time_s)},
-            {"max_wait_s", io::JsonNumber(c.max_wait_s)}}}};
+  nlohmann::json j = {{"intimate_time_s", io::JsonNumber(s.intimate_time_s)},
+                      {"personal_time_s", io::JsonNumber(s.personal_time_s)},
+                      {"min_ttc_s", io::JsonNumber(s.min_ttc_s)},
+                      {"path_efficiency", io::JsonNumber(s.path_efficiency)},
+                      {"time_efficiency", io::JsonNumber(s.time_efficiency)},
+                      {"jerk_m_s3", ToJson(s.jerk_m_s3)},
+                      {"crowd", ToJson(c)}};
+  // Only where someone behaved otherwise than `regular` toward the robot: a crowd of regular
+  // people keeps the files it had.
+  bool others = s.stopped_by.has_value();
+  for (std::size_t b = 1; b < s.by_behaviour.size(); ++b) others |= s.by_behaviour[b].people > 0;
+  if (others) {
+    j["by_behaviour"] = BehavioursJson(s);
+    j["stopped_by"] = s.stopped_by ? nlohmann::json(std::string(core::EnumName(*s.stopped_by)))
+                                   : nlohmann::json(nullptr);
+  }
+  return j;
 }
 
 nlohmann::json ToJson(const MapQualityStats& q) {

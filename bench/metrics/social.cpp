@@ -58,9 +58,10 @@ struct Encounter {
   double stood_s = 0.0;
   double slow_s = 0.0;
   bool standing = false;
+  sim::RobotBehaviour behaviour = sim::RobotBehaviour::kRegular;
 };
 
-void Close(const Encounter& e, CrowdReaction* crowd) {
+void CloseInto(const Encounter& e, CrowdReaction* crowd) {
   ++crowd->encounters;
   if (e.standing) {
     ++crowd->standing;
@@ -75,6 +76,12 @@ void Close(const Encounter& e, CrowdReaction* crowd) {
   }
   crowd->wait_time_s += e.stood_s;
   crowd->max_wait_s = std::max(crowd->max_wait_s, e.stood_s);
+}
+
+// Counts the ended encounter overall and for its person's behaviour.
+void Close(const Encounter& e, SocialStats* out) {
+  CloseInto(e, &out->crowd);
+  CloseInto(e, &out->by_behaviour[static_cast<std::size_t>(e.behaviour)].crowd);
 }
 
 }  // namespace
@@ -119,10 +126,11 @@ void TrackEncounters(const RunTrace& run, const std::vector<double>& dt,
       if (it == open.end() && gap < config.personal_zone) {
         it = open.emplace(n.id, Encounter{}).first;
         it->second.standing = n.standing;
+        it->second.behaviour = n.behaviour;
       }
       if (it == open.end()) continue;
       if (gap > config.personal_zone + kEncounterHysteresis) {
-        Close(it->second, &out->crowd);
+        Close(it->second, out);
         open.erase(it);
         continue;
       }
@@ -137,14 +145,14 @@ void TrackEncounters(const RunTrace& run, const std::vector<double>& dt,
     // Pedestrians that left the record (farther than 5 m, or gone) end their encounters.
     for (auto it = open.begin(); it != open.end();) {
       if (std::find(seen.begin(), seen.end(), it->first) == seen.end()) {
-        Close(it->second, &out->crowd);
+        Close(it->second, out);
         it = open.erase(it);
       } else {
         ++it;
       }
     }
   }
-  for (const auto& [id, e] : open) Close(e, &out->crowd);
+  for (const auto& [id, e] : open) Close(e, out);
 }
 
 }  // namespace
@@ -162,6 +170,7 @@ SocialStats Social(const RunTrace& run, double taught_length_m, double taught_ti
   if (success && time_s > 0.0) out.time_efficiency = taught_time_s / time_s;
   out.jerk_m_s3 = Summarize(Jerk(samples));
   TrackEncounters(run, dt, config, &out);
+  BehaviourBreakdown(run, dt, success, config, &out);
   return out;
 }
 
@@ -189,6 +198,7 @@ SocialStats AggregateSocial(const std::vector<RunMetrics>& runs) {
     a.crowd.standing += s.crowd.standing;
     a.crowd.wait_time_s += s.crowd.wait_time_s;
     a.crowd.max_wait_s = std::max(a.crowd.max_wait_s, s.crowd.max_wait_s);
+    AddBehaviours(s, static_cast<double>(runs.size()), &a);
   }
   if (successes > 0) {
     a.path_efficiency = path_sum / successes;

@@ -71,6 +71,37 @@ std::string MainTable(const std::vector<ModeSummary>& modes) {
   return text;
 }
 
+// The social metrics per behaviour toward the robot, when anyone met behaved otherwise than
+// `regular`, and which behaviour stopped the failed runs.
+std::string BehaviourLines(const SocialStats& so, int failed) {
+  bool others = false;
+  for (std::size_t b = 1; b < so.by_behaviour.size(); ++b) others |= so.by_behaviour[b].people > 0;
+  if (!others) return "";
+  std::string text;
+  int stopped = 0;
+  for (const auto& [behaviour, name] : core::EnumTraits<sim::RobotBehaviour>::kNames) {
+    const BehaviourSocial& b = so.by_behaviour[static_cast<std::size_t>(behaviour)];
+    stopped += b.runs_stopped;
+    if (b.people == 0) continue;
+    text += "  " + std::string(name) + ": " + std::to_string(b.people) + " met, closest " +
+            Cell(b.min_gap_m, "%.2f") + " m, " + Cell(b.intimate_time_s, "%.1f") +
+            " s intimate / " + Cell(b.personal_time_s, "%.1f") + " s personal per run, " +
+            std::to_string(b.crowd.encounters) + " encounters (" + std::to_string(b.crowd.passed) +
+            " passed, " + std::to_string(b.crowd.yielded) + " yielded, " +
+            std::to_string(b.crowd.blocked) + " blocked)";
+    if (b.runs_stopped > 0) {
+      text += "; stopped the robot in " + std::to_string(b.runs_stopped) + " run" +
+              (b.runs_stopped == 1 ? "" : "s");
+    }
+    text += "\n";
+  }
+  if (failed > stopped) {
+    text += "  " + std::to_string(failed - stopped) + " failed run" +
+            (failed - stopped == 1 ? "" : "s") + " with nobody reacting to the robot in its way\n";
+  }
+  return text;
+}
+
 // How each mode treated the people around it (social metrics, means per run).
 std::string SocialLines(const std::vector<ModeSummary>& modes) {
   std::string text;
@@ -90,7 +121,7 @@ std::string SocialLines(const std::vector<ModeSummary>& modes) {
     text += std::to_string(c.blocked) + " blocked (waited " + Cell(c.wait_time_s, "%.1f");
     text += " s)";
     if (c.standing > 0) text += ", " + std::to_string(c.standing) + " standing still by design";
-    text += "\n";
+    text += "\n" + BehaviourLines(so, m.runs - m.successes);
   }
   return text;
 }

@@ -20,4 +20,13 @@ SocialStats Social(const RunTrace& run, double taught_length_m, double taught_ti
 /// The social metrics over runs (AggregateMetrics::social).
 SocialStats AggregateSocial(const std::vector<RunMetrics>& runs);
 
+/// Per behaviour toward the robot: the people met, their closest gap and zone times
+/// (out->by_behaviour, their crowd reactions left as they are), and for a failed run
+/// out->stopped_by. dt: the samples' durations (s).
+void BehaviourBreakdown(const RunTrace& run, const std::vector<double>& dt, bool success,
+                        const MetricsConfig& config, SocialStats* out);
+
+/// Adds one run's by_behaviour and stopped_by to the aggregate `a` of `runs` runs.
+void AddBehaviours(const SocialStats& run, double runs, SocialStats* a);
+
 }  // namespace retrace::bench::internal
