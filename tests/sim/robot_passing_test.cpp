@@ -86,7 +86,6 @@ TEST(RobotPassing, PeopleKeepOutOfItsIntimateZoneAndGiveWayWithoutStopping) {
         EXPECT_EQ(p.contacts, 0) << where;
         EXPECT_GT(p.min_gap, 0.45) << where;
         EXPECT_GT(p.min_speed, 0.25) << where;  // slowed, never stood
-                    p.min_speed, p.lateral);
         sum += p.min_gap;
         ++n;
       }
