@@ -28,6 +28,7 @@ void LaneChoiceConfig::Validate() const {
   core::RequireIntInRange("turn_steps", turn_steps, 0, 8);
   core::RequireInRange("keep_right_deg", keep_right_deg, 0.0, 90.0);
   core::RequireNonNegative("keep_right_time", keep_right_time);
+  core::RequireNonNegative("keep_right_gap", keep_right_gap);
   core::RequireNonNegative("tolerance", tolerance);
 }
 
@@ -48,15 +49,16 @@ double HeadOnTime(const SocialAgent& self, const Vec2& direction, double speed,
   double first = std::numeric_limits<double>::infinity();
   if (config.keep_right_deg <= 0.0 || config.keep_right_time <= 0.0) return first;
   const Vec2 v = speed * direction;
-  auto collide = [&](const SocialAgent& o) {
+  auto collide = [&](const SocialAgent& o, double gap) {
     const Vec2 x = self.position - o.position;
     if (x.dot(direction) >= 0.0) return;  // behind
-    first = std::min(first, DiscTimeToCollision(x, v - o.velocity, self.radius + o.radius));
+    first = std::min(first, DiscTimeToCollision(x, v - o.velocity, self.radius + o.radius + gap));
   };
   for (const SocialAgent& o : others) {
-    if (o.heading.dot(direction) < 0.0) collide(o);  // walking the other way
+    if (o.heading.dot(direction) < 0.0) collide(o, config.keep_right_gap);  // the other way
   }
-  if (robot != nullptr) collide(*robot);
+  // The berth given to the robot is the robot term's (social_force.robot_*): just clear it.
+  if (robot != nullptr) collide(*robot, 0.0);
   return first < config.keep_right_time ? first : std::numeric_limits<double>::infinity();
 }
 

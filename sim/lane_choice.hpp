@@ -23,6 +23,9 @@ struct LaneChoiceConfig {
   /// collision course within keep_right_time; 0: no side preference.
   double keep_right_deg = 35.0;
   double keep_right_time = 5.0;  ///< s of time to collision within which one keeps right
+  /// m between the bodies' edges that keeping right leaves when passing (the "collision" it
+  /// avoids is with the other's body grown by this much)
+  double keep_right_gap = 0.2;
   /// m a walker may walk beside the line of its route (from the last waypoint to the next),
   /// keeping its offset, before it steers back towards the line; 0: it aims at the waypoint.
   double tolerance = 1.0;
@@ -33,10 +36,11 @@ struct LaneChoiceConfig {
     v("turn_steps", turn_steps);
     v("keep_right_deg", keep_right_deg);
     v("keep_right_time", keep_right_time);
+    v("keep_right_gap", keep_right_gap);
     v("tolerance", tolerance);
   }
   /// Throws core::ConfigError naming the key: max_turn_deg and keep_right_deg in [0, 90],
-  /// turn_steps in [0, 8], keep_right_time and tolerance >= 0.
+  /// turn_steps in [0, 8], keep_right_time, keep_right_gap and tolerance >= 0.
   void Validate() const;
 };
 
@@ -46,10 +50,10 @@ struct LaneChoiceConfig {
 Vec2 LaneAimPoint(const Vec2& position, const Vec2& segment_start, const Vec2& waypoint,
                   const LaneChoiceConfig& config);
 
-/// The time (s) to the first collision with one of `others` that faces `self` (its heading
-/// against `direction`) and is in front of it, or with `robot` (may be null; whatever its
-/// heading) in front of it, self walking along `direction` at `speed`; +inf when there is none
-/// within config.keep_right_time (or keeping right is off).
+/// The time (s) until self's body comes within config.keep_right_gap of one of `others` that
+/// faces it (its heading against `direction`) and is in front of it, or touches `robot` (may be
+/// null; whatever its heading) in front of it, self walking along `direction` at `speed`; +inf when
+/// there is none within config.keep_right_time (or keeping right is off).
 double HeadOnTime(const SocialAgent& self, const Vec2& direction, double speed,
                   std::span<const SocialAgent> others, const SocialAgent* robot,
                   const LaneChoiceConfig& config);
