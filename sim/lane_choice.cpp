@@ -43,29 +43,30 @@ Vec2 LaneAimPoint(const Vec2& position, const Vec2& segment_start, const Vec2& w
   return waypoint + offset * normal;
 }
 
-double HeadOnTime(const SocialAgent& self, const Vec2& direction, double speed,
-                  std::span<const SocialAgent> others, const SocialAgent* robot,
-                  const LaneChoiceConfig& config) {
-  double first = std::numeric_limits<double>::infinity();
-  if (config.keep_right_deg <= 0.0 || config.keep_right_time <= 0.0) return first;
+bool MeetsSomeoneHeadOn(const SocialAgent& self, const Vec2& direction, double speed,
+                        std::span<const SocialAgent> others, const SocialAgent* robot,
+                        const LaneChoiceConfig& config) {
+  if (config.keep_right_deg <= 0.0 || config.keep_right_time <= 0.0) return false;
   const Vec2 v = speed * direction;
-  auto collide = [&](const SocialAgent& o, double gap) {
+  auto collides = [&](const SocialAgent& o, double gap) {
     const Vec2 x = self.position - o.position;
-    if (x.dot(direction) >= 0.0) return;  // behind
-    first = std::min(first, DiscTimeToCollision(x, v - o.velocity, self.radius + o.radius + gap));
+    if (x.dot(direction) >= 0.0) return false;  // behind
+    return DiscTimeToCollision(x, v - o.velocity, self.radius + o.radius + gap) <
+           config.keep_right_time;
   };
-  for (const SocialAgent& o : others) {
-    if (o.heading.dot(direction) < 0.0) collide(o, config.keep_right_gap);  // the other way
-  }
   // The berth given to the robot is the robot term's (social_force.robot_*): just clear it.
-  if (robot != nullptr) collide(*robot, 0.0);
-  return first < config.keep_right_time ? first : std::numeric_limits<double>::infinity();
+  if (robot != nullptr && collides(*robot, 0.0)) return true;
+  for (const SocialAgent& o : others) {
+    // Someone walking the other way, passed keep_right_gap clear.
+    if (o.heading.dot(direction) < 0.0 && collides(o, config.keep_right_gap)) return true;
+  }
+  return false;
 }
 
 Vec2 KeepRight(const SocialAgent& self, const Vec2& goal_direction, double speed,
                std::span<const SocialAgent> others, const SocialAgent* robot,
                const LaneChoiceConfig& config) {
-  if (!std::isfinite(HeadOnTime(self, goal_direction, speed, others, robot, config))) {
+  if (!MeetsSomeoneHeadOn(self, goal_direction, speed, others, robot, config)) {
     return goal_direction;
   }
   // Just as far to the right as clears the way, in steps of kKeepRightStep.
@@ -73,7 +74,7 @@ Vec2 KeepRight(const SocialAgent& self, const Vec2& goal_direction, double speed
   Vec2 d = goal_direction;
   for (double turn = kKeepRightStep; turn < max_turn + 1e-9; turn += kKeepRightStep) {
     d = Turned(goal_direction, -std::min(turn, max_turn));
-    if (!std::isfinite(HeadOnTime(self, d, speed, others, robot, config))) return d;
+    if (!MeetsSomeoneHeadOn(self, d, speed, others, robot, config)) return d;
   }
   return Turned(goal_direction, -max_turn);
 }
@@ -94,7 +95,7 @@ WalkingChoice ChooseLane(const SocialAgent& self, const Vec2& goal_direction, do
       const double progress = speed * d.dot(goal_direction);
       // Nobody overtakes into someone coming the other way.
       if (progress > best_progress + 1e-9 &&
-          !std::isfinite(HeadOnTime(self, d, desired_speed, others, robot, config))) {
+          !MeetsSomeoneHeadOn(self, d, desired_speed, others, robot, config)) {
         best = {d, speed};
         best_progress = progress;
       }

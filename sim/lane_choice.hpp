@@ -50,16 +50,16 @@ struct LaneChoiceConfig {
 Vec2 LaneAimPoint(const Vec2& position, const Vec2& segment_start, const Vec2& waypoint,
                   const LaneChoiceConfig& config);
 
-/// The time (s) until self's body comes within config.keep_right_gap of one of `others` that
-/// faces it (its heading against `direction`) and is in front of it, or touches `robot` (may be
-/// null; whatever its heading) in front of it, self walking along `direction` at `speed`; +inf when
-/// there is none within config.keep_right_time (or keeping right is off).
-double HeadOnTime(const SocialAgent& self, const Vec2& direction, double speed,
-                  std::span<const SocialAgent> others, const SocialAgent* robot,
-                  const LaneChoiceConfig& config);
+/// True if self's body, walking along `direction` at `speed`, would come within
+/// config.keep_right_gap of one of `others` that faces it (its heading against `direction`) and
+/// is in front of it, or touch `robot` (may be null; whatever its heading) in front of it, within
+/// config.keep_right_time; false when keeping right is off.
+bool MeetsSomeoneHeadOn(const SocialAgent& self, const Vec2& direction, double speed,
+                        std::span<const SocialAgent> others, const SocialAgent* robot,
+                        const LaneChoiceConfig& config);
 
-/// The goal's direction when HeadOnTime along it is infinite; else turned to the right just as far
-/// (in 5° steps, at most keep_right_deg) as makes it infinite.
+/// The goal's direction unless MeetsSomeoneHeadOn along it; else turned to the right just as far
+/// (in 5° steps, at most keep_right_deg) as clears the way.
 Vec2 KeepRight(const SocialAgent& self, const Vec2& goal_direction, double speed,
                std::span<const SocialAgent> others, const SocialAgent* robot,
                const LaneChoiceConfig& config);

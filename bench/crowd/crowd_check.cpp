@@ -51,13 +51,12 @@ void WriteFigure(const CrowdCheck& check, const std::filesystem::path& png) {
       if (row.spawned) series.points.push_back({row.density, row.mean_speed, row.speed_std});
     }
     fig.series.push_back(std::move(series));
-    rms += (rms.empty() ? "" : ", ") + FlowLabel(result.flow) + " " +
-           Fixed(result.rms_deviation, 3) + " m/s";
+    rms += (rms.empty() ? "" : ", ") + std::string(core::EnumName(result.flow)) + " " +
+           Fixed(result.rms_deviation, 3);
   }
-  fig.subtitle = "Ring corridor " + Fixed(check.config.width, 1) +
-                 " m wide, bodies r = " + Fixed(check.config.pedestrian_radius, 2) +
-                 " m, crowd model " + std::string(core::EnumName(check.config.crowd.model)) +
-                 "; RMS deviation " + rms;
+  fig.subtitle = "Ring " + Fixed(check.config.width, 1) + " m wide, r = " +
+                 Fixed(check.config.pedestrian_radius, 2) + " m, model " +
+                 std::string(core::EnumName(check.config.crowd.model)) + "; RMS " + rms + " m/s";
   viz::FigureOptions options;
   options.width = 1000;
   viz::RenderFundamentalDiagramFigure(fig, png, options);

@@ -78,11 +78,9 @@ nlohmann::json ToJson(const SocialStats& s) {
   // people keeps the files it had.
   bool others = s.stopped_by.has_value();
   for (std::size_t b = 1; b < s.by_behaviour.size(); ++b) others |= s.by_behaviour[b].people > 0;
-  if (others) {
-    j["by_behaviour"] = BehavioursJson(s);
-    j["stopped_by"] = s.stopped_by ? nlohmann::json(std::string(core::EnumName(*s.stopped_by)))
-                                   : nlohmann::json(nullptr);
-  }
+  if (others) j["by_behaviour"] = BehavioursJson(s);
+  // A failed run that someone reacting to the robot stood in the way of.
+  if (s.stopped_by) j["stopped_by"] = std::string(core::EnumName(*s.stopped_by));
   return j;
 }
 

@@ -1,7 +1,7 @@
 // The crowd's cost per pedestrian and step: Pedestrians::Update (waypoints, the interaction model,
 // walls, the robot) for the social force and the time-to-collision model, in an empty square hall
 // at 1 person/m² with a robot standing in it; Box2D's step is outside the timing. The `ttc` /
-// `social_force` ratio of ns_per_pedestrian is what docs/BENCHMARKS.md reports.
+// `social_force` ratio of per_pedestrian (the time per pedestrian and step) is what docs/BENCHMARKS.md reports.
 //
 //   ./retrace_micro_bench --benchmark_filter=Crowd
 
@@ -68,7 +68,7 @@ void BM_CrowdUpdate(benchmark::State& state) {
     hall.world->Step();
     state.ResumeTiming();
   }
-  state.counters["ns_per_pedestrian"] =
+  state.counters["per_pedestrian"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * people,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.SetLabel(std::string(core::EnumName(model)));
