@@ -57,7 +57,7 @@ TEST(PlaybackDeterminism, PinnedHashesOfTheSmallScenario) {
 #if defined(__clang__)
   constexpr std::uint64_t kPinnedPlaybackHash = 0xfeff06a17b8ec782ULL;
 #else
-  constexpr std::uint64_t kPinnedPlaybackHash = 0x93f1b3e416ad5472ULL;
+  constexpr std::uint64_t kPinnedPlaybackHash = 0x688a37f04ceeacd8ULL;
 #endif
   const Scenario scenario = LoadScenario(kSource / "scenarios/small.yaml");
   const TeachResult teach = RunTeachDrive(scenario, {MapMode::kPartial});
