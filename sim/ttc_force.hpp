@@ -63,8 +63,8 @@ double TtcEnergy(double tau, const TtcForceConfig& config);
 /// Force on `self` from `other`: -grad_x E(tau) with the analytic gradient of Karamouzas et al.
 /// (eq. 2 of the paper), x = x_self - x_other, v = v_self - v_other. Zero when they are not on a
 /// collision course or farther apart than config.range. Discs that already overlap by delta are
-/// treated as discs of radius sum delta (Karamouzas et al.'s reference code), so the force stays
-/// finite and the physics' contacts separate them. Capped at config.max_pair_acceleration.
+/// treated as discs of radius sum delta, so the force stays finite and the physics' contacts
+/// separate them. Capped at config.max_pair_acceleration.
 Vec2 TtcRepulsion(const SocialAgent& self, const SocialAgent& other, const TtcForceConfig& config);
 
 /// Driving term (v_pref - v) / xi (m/s²) towards the preferred velocity `preferred` (W, m/s).
