@@ -40,7 +40,10 @@ def test_the_builtin_stack_stepped_gives_the_run_commands_metrics(cli_all_modes,
 
 
 def test_teaching_hands_out_the_recording_and_the_taught_maps():
-    teaching = retrace.Teaching(SMALL, mode="partial", progress=False)
+    seen = []
+    teaching = retrace.Teaching(SMALL, mode="partial", progress=seen.append)
+    assert seen and {p.phase for p in seen} == {"teach"}
+    assert (seen[-1].done, seen[-1].total) == (1, 1) and seen[-1].sim_time_s > 60
     assert teaching.mode == "partial" and len(teaching.maps) == 2
     recording = teaching.recording
     assert recording.odometry.shape[1] == 4 and recording.reference.shape == \
