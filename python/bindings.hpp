@@ -20,6 +20,8 @@ void BindCompare(pybind11::module_& m);
 void BindLogs(pybind11::module_& m);
 /// log_info and its LogInfo.
 void BindLogInfo(pybind11::module_& m);
+/// Teaching, Episode and their parts: runs stepped from Python.
+void BindEpisodes(pybind11::module_& m);
 /// The readers of results files (read_json, read_tum, read_csv, read_map, read_path), render and
 /// report.
 void BindResults(pybind11::module_& m);

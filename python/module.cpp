@@ -18,5 +18,6 @@ PYBIND11_MODULE(_retrace, m) {
   retrace::python::BindCompare(m);
   retrace::python::BindLogs(m);
   retrace::python::BindLogInfo(m);
+  retrace::python::BindEpisodes(m);
   retrace::python::BindResults(m);
 }

@@ -25,7 +25,9 @@ std::optional<Outcome> EndConditions::Check(const TickStatus& tick) {
     best_progress_ = {tick.map_index, tick.remaining};
     last_progress_time_ = t;
   }
-  if (tick.goal_reached && tick.last_map) return Outcome::kSuccess;
+  if (tick.goal_reached && tick.last_map) {
+    return tick.goal_distance <= limits_.lost_distance ? Outcome::kSuccess : Outcome::kLost;
+  }
   if (limits_.stop_on_collision && tick.collided) return Outcome::kCollision;
   if (lost_since_ >= 0.0 && t - lost_since_ >= limits_.lost_time) return Outcome::kLost;
   if (t >= timeout_s_ || t - last_progress_time_ >= limits_.stall_time) return Outcome::kTimeout;

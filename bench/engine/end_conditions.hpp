@@ -1,8 +1,10 @@
 #pragma once
-// When a playback run ends (docs/DESIGN.md §6): success at the end of the last path; or a
-// failure — a collision (when limits.stop_on_collision), lost (the estimate farther than
-// limits.lost_distance from the local truth for limits.lost_time), or a timeout (the time limit,
-// or no 0.5 m of progress along the taught path for limits.stall_time).
+// When a playback run ends (docs/DESIGN.md §6): success at the end of the last path, when the
+// robot truly is within limits.lost_distance of the taught route's end (a stack that claims the
+// goal farther from it is lost: success is never a stack's word alone); or a failure — a collision
+// (when limits.stop_on_collision), lost (the estimate farther than limits.lost_distance from the
+// local truth for limits.lost_time), or a timeout (the time limit, or no 0.5 m of progress along
+// the taught path for limits.stall_time).
 
 #include <cstddef>
 #include <limits>
@@ -21,6 +23,7 @@ struct TickStatus {
   bool last_map = false;            ///< ... and that path is the last one
   bool collided = false;            ///< any contact so far
   double localization_error = 0.0;  ///< m, estimate vs local truth
+  double goal_distance = 0.0;       ///< m from the robot (ground truth) to the taught route's end
   std::size_t map_index = 0;        ///< the current map
   double remaining = 0.0;           ///< m of the current path left
   /// An operator drives the robot (a takeover): neither lost nor stalled counts meanwhile.

@@ -119,7 +119,8 @@ struct PlaybackEpisode::State {
         end(config.limits, timeout_s),
         feed(observer, nav_stack),
         takeover(config.teach.teacher, rng.Split("operator")),
-        tap(sensor_tap) {
+        tap(sensor_tap),
+        goal(teach.X_WR.empty() ? std::nullopt : std::optional(teach.X_WR.back().translation())) {
     stepper.SetTap(tap);
   }
 
@@ -136,6 +137,7 @@ struct PlaybackEpisode::State {
   playback_parts::ObserverFeed feed;
   playback_parts::OperatorTakeover takeover;
   SensorTap* tap;
+  std::optional<core::Vec2> goal;  // the taught route's end, W (none: no teach trace)
   core::Twist command;
   double time = 0.0;
   bool sensed = false;
@@ -206,7 +208,8 @@ bool PlaybackEpisode::Act() {
   }
   s.outcome = s.end.Check({t, out.route_done && !s.takeover.driving(), out.last_map,
                            !s.stepper.collisions().empty(), Compare(out.X_MR, X_MR_truth).distance,
-                           out.map, out.remaining, s.takeover.driving()});
+                           s.goal ? (X_WR.translation() - *s.goal).norm() : 0.0, out.map,
+                           out.remaining, s.takeover.driving()});
   return s.outcome.has_value();
 }
 

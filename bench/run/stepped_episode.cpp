@@ -1,6 +1,7 @@
 #include "bench/run/stepped_episode.hpp"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "bench/engine/mode_list.hpp"
@@ -8,8 +9,10 @@
 #include "bench/engine/playback.hpp"
 #include "bench/engine/playback_episode.hpp"
 #include "bench/engine/sensor_tap.hpp"
+#include "bench/metrics/experiment.hpp"
+#include "core/check.hpp"
 #include "core/errors.hpp"
-#include "nav/route_graph.hpp"
+#include "core/path_projection.hpp"
 
 namespace retrace::bench {
 namespace {
@@ -44,7 +47,13 @@ void RequireFinite(const core::Pose2& p, const char* what) {
 class ObservingStack final : public NavigationStack {
  public:
   ObservingStack(std::unique_ptr<NavigationStack> builtin, const nav::TeachBundle& bundle)
-      : builtin_(std::move(builtin)), bundle_(bundle) {}
+      : builtin_(std::move(builtin)), bundle_(bundle) {
+    for (const nav::PartialMap& map : bundle.maps) {
+      PathLine& line = lines_.emplace_back();
+      for (const core::Pose2& p : map.path.poses()) line.points.push_back(p.translation());
+      line.arc = core::CumulativeArcLength(line.points);
+    }
+  }
 
   Observation observation;
   std::optional<StackAnswer> answer;
@@ -68,10 +77,22 @@ class ObservingStack final : public NavigationStack {
     out.lost = a.lost;
     out.route_done = a.route_done;
     out.last_map = a.map + 1 == bundle_.maps.size();
-    // Progress by the caller's own estimate, projected onto the taught path of its map.
-    const core::Path& path = bundle_.maps[a.map].path;
-    out.remaining = path.Length() - nav::Project(path, a.X_MR.translation()).s;
     if (a.map != map_) out.map_switch = nav::MapSwitch{map_, a.map, X_MR_, a.X_MR, 0.0};
+    // Progress (for the stall check) by the caller's own estimate along its map's taught path:
+    // from where it enters the map (the nearest point of the path), then forward only and within
+    // reach of the last, so that a path that passes a place twice does not count the second pass
+    // at the first.
+    const PathLine& line = lines_[a.map];
+    if (a.map != map_ || !entered_) {
+      progress_ = {};
+      const double inf = std::numeric_limits<double>::infinity();
+      progress_.MoveTo(
+          core::ProjectOntoPath(line.points, line.arc, a.X_MR.translation(), 0.0, inf).s);
+      entered_ = true;
+    }
+    const double s = progress_.Advance(line.points, line.arc, a.X_MR.translation(),
+                                       progress_.value() + kProgressReach);
+    out.remaining = line.arc.empty() ? 0.0 : line.arc.back() - s;
     map_ = a.map;
     X_MR_ = a.X_MR;
     return out;
@@ -85,47 +106,80 @@ class ObservingStack final : public NavigationStack {
   bool builtin() const { return builtin_ != nullptr; }
 
  private:
+  static constexpr double kProgressReach = 2.0;  // m ahead of the last progress
+  struct PathLine {
+    std::vector<core::Vec2> points;
+    std::vector<double> arc;
+  };
+
   std::unique_ptr<NavigationStack> builtin_;
   const nav::TeachBundle& bundle_;
+  std::vector<PathLine> lines_;
   core::Pose2 X_OR_;
   std::size_t map_ = 0;
   core::Pose2 X_MR_;
+  core::ForwardProgress progress_;
+  bool entered_ = false;
 };
 
+std::shared_ptr<const SteppedTeaching> TeachForStepping(const TeachingRequest& request,
+                                                        ProgressSink* progress) {
+  const std::vector<MapMode> modes = ParseModeList({request.mode}, "mode");
+  if (modes.size() != 1) throw core::ConfigError("mode", "one map mode, not 'all'");
+  auto teaching = std::make_shared<SteppedTeaching>();
+  teaching->scenario = LoadScenario(
+      request.scenario, CommandLineOverrides(request.overrides, request.seed, std::nullopt));
+  RecordingTap tap(&teaching->recording);
+  if (progress != nullptr) progress->Phase("teach", 1);
+  TeachResult taught = RunTeachDrive(teaching->scenario, modes, SimTimeReporter(progress), &tap);
+  if (progress != nullptr) progress->UnitDone();
+  teaching->teach = std::move(taught.modes.front());
+  teaching->duration_s = taught.duration_s;
+  return teaching;
+}
+
+AggregateMetrics AggregateSteppedRuns(const SteppedTeaching& teaching,
+                                      const std::vector<const RunTrace*>& runs) {
+  std::vector<RunTrace> traces;
+  std::vector<RunMetrics> metrics;
+  for (const RunTrace* run : runs) {
+    traces.push_back(*run);
+    metrics.push_back(
+        ComputeRunMetrics(teaching.teach.trace, *run, teaching.scenario.config.metrics));
+  }
+  return AggregateMode(teaching.scenario, teaching.teach, traces, metrics);
+}
+
 struct SteppedEpisode::State {
-  Scenario scenario;
-  ModeTeach teach;
-  TeachRecording recording;
+  std::shared_ptr<const SteppedTeaching> teaching;
+  int run = 0;
   std::unique_ptr<ObservingStack> stack;
   std::unique_ptr<PlaybackEpisode> episode;
   bool observed = false;
   std::optional<RunTrace> trace;
 };
 
-SteppedEpisode::SteppedEpisode(const EpisodeRequest& request) : state_(std::make_unique<State>()) {
+SteppedEpisode::SteppedEpisode(std::shared_ptr<const SteppedTeaching> teaching, int run,
+                               bool builtin)
+    : state_(std::make_unique<State>()) {
+  if (run < 0) throw core::ConfigError("run", "must be >= 0");
+  RETRACE_CHECK(teaching != nullptr);
   State& s = *state_;
-  if (request.run < 0) throw core::ConfigError("run", "must be >= 0");
-  const std::vector<MapMode> modes = ParseModeList({request.mode}, "mode");
-  if (modes.size() != 1) throw core::ConfigError("mode", "one map mode, not 'all'");
-  s.scenario = LoadScenario(request.scenario,
-                            CommandLineOverrides(request.overrides, request.seed, std::nullopt));
-  RecordingTap tap(&s.recording);
-  TeachResult taught = RunTeachDrive(s.scenario, modes, {}, &tap);
-  s.teach = std::move(taught.modes.front());
-  std::unique_ptr<NavigationStack> builtin;
-  if (request.builtin) builtin = MakeStack(s.scenario, s.teach.bundle, request.run);
-  s.stack = std::make_unique<ObservingStack>(std::move(builtin), s.teach.bundle);
-  s.episode =
-      std::make_unique<PlaybackEpisode>(s.scenario, s.teach.trace, request.run,
-                                        PlaybackTimeout(s.scenario, taught.duration_s), *s.stack);
+  s.teaching = std::move(teaching);
+  s.run = run;
+  const SteppedTeaching& t = *s.teaching;
+  std::unique_ptr<NavigationStack> stack;
+  if (builtin) stack = MakeStack(t.scenario, t.teach.bundle, run);
+  s.stack = std::make_unique<ObservingStack>(std::move(stack), t.teach.bundle);
+  s.episode = std::make_unique<PlaybackEpisode>(
+      t.scenario, t.teach.trace, run, PlaybackTimeout(t.scenario, t.duration_s), *s.stack);
 }
 
 SteppedEpisode::~SteppedEpisode() = default;
 
-const Scenario& SteppedEpisode::scenario() const { return state_->scenario; }
-const ModeTeach& SteppedEpisode::teach() const { return state_->teach; }
-const TeachRecording& SteppedEpisode::recording() const { return state_->recording; }
-std::size_t SteppedEpisode::maps() const { return state_->teach.bundle.maps.size(); }
+const SteppedTeaching& SteppedEpisode::teaching() const { return *state_->teaching; }
+int SteppedEpisode::run() const { return state_->run; }
+std::size_t SteppedEpisode::maps() const { return state_->teaching->teach.bundle.maps.size(); }
 bool SteppedEpisode::done() const { return state_->episode->done(); }
 
 const Observation& SteppedEpisode::Observe() {
@@ -167,7 +221,8 @@ const RunTrace& SteppedEpisode::trace() {
 }
 
 RunMetrics SteppedEpisode::Metrics() {
-  return ComputeRunMetrics(state_->teach.trace, trace(), state_->scenario.config.metrics);
+  const SteppedTeaching& t = *state_->teaching;
+  return ComputeRunMetrics(t.teach.trace, trace(), t.scenario.config.metrics);
 }
 
 }  // namespace retrace::bench

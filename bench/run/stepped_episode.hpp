@@ -1,10 +1,10 @@
 #pragma once
-// One playback run stepped by its caller (docs/PYTHON.md, "Your own stack in the loop"): the
-// scenario's teaching drive is run and recorded (scans, odometry, reference poses) so that the
-// caller can build its own maps; then each step hands out the sensor data since the last control
-// tick and takes the caller's command and estimate. The loop is the one `retrace run` drives
-// (bench/engine/playback_episode.hpp), so the run is measured exactly as `retrace run`'s; with
-// `builtin`, retrace's own stack (playback.stack) answers and the caller only watches.
+// Playback runs stepped by their caller (docs/PYTHON.md, "Your own stack in the loop"): the
+// scenario's teaching drive is run once and recorded (scans, odometry, reference poses) so that
+// the caller can build its own maps; then, in each run, each step hands out the sensor data since
+// the last control tick and takes the caller's command and estimate. The loop is the one `retrace
+// run` drives (bench/engine/playback_episode.hpp), so the run is measured exactly as `retrace
+// run`'s; with `builtin`, retrace's own stack (playback.stack) answers and the caller only watches.
 
 #include <cstddef>
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/engine/progress.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/engine/trace.hpp"
@@ -24,13 +25,12 @@
 
 namespace retrace::bench {
 
-struct EpisodeRequest {
+/// What to teach for stepped runs: the scenario, one map mode, the seed and overrides.
+struct TeachingRequest {
   std::filesystem::path scenario;
   std::string mode = "partial";        ///< the map mode whose maps and paths are taught
-  int run = 0;                         ///< playback run index (its seed: PlaybackRng)
   std::optional<std::uint64_t> seed;   ///< the scenario's seed unless given
   std::vector<std::string> overrides;  ///< a.b.c=value
-  bool builtin = false;                ///< retrace's own stack answers each step
 };
 
 /// An odometry reading: the wheel odometry's pose X_OR (its own frame O) at time t.
@@ -49,6 +49,25 @@ struct TeachRecording {
   std::vector<core::Pose2> X_WR;  ///< the reference at each odometry reading
 };
 
+/// A scenario taught once, for any number of stepped runs (each run's seed: PlaybackRng).
+struct SteppedTeaching {
+  Scenario scenario;
+  ModeTeach teach;
+  TeachRecording recording;
+  double duration_s = 0.0;  ///< the teaching drive's (sets the playback timeout)
+};
+
+/// Loads the scenario, runs and records the teaching drive, reporting to `progress` (may be
+/// null). Throws core::ConfigError / core::IoError like `retrace run`, core::WorldError when the
+/// route cannot be driven, core::Interrupted when `progress` is Cancelled().
+std::shared_ptr<const SteppedTeaching> TeachForStepping(const TeachingRequest& request,
+                                                        ProgressSink* progress = nullptr);
+
+/// The metrics of the runs of one teaching, as `retrace run` writes them in <mode>/metrics.json
+/// (the aggregate, with repeatability across the runs and the taught maps' quality).
+AggregateMetrics AggregateSteppedRuns(const SteppedTeaching& teaching,
+                                      const std::vector<const RunTrace*>& runs);
+
 /// What the sensors gave between two control ticks.
 struct Observation {
   double time = 0.0;  ///< s since the run started: the control tick's
@@ -59,8 +78,9 @@ struct Observation {
 /// The caller's answer at a control tick.
 struct StackAnswer {
   core::Twist command;
-  /// Its estimate in map `map`'s frame, the taught maps' (or the teaching drive's odometry
-  /// frame O for a stack without maps: map 0, whose frame is O).
+  /// Its estimate in map `map`'s frame, the taught maps' (map k starts at the teaching drive's
+  /// odometry pose where the drive began it, so that map 0 of a partial or single map is the
+  /// teaching drive's odometry frame: the frame of a stack without maps).
   core::Pose2 X_MR;
   std::size_t map = 0;
   bool lost = false;
@@ -69,16 +89,15 @@ struct StackAnswer {
 
 class SteppedEpisode {
  public:
-  /// Loads the scenario, runs and records the teaching drive. Throws core::ConfigError /
-  /// core::IoError like `retrace run`, core::WorldError when the route cannot be driven.
-  explicit SteppedEpisode(const EpisodeRequest& request);
+  /// Playback run `run` (>= 0) of `teaching`; with `builtin`, retrace's own stack
+  /// (playback.stack) answers each step and the caller only watches.
+  SteppedEpisode(std::shared_ptr<const SteppedTeaching> teaching, int run, bool builtin);
   ~SteppedEpisode();
   SteppedEpisode(const SteppedEpisode&) = delete;
   SteppedEpisode& operator=(const SteppedEpisode&) = delete;
 
-  const Scenario& scenario() const;
-  const ModeTeach& teach() const;
-  const TeachRecording& recording() const;
+  const SteppedTeaching& teaching() const;
+  int run() const;
   /// The number of maps of the taught route (the answer's map is below it).
   std::size_t maps() const;
 

@@ -9,13 +9,19 @@ Import it from a build tree with ``PYTHONPATH=<build>/python``.
 
 from ._retrace import (  # noqa: F401  (the extension: docs/PYTHON.md)
     ComparisonResult,
+    Episode,
     LogInfo,
     LogResult,
     ModeResult,
+    Observation,
     Progress,
+    Recording,
     RetraceWarning,
     RunResult,
+    Scan,
     SweepResult,
+    TaughtMap,
+    Teaching,
     __version__,
     compare,
     log_info,
@@ -53,5 +59,6 @@ __all__ = [
     "read_json", "read_tum", "read_path", "read_csv", "read_map",
     "RunResult", "ModeResult", "SweepResult", "ComparisonResult", "LogResult", "LogInfo",
     "Progress", "RetraceWarning",
+    "Teaching", "Episode", "Observation", "Recording", "TaughtMap", "Scan",
     "Results", "Mode", "Run", "Teach", "Map", "Localization", "Sweep", "Comparison",
 ]

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "bench/engine/playback.hpp"
@@ -15,17 +16,15 @@
 namespace retrace::bench {
 namespace {
 
-EpisodeRequest SmallRequest(bool builtin) {
-  EpisodeRequest r;
+TeachingRequest SmallRequest() {
+  TeachingRequest r;
   r.scenario = retrace::testing::kSource / "scenarios/small.yaml";
   r.mode = "partial";
-  r.run = 1;
-  r.builtin = builtin;
   return r;
 }
 
 TEST(SteppedEpisode, TheBuiltinStackSteppedByTheCallerGivesRunPlaybacksRunAndMetrics) {
-  SteppedEpisode episode(SmallRequest(true));
+  SteppedEpisode episode(TeachForStepping(SmallRequest()), 1, true);
   int steps = 0;
   std::size_t scans = 0;
   while (!episode.done()) {
@@ -33,8 +32,10 @@ TEST(SteppedEpisode, TheBuiltinStackSteppedByTheCallerGivesRunPlaybacksRunAndMet
     episode.Act(std::nullopt);
     ++steps;
   }
+  const SteppedTeaching& teaching = episode.teaching();
   const RunTrace reference =
-      RunPlayback(episode.scenario(), episode.teach().bundle, episode.teach().trace, 1, 1e9);
+      RunPlayback(teaching.scenario, teaching.teach.bundle, teaching.teach.trace, 1,
+                  PlaybackTimeout(teaching.scenario, teaching.duration_s));
   EXPECT_EQ(retrace::testing::TrajectoryHash(episode.trace()),
             retrace::testing::TrajectoryHash(reference));
   EXPECT_EQ(steps, static_cast<int>(reference.samples.size()));
@@ -42,20 +43,21 @@ TEST(SteppedEpisode, TheBuiltinStackSteppedByTheCallerGivesRunPlaybacksRunAndMet
   EXPECT_GT(scans, reference.updates.size());
   const RunMetrics a = episode.Metrics();
   const RunMetrics b =
-      ComputeRunMetrics(episode.teach().trace, reference, episode.scenario().config.metrics);
+      ComputeRunMetrics(teaching.teach.trace, reference, teaching.scenario.config.metrics);
   EXPECT_EQ(a.success, b.success);
   EXPECT_DOUBLE_EQ(a.tracking_error_m.rms, b.tracking_error_m.rms);
   EXPECT_DOUBLE_EQ(a.localization_error_m.rms, b.localization_error_m.rms);
   EXPECT_EQ(a.collisions.pedestrian_incidents, b.collisions.pedestrian_incidents);
   // The teaching drive's recording: scans, odometry and the reference at each odometry reading.
-  const TeachRecording& rec = episode.recording();
+  const TeachRecording& rec = teaching.recording;
   EXPECT_GT(rec.scans.size(), 100u);
   EXPECT_EQ(rec.odometry.size(), rec.X_WR.size());
   EXPECT_GT(rec.odometry.size(), rec.scans.size());
 }
 
 TEST(SteppedEpisode, MisuseIsRefusedWithOneMessage) {
-  SteppedEpisode episode(SmallRequest(false));
+  const std::shared_ptr<const SteppedTeaching> teaching = TeachForStepping(SmallRequest());
+  SteppedEpisode episode(teaching, 1, false);
   const auto key = [](const auto& call) {
     try {
       call();
@@ -78,9 +80,28 @@ TEST(SteppedEpisode, MisuseIsRefusedWithOneMessage) {
   StackAnswer forward;
   forward.command = {0.3, 0.0};
   EXPECT_FALSE(episode.Act(forward));
-  EpisodeRequest all = SmallRequest(false);
+  TeachingRequest all = SmallRequest();
   all.mode = "all";
-  EXPECT_EQ(key([&] { SteppedEpisode bad(all); }), "mode");
+  EXPECT_EQ(key([&] { TeachForStepping(all); }), "mode");
+  EXPECT_EQ(key([&] { SteppedEpisode bad(teaching, -1, false); }), "run");
+}
+
+TEST(SteppedEpisode, AStackThatClaimsTheGoalFarFromItIsLostNotSuccessful) {
+  // The small route ends where it starts: drive 2 m along it, then claim its end.
+  TeachingRequest request = SmallRequest();
+  request.overrides = {"limits.lost_distance=0.5"};
+  SteppedEpisode episode(TeachForStepping(request), 0, false);
+  StackAnswer answer;
+  answer.map = episode.maps() - 1;
+  answer.command = {0.4, 0.0};
+  while (episode.Observe().time < 5.0) ASSERT_FALSE(episode.Act(answer));
+  answer.route_done = true;
+  EXPECT_TRUE(episode.Act(answer));
+  const RunTrace& trace = episode.trace();
+  EXPECT_GT(
+      (trace.samples.back().X_WR.translation() - trace.samples.front().X_WR.translation()).norm(),
+      1.0);
+  EXPECT_EQ(trace.outcome, Outcome::kLost);
 }
 
 }  // namespace

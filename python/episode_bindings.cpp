@@ -1,0 +1,376 @@
+// retrace.Teaching and retrace.Episode: playback runs stepped from Python (docs/PYTHON.md, "Your
+// own stack in the loop"; bench/run/stepped_episode.hpp). The teaching drive's recording, each
+// step's sensor data and the taught maps come out as NumPy arrays that view retrace's memory
+// where it lives as long as the Python object holding it.
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bench/engine/mode_list.hpp"
+#include "bench/metrics/metrics_json.hpp"
+#include "bench/run/stepped_episode.hpp"
+#include "core/errors.hpp"
+#include "core/occupancy_grid.hpp"
+#include "io/ros_map.hpp"
+#include "python/arguments.hpp"
+#include "python/bindings.hpp"
+#include "python/interruptible.hpp"
+#include "python/json_to_python.hpp"
+#include "python/numpy_arrays.hpp"
+#include "python/pose_arrays.hpp"
+#include "python/scan_objects.hpp"
+
+namespace retrace::python {
+namespace py = pybind11;
+namespace {
+
+using bench::OdometryReading;
+
+// (N, 4) [t, x, y, yaw] of odometry readings.
+py::array_t<double> OdometryArray(const std::vector<OdometryReading>& readings) {
+  std::vector<double> values;
+  values.reserve(readings.size() * 4);
+  for (const OdometryReading& r : readings) {
+    values.insert(values.end(), {r.time, r.X_OR.x, r.X_OR.y, r.X_OR.theta});
+  }
+  return OwningArray(std::move(values), {static_cast<py::ssize_t>(readings.size()), 4});
+}
+
+py::array_t<double> PoseRows(const std::vector<core::Pose2>& poses) {
+  std::vector<double> values;
+  values.reserve(poses.size() * 3);
+  for (const core::Pose2& p : poses) values.insert(values.end(), {p.x, p.y, p.theta});
+  return OwningArray(std::move(values), {static_cast<py::ssize_t>(poses.size()), 3});
+}
+
+py::array_t<double> PoseVector(const core::Pose2& p) {
+  return OwningArray(std::vector<double>{p.x, p.y, p.theta}, {3});
+}
+
+/// The teaching drive as recorded: what a stack that builds its own maps is given.
+struct Recording {
+  py::list scans;
+  py::array_t<double> odometry;
+  py::array_t<double> reference;
+};
+
+/// One map retrace taught, in its own frame.
+struct TaughtMap {
+  int index = 0;
+  py::array_t<std::uint8_t> image;
+  py::array_t<double> log_odds;
+  double resolution = 0.0;
+  py::tuple origin;
+  py::array_t<double> path;
+  py::array_t<double> switch_pose;
+};
+
+// A cell as map_saver's trinary image classifies it with its default thresholds (the teach
+// folders' maps/ogm_<k>: io::RosMapWriteOptions): 0 occupied, 254 free, 205 unknown.
+std::uint8_t TrinaryPixel(float log_odds) {
+  const io::RosMapWriteOptions thresholds;
+  const double p = core::InverseLogit(log_odds);
+  if (p > thresholds.occupied_thresh) return 0;
+  return p < thresholds.free_thresh ? 254 : 205;
+}
+
+TaughtMap ToTaughtMap(int index, const nav::PartialMap& map) {
+  const core::OccupancyGrid& grid = map.grid;
+  std::vector<std::uint8_t> pixels;
+  std::vector<double> log_odds;
+  pixels.reserve(grid.log_odds().size());
+  log_odds.reserve(grid.log_odds().size());
+  for (const float l : grid.log_odds()) {
+    pixels.push_back(TrinaryPixel(l));
+    log_odds.push_back(l);
+  }
+  const std::vector<py::ssize_t> shape{grid.height(), grid.width()};
+  return {index,
+          OwningArray(std::move(pixels), shape),
+          OwningArray(std::move(log_odds), shape),
+          grid.resolution(),
+          py::make_tuple(grid.origin().x(), grid.origin().y()),
+          PathArray(map.path),
+          PoseVector(map.X_MS)};
+}
+
+/// retrace.Teaching: a scenario taught once, in one map mode.
+class Teaching {
+ public:
+  explicit Teaching(std::shared_ptr<const bench::SteppedTeaching> taught)
+      : taught_(std::move(taught)) {}
+
+  const bench::SteppedTeaching& taught() const { return *taught_; }
+  std::shared_ptr<const bench::SteppedTeaching> shared() const { return taught_; }
+
+  const py::list& maps() {
+    if (!maps_) {
+      maps_.emplace();
+      const auto& bundle = taught_->teach.bundle;
+      for (std::size_t k = 0; k < bundle.maps.size(); ++k) {
+        maps_->append(ToTaughtMap(static_cast<int>(k), bundle.maps[k]));
+      }
+    }
+    return *maps_;
+  }
+  const Recording& recording() {
+    if (!recording_) {
+      const bench::TeachRecording& r = taught_->recording;
+      recording_ = Recording{ScanList(r.scans), OdometryArray(r.odometry), PoseRows(r.X_WR)};
+    }
+    return *recording_;
+  }
+
+ private:
+  std::shared_ptr<const bench::SteppedTeaching> taught_;
+  std::optional<py::list> maps_;
+  std::optional<Recording> recording_;
+};
+
+/// What one step's observe() returns.
+struct Observation {
+  double time = 0.0;
+  py::array_t<double> odometry;
+  py::list scans;
+};
+
+/// retrace.Episode: one playback run of a Teaching.
+class Episode {
+ public:
+  Episode(const Teaching& teaching, int run, bool builtin)
+      : episode_(std::make_unique<bench::SteppedEpisode>(teaching.shared(), run, builtin)),
+        builtin_(builtin) {}
+
+  bench::SteppedEpisode& stepped() { return *episode_; }
+  bool builtin() const { return builtin_; }
+
+  Observation Observe() {
+    const bench::Observation& o = episode_->Observe();
+    return {o.time, OdometryArray(o.odometry), ScanList(o.scans)};
+  }
+
+  bool Act(double v, double omega, const py::object& estimate, int map, bool lost,
+           bool route_done) {
+    if (builtin_) {
+      if (!estimate.is_none() || v != 0.0 || omega != 0.0) {
+        throw core::ConfigError("answer", "the built-in stack answers this episode: act()");
+      }
+      return episode_->Act(std::nullopt);
+    }
+    if (map < 0) throw core::ConfigError("map", "must be >= 0");
+    bench::StackAnswer answer;
+    answer.command = {v, omega};
+    answer.X_MR = EstimateArgument(estimate);
+    answer.map = static_cast<std::size_t>(map);
+    answer.lost = lost;
+    answer.route_done = route_done;
+    return episode_->Act(answer);
+  }
+
+  py::dict Samples() {
+    const bench::RunTrace& trace = episode_->trace();
+    std::vector<double> time;
+    std::vector<double> map;
+    std::vector<core::Pose2> est;
+    std::vector<core::Pose2> truth;
+    std::vector<core::Pose2> odom;
+    std::vector<double> command;
+    for (const bench::PlaybackSample& s : trace.samples) {
+      time.push_back(s.time);
+      map.push_back(s.map_index);
+      est.push_back(s.X_MR);
+      truth.push_back(s.X_WR);
+      odom.push_back(s.X_OR);
+      command.insert(command.end(), {s.command.v, s.command.omega});
+    }
+    const auto n = static_cast<py::ssize_t>(time.size());
+    py::dict d;
+    d["time"] = OwningArray(std::move(time), {n});
+    d["map"] = OwningArray(std::move(map), {n});
+    d["est"] = PoseRows(est);
+    d["gt"] = PoseRows(truth);
+    d["odom"] = PoseRows(odom);
+    d["command"] = OwningArray(std::move(command), {n, 2});
+    return d;
+  }
+
+ private:
+  // (x, y, yaw): a sequence of three finite numbers.
+  static core::Pose2 EstimateArgument(const py::object& estimate) {
+    if (estimate.is_none()) {
+      throw core::ConfigError("estimate", "an estimate (x, y, yaw) in map `map`'s frame");
+    }
+    std::vector<double> values;
+    try {
+      values = estimate.cast<std::vector<double>>();
+    } catch (const py::cast_error&) {
+      throw py::type_error("estimate: (x, y, yaw), a sequence of three numbers");
+    }
+    if (values.size() != 3) {
+      throw core::ConfigError(
+          "estimate", "must be (x, y, yaw), not " + std::to_string(values.size()) + " numbers");
+    }
+    return {values[0], values[1], values[2]};
+  }
+
+  std::unique_ptr<bench::SteppedEpisode> episode_;
+  bool builtin_;
+};
+
+std::string TeachingRepr(const Teaching& t) {
+  const bench::SteppedTeaching& s = t.taught();
+  return "Teaching('" + s.scenario.config.name + "', mode='" +
+         std::string(core::EnumName(s.teach.mode)) + "', " +
+         std::to_string(s.teach.bundle.maps.size()) + " maps)";
+}
+
+void BindTeachingTypes(py::module_& m) {
+  py::class_<Recording>(m, "Recording",
+                        "The teaching drive as its sensors saw it, to build maps of one's own.")
+      .def_readonly("scans", &Recording::scans, "[Scan], in time order")
+      .def_readonly("odometry", &Recording::odometry,
+                    "(N, 4) [t, x, y, yaw]: each wheel odometry reading X_OR, in the drive's "
+                    "odometry frame O")
+      .def_readonly("reference", &Recording::reference,
+                    "(N, 3) [x, y, yaw]: the ground truth X_WR at each odometry reading");
+  py::class_<TaughtMap>(m, "TaughtMap", "One map retrace taught, in its own frame M.")
+      .def_readonly("index", &TaughtMap::index, "k: the map's place on the route")
+      .def_readonly("image", &TaughtMap::image,
+                    "(H, W) uint8: 0 occupied, 254 free, 205 unknown, row 0 the lowest y (as "
+                    "read_map)")
+      .def_readonly("log_odds", &TaughtMap::log_odds, "(H, W) float64: each cell's log-odds")
+      .def_readonly("resolution", &TaughtMap::resolution, "m per cell")
+      .def_readonly("origin", &TaughtMap::origin, "(x, y) of the lower-left corner, m")
+      .def_property_readonly(
+          "extent",
+          [](const TaughtMap& t) {
+            const auto x = t.origin[0].cast<double>();
+            const auto y = t.origin[1].cast<double>();
+            return py::make_tuple(x, x + static_cast<double>(t.image.shape(1)) * t.resolution, y,
+                                  y + static_cast<double>(t.image.shape(0)) * t.resolution);
+          },
+          "(left, right, bottom, top) in m, for matplotlib's imshow")
+      .def_readonly("path", &TaughtMap::path, "(N, 3) [x, y, yaw]: the taught path in M")
+      .def_readonly("switch_pose", &TaughtMap::switch_pose,
+                    "(3,) X_MS: where the next map starts, in M (eq. 1: X_{M'R} = X_MS^-1 X_MR)");
+}
+
+void BindEpisodeTypes(py::module_& m) {
+  py::class_<Observation>(m, "Observation", "What the sensors gave since the last step.")
+      .def_readonly("time", &Observation::time, "s since the run started: the control tick's")
+      .def_readonly("odometry", &Observation::odometry,
+                    "(K, 4) [t, x, y, yaw]: each odometry reading X_OR since the last step, in "
+                    "this run's odometry frame (the identity where the run started)")
+      .def_readonly("scans", &Observation::scans, "[Scan] since the last step (often one or none)");
+  py::class_<Episode>(m, "Episode", "One playback run, stepped: observe(), act(), until done.")
+      .def_property_readonly(
+          "run", [](Episode& e) { return e.stepped().run(); }, "the run's index (its seed)")
+      .def_property_readonly(
+          "maps", [](Episode& e) { return e.stepped().maps(); }, "the route's number of maps")
+      .def_property_readonly(
+          "done", [](Episode& e) { return e.stepped().done(); }, "the run has ended")
+      .def("observe", &Episode::Observe,
+           "Steps the world to the next control tick (1 / nav.control_rate_hz s); returns the "
+           "Observation on the way. Raises ValueError when the run is done or the last "
+           "observation was not answered.")
+      .def("act", &Episode::Act, py::arg("v") = 0.0, py::arg("omega") = 0.0, py::kw_only(),
+           py::arg("estimate") = py::none(), py::arg("map") = 0, py::arg("lost") = false,
+           py::arg("route_done") = false,
+           "Answers the last observation: the command (v m/s, omega rad/s), the estimate (x, y, "
+           "yaw) in map `map`'s frame (scored against the truth there), whether the stack deems "
+           "itself lost, and whether it believes it reached the route's end (on the last map: "
+           "the run ends, a success when the robot is within limits.lost_distance of the end). "
+           "A built-in episode takes act() with no arguments. Returns done.")
+      .def(
+          "metrics", [](Episode& e) { return JsonToPython(bench::ToJson(e.stepped().Metrics())); },
+          "The run's metrics once done, as an entry of <mode>/metrics.json's runs.")
+      .def("samples", &Episode::Samples,
+           "The run's control ticks once done: {'time' (N,), 'map' (N,), 'est', 'gt', 'odom' "
+           "(N, 3) [x, y, yaw], 'command' (N, 2) [v, omega]}.")
+      .def("__repr__", [](Episode& e) {
+        return "Episode(run=" + std::to_string(e.stepped().run()) +
+               (e.builtin() ? ", builtin" : "") + (e.stepped().done() ? ", done)" : ")");
+      });
+}
+
+py::object Aggregate(const Teaching& t, const std::vector<Episode*>& episodes) {
+  std::vector<const bench::RunTrace*> runs;
+  for (Episode* e : episodes) {
+    if (&e->stepped().teaching() != &t.taught()) {
+      throw core::ConfigError("episodes", "an episode of another Teaching");
+    }
+    runs.push_back(&e->stepped().trace());
+  }
+  return JsonToPython(bench::ToJson(bench::AggregateSteppedRuns(t.taught(), runs)));
+}
+
+void BindTeaching(py::module_& m) {
+  py::class_<Teaching>(m, "Teaching",
+                       "A scenario's route taught once in one map mode, for stepped runs.")
+      .def(py::init([](const std::filesystem::path& scenario, const std::string& mode,
+                       const py::object& seed, const py::object& set, const py::object& progress) {
+             bench::TeachingRequest request;
+             request.scenario = scenario;
+             request.mode = mode;
+             request.seed = Seed(seed);
+             request.overrides = Overrides(set);
+             PythonProgress sink(progress);
+             return Teaching(CallInterruptibly(sink, CreatedFolders({}), [&] {
+               return bench::TeachForStepping(request, &sink);
+             }));
+           }),
+           py::arg("scenario"), py::kw_only(), py::arg("mode") = "partial",
+           py::arg("seed") = py::none(), py::arg("set") = py::none(),
+           py::arg("progress") = py::none(),
+           "Loads the scenario and drives its route once, recording it and teaching the maps of "
+           "`mode` (one of partial, scan_matched, single, consistent). set: overrides as for "
+           "retrace.run.")
+      .def_property_readonly(
+          "mode", [](const Teaching& t) { return core::EnumName(t.taught().teach.mode); },
+          "the map mode")
+      .def_property_readonly(
+          "seed", [](const Teaching& t) { return t.taught().scenario.config.seed; },
+          "the scenario's seed")
+      .def_property_readonly("maps", &Teaching::maps, "[TaughtMap], in route order")
+      .def_property_readonly("recording", &Teaching::recording, "the teaching drive: Recording")
+      .def_property_readonly(
+          "lidar_mount",
+          [](const Teaching& t) { return PoseVector(t.taught().scenario.robot.X_RL); },
+          "(3,) X_RL: the LiDAR frame in the robot frame (scans are in L)")
+      .def_property_readonly(
+          "robot_radius", [](const Teaching& t) { return t.taught().scenario.robot.radius; }, "m")
+      .def_property_readonly(
+          "control_rate_hz",
+          [](const Teaching& t) { return t.taught().scenario.config.nav.control_rate_hz; },
+          "steps per simulated second")
+      .def(
+          "episode",
+          [](const Teaching& t, int run, bool builtin) { return Episode(t, run, builtin); },
+          py::arg("run") = 0, py::kw_only(), py::arg("builtin") = false,
+          "Playback run `run` (its seed as `retrace run`'s run of that index). builtin: "
+          "retrace's own stack (playback.stack) answers and act() takes no arguments.")
+      .def("aggregate", &Aggregate, py::arg("episodes"),
+           "The metrics over these finished episodes, as <mode>/metrics.json's aggregate "
+           "(success rate, repeatability across them, the taught maps' quality).")
+      .def("__repr__", &TeachingRepr);
+}
+
+}  // namespace
+
+void BindEpisodes(py::module_& m) {
+  BindScan(m);
+  BindTeachingTypes(m);
+  BindEpisodeTypes(m);
+  BindTeaching(m);
+}
+
+}  // namespace retrace::python
