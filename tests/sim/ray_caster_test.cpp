@@ -17,7 +17,7 @@ using retrace::testing::kInf;
 
 Vec2 Dir(double angle) { return {std::cos(angle), std::sin(angle)}; }
 
-std::vector<Vec2> Box(double x0, double y0, double x1, double y1) {
+std::vector<Vec2> CornerBox(double x0, double y0, double x1, double y1) {
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
 }
 
@@ -31,7 +31,7 @@ double BruteForceCast(const StaticGeometry& g, const Vec2& o, const Vec2& d, dou
 
 TEST(RayCaster, HitsBoxWallsAtAnalyticDistances) {
   StaticGeometry g;
-  g.AddPolygon(Box(-2.0, -1.0, 3.0, 4.0));
+  g.AddPolygon(CornerBox(-2.0, -1.0, 3.0, 4.0));
   const RayCaster caster(g);
   const Vec2 o(0.0, 0.0);
   EXPECT_EQ(caster.Cast(o, Dir(0.0), 100.0), 3.0);
@@ -104,7 +104,7 @@ TEST(RayCaster, HitsRegularPolygonFromItsCentre) {
 
 TEST(RayCaster, ReturnsInfinityWithoutHitWithinMaxRange) {
   StaticGeometry g;
-  g.AddPolygon(Box(10.0, -1.0, 11.0, 1.0));
+  g.AddPolygon(CornerBox(10.0, -1.0, 11.0, 1.0));
   const RayCaster caster(g);
   EXPECT_EQ(caster.Cast({0.0, 0.0}, {0.0, 1.0}, 100.0), kInf);  // open space
   EXPECT_EQ(caster.Cast({0.0, 0.0}, {1.0, 0.0}, 9.5), kInf);    // beyond max range
@@ -119,7 +119,7 @@ TEST(RayCaster, ReturnsInfinityWithoutHitWithinMaxRange) {
 
 TEST(RayCaster, ScalesHitParameterWithDirectionLength) {
   StaticGeometry g;
-  g.AddPolygon(Box(-1.0, -1.0, 4.0, 1.0));
+  g.AddPolygon(CornerBox(-1.0, -1.0, 4.0, 1.0));
   g.AddCircle({{-6.0, 0.0}, 1.0});
   const RayCaster caster(g);
   EXPECT_EQ(caster.Cast({0.0, 0.0}, {2.0, 0.0}, 10.0), 2.0);
@@ -128,7 +128,7 @@ TEST(RayCaster, ScalesHitParameterWithDirectionLength) {
 
 TEST(RayCaster, FindsGeometryFromOriginsOutsideItsBounds) {
   StaticGeometry g;
-  g.AddPolygon(Box(0.0, 0.0, 1.0, 1.0));
+  g.AddPolygon(CornerBox(0.0, 0.0, 1.0, 1.0));
   const RayCaster caster(g);
   EXPECT_EQ(caster.Cast({-100.0, 0.5}, {1.0, 0.0}, kInf), 100.0);
   EXPECT_NEAR(caster.Cast({-5.0, -5.0}, Vec2(1.0, 1.0).normalized(), kInf), 5.0 * std::sqrt(2.0),
@@ -142,7 +142,7 @@ StaticGeometry RandomWorld(std::uint64_t seed) {
   StaticGeometry g;
   for (int i = 0; i < 60; ++i) {
     const double x = rng.Uniform(0.0, 50.0), y = rng.Uniform(0.0, 50.0);
-    g.AddPolygon(Box(x, y, x + rng.Uniform(0.1, 6.0), y + rng.Uniform(0.1, 6.0)));
+    g.AddPolygon(CornerBox(x, y, x + rng.Uniform(0.1, 6.0), y + rng.Uniform(0.1, 6.0)));
   }
   for (int i = 0; i < 40; ++i) {
     const Vec2 c(rng.Uniform(0.0, 50.0), rng.Uniform(0.0, 50.0));
