@@ -113,6 +113,7 @@ void AugmentedMclConfig::Validate() const {
   core::RequireGreater("alpha_fast", alpha_fast, "alpha_slow", alpha_slow);
   core::RequireInRange("trigger_ratio", trigger_ratio, 0.0, 1.0);
   core::RequirePositive("path_reach", path_reach);
+  core::RequireNonNegative("reach_per_metre", reach_per_metre);
   core::RequireIntInRange("hypotheses", hypotheses, 1, 1'000'000);
   core::RequireInRange("near_fraction", near_fraction, 0.0, 1.0);
   core::RequireNonNegative("near_sigma_xy", near_sigma_xy);
@@ -203,7 +204,7 @@ void Localizer::Restart(const core::Pose2& X_MR) {
   ResetAverages();
   trial_.Stop();
   lost_ = false;
-  failed_trials_ = 0;
+  lost_distance_ = 0.0;
   estimate_ = anchor_ = X_MR;
   estimate_stale_ = false;
   challenger_updates_ = 0;
@@ -351,6 +352,7 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   out.beams_tested = static_cast<int>(tested.size());
   Estimate();  // as of the prediction, before the weights change: recovery draws around it
   force_update_ = false;
+  const double driven = std::hypot(odometry_since_update_.x, odometry_since_update_.y);
   odometry_since_update_ = core::Pose2::Identity();
 
   const std::size_t n = particles_.size();
@@ -377,6 +379,7 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
 
   // Lost while the short-term average likelihood is far below the long-term one; recovery.
   UpdateAverages(w_avg, !xs.empty(), &out);
+  lost_distance_ = lost_ ? lost_distance_ + driven : 0.0;
   if (config_.augmented.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
   if (trial_.running() && out.trial_updates == 0) {  // also while no beam is kept to weigh it
     out.trial_updates = trial_.updates();
@@ -409,14 +412,12 @@ void Localizer::RunRecovery(std::span<const double> xs, std::span<const double> 
       w_fast_ = w_slow_;
       lost_ = false;
       out->reacquired = true;
-      failed_trials_ = 0;
+      lost_distance_ = 0.0;
     } else if (trial_.weighed() >= aug.max_updates || !lost_) {
       trial_.Stop();
-      failed_trials_ = lost_ ? failed_trials_ + 1 : 0;
     }
     return;
   }
-  if (!lost_) failed_trials_ = 0;
   if (lost_) trial_.Start(RecoveryHypotheses());
 }
 
@@ -443,9 +444,8 @@ void Localizer::FollowCluster(bool jump) {
   } else {
     // Another cluster outweighs the one followed: follow it only once it has stayed the main
     // cluster, at the same place, for confirm_updates updates.
-    challenger_updates_ = challenger_updates_ > 0 && near(challenger_, main->X_MR)
-                              ? challenger_updates_ + 1
-                              : 1;
+    challenger_updates_ =
+        challenger_updates_ > 0 && near(challenger_, main->X_MR) ? challenger_updates_ + 1 : 1;
     challenger_ = main->X_MR;
     if (challenger_updates_ >= config_.augmented.confirm_updates) {
       anchor_ = main->X_MR;
@@ -522,10 +522,10 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
     return core::Pose2(X.x + sigma_xy * rng_.Normal(), X.y + sigma_xy * rng_.Normal(),
                        X.theta + sigma_theta * rng_.Normal());
   };
-  // The taught poses within path_reach of the estimate; all of them when none is.
+  // The taught poses within reach of the estimate; all of them when none is. The reach widens
+  // with the distance driven while lost, by which the belief can have drifted meanwhile.
   const core::Pose2 estimate = Estimate();
-  // Widening while lost: each trial that ended without winning adds path_reach.
-  const double reach = aug.path_reach * (1.0 + failed_trials_);
+  const double reach = aug.path_reach + aug.reach_per_metre * lost_distance_;
   std::vector<std::size_t> reachable;
   for (std::size_t i = 0; i < recovery_poses_.size(); ++i) {
     if (core::Distance(recovery_poses_[i], estimate) <= reach) reachable.push_back(i);

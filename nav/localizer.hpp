@@ -61,16 +61,17 @@ struct DynamicRejectionConfig {
 /// hypotheses beside the belief: near_fraction of them around the estimate (Gaussian), the rest
 /// around the taught poses within reach of the current map (Localizer::SetRecoveryPoses: the map
 /// server's route graph gives them; uniformly over the map's free cells when none are given),
-/// those within path_reach of the estimate, a reach that widens by path_reach with every trial
-/// that ends without winning while the localizer stays lost. The trial replaces the belief only
-/// on evidence a wrong place cannot collect, and only while the belief is lost (a trial ends
-/// when the belief is found again): it has explained at least confirm_updates scans of at least
-/// min_beams kept beams each, weighed on the same beams as the belief and moved by the same
-/// odometry; its summed log evidence beats the belief's by margin + jump_cost × the distance it
-/// would move the estimate (a prior against far places: a wrong place far away, in a map that
-/// distorts distant parts alike, can fit a few scans well); and at least min_cluster_share of its
-/// weight agrees on one place.
-/// After max_updates it ends. No random particle ever enters the belief directly.
+/// those within a reach of the estimate: path_reach, widened by reach_per_metre for every metre
+/// the odometry has driven since the localizer became lost (how far the belief can have drifted
+/// from the truth meanwhile; a robot that stands lost keeps its reach, however many trials fail).
+/// The trial replaces the belief only on evidence a wrong place cannot collect, and only while the
+/// belief is lost (a trial ends when the belief is found again): it has explained at least
+/// confirm_updates scans of at least min_beams kept beams each, weighed on the same beams as the
+/// belief and moved by the same odometry; its summed log evidence beats the belief's by margin +
+/// jump_cost × the distance it would move the estimate (a prior against far places: a wrong place
+/// far away, in a map that distorts distant parts alike, can fit a few scans well); and at least
+/// min_cluster_share of its weight agrees on one place. After max_updates it ends. No random
+/// particle ever enters the belief directly.
 ///
 /// The average likelihood of an update is the expectation over the belief (prior weights) of
 /// the per-beam geometric mean exp(Σ_i log p_i / n) (1/m): with about a hundred beams the plain
@@ -91,13 +92,14 @@ struct AugmentedMclConfig {
   double path_sigma_theta = 0.3;  ///< rad, around the taught heading
   /// m: only the taught poses this close to the estimate (the whole path when none is)
   double path_reach = 10.0;
-  int confirm_updates = 5;        ///< scans a trial must explain before it may win
-  int min_beams = 6;              ///< kept beams a scan needs to count as explained
-  int max_updates = 25;           ///< scans weighed after which a trial that has not won ends
-  double margin = 30.0;           ///< nats by which a trial's evidence must beat the belief's
+  double reach_per_metre = 0.1;    ///< m of reach more per metre driven while lost
+  int confirm_updates = 5;         ///< scans a trial must explain before it may win
+  int min_beams = 6;               ///< kept beams a scan needs to count as explained
+  int max_updates = 25;            ///< scans weighed after which a trial that has not won ends
+  double margin = 30.0;            ///< nats by which a trial's evidence must beat the belief's
   double min_cluster_share = 0.7;  ///< of the trial's weight in its main cluster, to win
-  double jump_cost = 4.0;  ///< nats of evidence more per metre the estimate would move
-  double free_threshold = 0.25;   ///< a cell is free when its probability <= this
+  double jump_cost = 4.0;          ///< nats of evidence more per metre the estimate would move
+  double free_threshold = 0.25;    ///< a cell is free when its probability <= this
 
   template <class V>
   void Reflect(V& v) {
@@ -112,6 +114,7 @@ struct AugmentedMclConfig {
     v("path_sigma_xy", path_sigma_xy);
     v("path_sigma_theta", path_sigma_theta);
     v("path_reach", path_reach);
+    v("reach_per_metre", reach_per_metre);
     v("confirm_updates", confirm_updates);
     v("min_beams", min_beams);
     v("max_updates", max_updates);
@@ -213,11 +216,11 @@ struct LocalizerUpdate {
   double w_avg = 0.0;  ///< average per-beam likelihood of this update (1/m)
   double w_slow = 0.0;
   double w_fast = 0.0;
-  bool lost = false;        ///< after this update: w_fast < trigger_ratio · w_slow
-  int trial_updates = 0;    ///< scans the running recovery trial has explained (0: none runs)
+  bool lost = false;      ///< after this update: w_fast < trigger_ratio · w_slow
+  int trial_updates = 0;  ///< scans the running recovery trial has explained (0: none runs)
   double trial_log_bayes_factor = 0.0;  ///< its evidence against the belief's (nats)
-  bool reacquired = false;  ///< the trial won: it replaced the belief in this update
-  int particles = 0;        ///< particle count after the update
+  bool reacquired = false;              ///< the trial won: it replaced the belief in this update
+  int particles = 0;                    ///< particle count after the update
 };
 
 /// Monte Carlo localization with dynamic scan point rejection and teach-and-repeat recovery in a
@@ -294,8 +297,8 @@ class Localizer {
   void KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
                      const std::vector<std::uint8_t>& dynamic, LocalizerUpdate* out,
                      std::vector<double>* xs, std::vector<double>* ys) const;
-  void RunRecovery(std::span<const double> xs, std::span<const double> ys,
-                   double belief_evidence, LocalizerUpdate* out);
+  void RunRecovery(std::span<const double> xs, std::span<const double> ys, double belief_evidence,
+                   LocalizerUpdate* out);
   // The running trial has the evidence to replace the belief (AugmentedMclConfig).
   bool TrialWins() const;
   void FollowCluster(bool jump);
@@ -324,7 +327,7 @@ class Localizer {
   core::Pose2 anchor_;
   core::Pose2 challenger_;
   int challenger_updates_ = 0;
-  int failed_trials_ = 0;  // trials ended without winning since the localizer became lost
+  double lost_distance_ = 0.0;  // m the odometry drove since the localizer became lost
 };
 
 }  // namespace retrace::nav

@@ -213,6 +213,9 @@ TEST(Localizer, ConfigErrorsNameTheKey) {
             "likelihood_field.sigma_hit");
   EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.augmented.alpha_fast = 1e-5; }),
             "augmented.alpha_fast");
+  EXPECT_EQ(
+      ValidationErrorKey<LocalizerConfig>([](auto& c) { c.augmented.reach_per_metre = -0.1; }),
+      "augmented.reach_per_metre");
   EXPECT_EQ(ValidationErrorKey<LocalizerConfig>([](auto& c) { c.kld.max_particles = 10; }),
             "kld.max_particles");
   LocalizerConfig bad;
