@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "core/format.hpp"
@@ -54,8 +57,8 @@ void WriteFigure(const CrowdCheck& check, const std::filesystem::path& png) {
     rms += (rms.empty() ? "" : ", ") + std::string(core::EnumName(result.flow)) + " " +
            Fixed(result.rms_deviation, 3);
   }
-  fig.subtitle = "Ring " + Fixed(check.config.width, 1) + " m wide, r = " +
-                 Fixed(check.config.pedestrian_radius, 2) + " m, model " +
+  fig.subtitle = "Ring " + Fixed(check.config.width, 1) +
+                 " m wide, r = " + Fixed(check.config.pedestrian_radius, 2) + " m, model " +
                  std::string(core::EnumName(check.config.crowd.model)) + "; RMS " + rms + " m/s";
   viz::FigureOptions options;
   options.width = 1000;
@@ -175,10 +178,9 @@ std::string Table(const FundamentalDiagramResult& result) {
   return out;
 }
 
-}  // namespace
-
-std::vector<double> ParseDensityList(const std::string& text) {
-  std::vector<double> out;
+// The items of a comma-separated list, each without surrounding spaces ("" gives one empty item).
+std::vector<std::string> CommaSeparated(const std::string& text) {
+  std::vector<std::string> out;
   std::size_t start = 0;
   while (start <= text.size()) {
     std::size_t end = text.find(',', start);
@@ -186,13 +188,23 @@ std::vector<double> ParseDensityList(const std::string& text) {
     std::string item = text.substr(start, end - start);
     while (!item.empty() && item.front() == ' ') item.erase(item.begin());
     while (!item.empty() && item.back() == ' ') item.pop_back();
+    out.push_back(std::move(item));
+    start = end + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> ParseDensityList(const std::string& text) {
+  std::vector<double> out;
+  for (const std::string& item : CommaSeparated(text)) {
     double v = 0.0;
     const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
     if (item.empty() || ec != std::errc() || ptr != item.data() + item.size()) {
       throw core::ConfigError("densities", "'" + item + "' is not a number (persons/m²)");
     }
     out.push_back(v);
-    start = end + 1;
   }
   ValidateDensities(out);
   return out;
@@ -200,13 +212,7 @@ std::vector<double> ParseDensityList(const std::string& text) {
 
 std::vector<CrowdFlow> ParseFlowList(const std::string& text) {
   std::vector<CrowdFlow> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    std::size_t end = text.find(',', start);
-    if (end == std::string::npos) end = text.size();
-    std::string item = text.substr(start, end - start);
-    while (!item.empty() && item.front() == ' ') item.erase(item.begin());
-    while (!item.empty() && item.back() == ' ') item.pop_back();
+  for (const std::string& item : CommaSeparated(text)) {
     const std::optional<CrowdFlow> flow = core::ParseEnum<CrowdFlow>(item);
     if (!flow) {
       throw core::ConfigError(
@@ -216,7 +222,6 @@ std::vector<CrowdFlow> ParseFlowList(const std::string& text) {
       throw core::ConfigError("flows", "'" + item + "' is given twice");
     }
     out.push_back(*flow);
-    start = end + 1;
   }
   return out;
 }
