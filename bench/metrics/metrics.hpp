@@ -223,6 +223,17 @@ struct CrowdReaction {
   int standing = 0;          ///< stood still by design (pedestrian mode `stand`): not a reaction
   double wait_time_s = 0.0;  ///< total time the walkers stood during encounters
   double max_wait_s = 0.0;   ///< the longest one walker's encounter stood
+
+  /// Pools another run's reactions into these: counts and waits summed, the longest kept.
+  void Add(const CrowdReaction& o) {
+    encounters += o.encounters;
+    passed += o.passed;
+    yielded += o.yielded;
+    blocked += o.blocked;
+    standing += o.standing;
+    wait_time_s += o.wait_time_s;
+    max_wait_s = max_wait_s > o.max_wait_s ? max_wait_s : o.max_wait_s;
+  }
 };
 
 /// The social metrics of the people of one behaviour toward the robot (definitions above).

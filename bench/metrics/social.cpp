@@ -191,13 +191,7 @@ SocialStats AggregateSocial(const std::vector<RunMetrics>& runs) {
       ++successes;
     }
     jerks.push_back(&s.jerk_m_s3);
-    a.crowd.encounters += s.crowd.encounters;
-    a.crowd.passed += s.crowd.passed;
-    a.crowd.yielded += s.crowd.yielded;
-    a.crowd.blocked += s.crowd.blocked;
-    a.crowd.standing += s.crowd.standing;
-    a.crowd.wait_time_s += s.crowd.wait_time_s;
-    a.crowd.max_wait_s = std::max(a.crowd.max_wait_s, s.crowd.max_wait_s);
+    a.crowd.Add(s.crowd);
     AddBehaviours(s, static_cast<double>(runs.size()), &a);
   }
   if (successes > 0) {

@@ -79,13 +79,7 @@ void AddBehaviours(const SocialStats& run, double runs, SocialStats* a) {
     s.min_gap_m = MinSkipNaN(s.min_gap_m, r.min_gap_m);
     s.intimate_time_s += r.intimate_time_s / runs;
     s.personal_time_s += r.personal_time_s / runs;
-    s.crowd.encounters += r.crowd.encounters;
-    s.crowd.passed += r.crowd.passed;
-    s.crowd.yielded += r.crowd.yielded;
-    s.crowd.blocked += r.crowd.blocked;
-    s.crowd.standing += r.crowd.standing;
-    s.crowd.wait_time_s += r.crowd.wait_time_s;
-    s.crowd.max_wait_s = std::max(s.crowd.max_wait_s, r.crowd.max_wait_s);
+    s.crowd.Add(r.crowd);
     s.runs_stopped += r.runs_stopped;
   }
 }
