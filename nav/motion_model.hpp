@@ -23,17 +23,18 @@ namespace retrace::nav {
 /// The lateral term is not in the odometry error model (wheels do not slip sideways in the
 /// simulator): it lets the cloud explore sideways, where heading noise alone moves particles
 /// only by δtrans·σ_rot per step, so that a lateral offset is corrected within a few updates
-/// instead of a few hundred metres. Defaults are several
-/// times the simulated odometry's (2e-4, 1e-5, 1e-3, 1e-4) so that the particles also cover
-/// its systematic errors the filter does not model (1 % scale, 2.5e-4 wheel mismatch): per
-/// 0.2 m between updates, a distance std of 2.8 cm (the scale error: 2 mm) and a heading std of
-/// 0.26° (the mismatch: 0.006°).
+/// instead of a few hundred metres. Defaults are several times the simulated odometry's (2e-4,
+/// 1e-5, 1e-3, 1e-4) so that the particles also cover its systematic errors the filter does not
+/// model (1 % scale, 2.5e-4 wheel mismatch): per 0.2 m between updates, a distance std of
+/// 2.4 cm (the scale error: 2 mm) and a heading std of 0.21° (the mismatch: 0.006°). They are
+/// 0.7 times the earlier ones, from a sweep on real scans (docs/RESULTS.md, issue 40): a wider
+/// cloud drifts farther where most beams are rejected and locks onto the wrong place after.
 struct MotionModelConfig {
-  double alpha1 = 2e-3;  ///< rad²/rad: heading noise from rotation
-  double alpha2 = 1e-4;  ///< rad²/m: heading noise from translation
-  double alpha3 = 4e-3;  ///< m²/m: distance noise from translation
-  double alpha4 = 1e-3;  ///< m²/rad: distance noise from rotation
-  double alpha_lateral = 1e-3;  ///< m²/m: sideways noise from translation
+  double alpha1 = 1.4e-3;       ///< rad²/rad: heading noise from rotation
+  double alpha2 = 7e-5;         ///< rad²/m: heading noise from translation
+  double alpha3 = 2.8e-3;       ///< m²/m: distance noise from translation
+  double alpha4 = 7e-4;         ///< m²/rad: distance noise from rotation
+  double alpha_lateral = 7e-4;  ///< m²/m: sideways noise from translation
 
   template <class V>
   void Reflect(V& v) {
