@@ -159,7 +159,11 @@ TEST(DynamicBounds, TheMaskIsTheSameAsWithEveryRatioComputed) {
       }
       std::vector<int> beams(scan.size());
       for (std::size_t i = 0; i < beams.size(); ++i) beams[i] = static_cast<int>(i);
-      for (const RayCastMethod method : {RayCastMethod::kSphereTracing, RayCastMethod::kDda}) {
+      // The reference casts give the same ranges bit for bit (GridRayCaster's tests), so they
+      // run on the first map only: the slow leg under the sanitizers.
+      std::vector<RayCastMethod> methods = {RayCastMethod::kSphereTracing};
+      if (seed == 0) methods.push_back(RayCastMethod::kDda);
+      for (const RayCastMethod method : methods) {
         // Every ratio computed once; the mask for a χ is the ratios above it (as the test
         // decides a beam whose ratio it computes).
         DynamicBeamResult all, bounded;

@@ -1,4 +1,5 @@
-// The simulated teacher drives the whole office loop (integration: a 150 m drive per seed).
+// The simulated teacher drives the whole office loop (system tier: a 150 m drive per seed, 18 s
+// under the sanitizers).
 
 #include <gtest/gtest.h>
 
