@@ -62,8 +62,8 @@ TEST(LocalizerHealth, ErrorIncreaseIsMeasuredInOneAlignment) {
   const core::Pose2 off(0.0, 1.0, 0.0);
   EXPECT_NEAR(ErrorIncrease(truth0 * off, truth1 * off, W0, W1, truth1), 0.0, 1e-12);
   // The estimate jumps 3 m further away: a 3 m increase.
-  EXPECT_NEAR(ErrorIncrease(truth0 * off, truth1 * core::Pose2(0.0, 4.0, 0.0), W0, W1, truth1), 3.0,
-              1e-12);
+  EXPECT_NEAR(ErrorIncrease(truth0 * off, truth1 * core::Pose2(0.0, 4.0, 0.0), W0, W1, truth1),
+              3.0, 1e-12);
 }
 
 TEST(LocalizerHealth, ClassifiesReacquisitionsByTheErrorIncreaseThatShowsThem) {

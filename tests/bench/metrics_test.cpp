@@ -564,10 +564,10 @@ struct TwoRuns {
 TEST(Metrics, RunJsonHasTheDocumentedKeysAndNullForNaN) {
   const TwoRuns two;
   const nlohmann::json r = ToJson(two.metrics[0]);
-  ExpectKeys(
-      r, {"run", "seed", "outcome", "success", "samples", "time_s", "path_length_m", "progress_m",
-          "tracking_error_m", "localization_error_m", "localization_error_rad", "lost_fraction",
-          "localizer", "collisions", "switch_error", "dynamic_points", "social", "cpu"});
+  ExpectKeys(r, {"run", "seed", "outcome", "success", "samples", "time_s", "path_length_m",
+                 "progress_m", "tracking_error_m", "localization_error_m", "localization_error_rad",
+                 "lost_fraction", "localizer", "collisions", "switch_error", "dynamic_points",
+                 "social", "cpu"});
   ExpectKeys(r["tracking_error_m"], {"mean", "rms", "p95", "max", "count"});
   ExpectKeys(r["collisions"],
              {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/engine/scenario.hpp"
 #include "bench/worldgen/tour_folder.hpp"
+#include "bench/engine/scenario.hpp"
 #include "core/errors.hpp"
 #include "io/config_override.hpp"
 #include "tests/support/source_dir.hpp"

@@ -1,12 +1,11 @@
 #include "bench/metrics/statistics.hpp"
+#include "tests/support/special_values.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <vector>
-
-#include "tests/support/special_values.hpp"
 
 namespace retrace::bench {
 namespace {

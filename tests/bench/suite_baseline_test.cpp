@@ -22,8 +22,8 @@ namespace {
 using ::testing::HasSubstr;
 using SuiteBaselineTest = retrace::testing::TempDirTest;
 
-using retrace::testing::kNaN;
 using retrace::testing::kSource;
+using retrace::testing::kNaN;
 
 SuiteSpec Spec(const retrace::testing::TempDir& tmp, const std::string& seeds = "[1, 2]") {
   const std::string small =

@@ -51,9 +51,8 @@ TEST(SuiteShipped, CiGatesThePaperMethodAndFullHoldsEveryCiEntry) {
     ASSERT_NE(row, report.rows.end());
     EXPECT_FALSE(row->tolerance.report) << "gated by " << row->pattern;
     EXPECT_TRUE(row->tolerance.has_delta() || row->tolerance.has_bound());
-    const bool in_full =
-        std::any_of(full.entries.begin(), full.entries.end(),
-                    [&](const SuiteEntry& f) { return f.scenario == entry.scenario; });
+    const bool in_full = std::any_of(full.entries.begin(), full.entries.end(),
+                                     [&](const SuiteEntry& f) { return f.scenario == entry.scenario; });
     EXPECT_TRUE(in_full) << entry.scenario;
   }
 }

@@ -141,11 +141,10 @@ TEST(SuiteMetricName, SplitsAtTheFirstTwoDots) {
 TEST_F(SuiteSpecTest, OnlySelectsEntriesAndModesInTheSuitesOrder) {
   const std::string small = SmallFrom(tmp_.path());
   const SuiteSpec spec = LoadSuiteSpec(tmp_.Write(
-      "s.yaml",
-      "name: t\nentries:\n  - scenario: " + small +
-          "\n    modes: [partial, single, consistent]\n    seeds: [1]\n  - scenario: " + small +
-          "\n    name: other\n    modes: [partial, single]\n    seeds: [2]\n"
-          "metrics:\n  \"*.*.success_rate\": {abs: 0}\n"));
+      "s.yaml", "name: t\nentries:\n  - scenario: " + small +
+                    "\n    modes: [partial, single, consistent]\n    seeds: [1]\n  - scenario: " +
+                    small + "\n    name: other\n    modes: [partial, single]\n    seeds: [2]\n"
+                    "metrics:\n  \"*.*.success_rate\": {abs: 0}\n"));
 
   // Selectors in any order: the suite's order stays, a repeated selector counts once.
   const SuiteSpec some = SelectRuns(spec, {"small.consistent", "other", "small.partial", "other"});

@@ -109,8 +109,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "\n"));                          // an empty line
 
 TEST_F(SweepResultsTest, ABadRowBeforeTheLastIsAnError) {
-  const auto file =
-      tmp_.Write("results.csv", kResultsHeader + Line(0, 0.5) + "garbage\n" + Line(3, 0.75));
+  const auto file = tmp_.Write("results.csv", kResultsHeader + Line(0, 0.5) + "garbage\n" + Line(3, 0.75));
   try {
     ReadSweepTable(file, kSchema, PartialRow::kDrop);
     FAIL();
@@ -150,8 +149,7 @@ TEST_F(SweepResultsTest, SortedRewriteOrdersByCaseId) {
   const auto file =
       tmp_.Write("results.csv", kResultsHeader + Line(7, 0.5) + Line(2, 0.25) + Line(10, 1.0));
   WriteSortedSweepTable(file, kSchema, ReadSweepTable(file, kSchema, PartialRow::kReject).rows);
-  EXPECT_EQ(tmp_.Read("results.csv"),
-            kResultsHeader + Line(2, 0.25) + Line(7, 0.5) + Line(10, 1.0));
+  EXPECT_EQ(tmp_.Read("results.csv"), kResultsHeader + Line(2, 0.25) + Line(7, 0.5) + Line(10, 1.0));
 }
 
 TEST(SweepSummary, AveragesTheFiniteValuesOfEachCombination) {

@@ -2,12 +2,11 @@
 // improvements, the direction of "worse", undefined (NaN) values and timing metrics.
 
 #include "bench/suite/tolerance.hpp"
+#include "tests/support/special_values.hpp"
 
 #include <gtest/gtest.h>
 
 #include <limits>
-
-#include "tests/support/special_values.hpp"
 
 namespace retrace::bench {
 namespace {
