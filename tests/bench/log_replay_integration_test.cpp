@@ -243,8 +243,10 @@ void ReplayingTheRunLogTickByTickGivesTheLiveEstimates() {
   EXPECT_EQ(run.switches.size(), trace.switches.size());
   // Identical to rounding at first; once a draw or a resampling comb falls on the other side of
   // a rounding boundary the two are two runs of the same filter (GCC Release: never, 2e-14 m
-  // over the whole run; Clang with the sanitizers: after 9.2 s, then at most 1.1 cm apart).
-  EXPECT_GE(to_rounding, 100U);
+  // over the whole run; Clang with the sanitizers: after 4.4 s (87 scans), then at most 2.2 cm
+  // apart; with the motion noise before 2026-11-28, after 9.2 s). When that happens is chance:
+  // the bound asks for the first 50 scans (2.5 s).
+  EXPECT_GE(to_rounding, 50U);
   EXPECT_LT(max_difference, 0.05);
 }
 
