@@ -1,7 +1,7 @@
 // The one scheduler (bench/engine/scheduler.hpp) on the small scenario: jobs given a scenario,
 // jobs that load theirs and jobs given their teach give the same runs whatever the number of
-// threads; every (job, mode) is handed over once, after its last run (system tier: two teaching
-// drives and eight playback runs, 22 s under the sanitizers).
+// threads; every (job, mode) is handed over once, after its last run (system tier: seven teaching
+// drives and six playback runs, 22 s under the sanitizers).
 #include <gtest/gtest.h>
 
 #include <atomic>
