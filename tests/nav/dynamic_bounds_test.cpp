@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <span>
 #include <vector>
 
 #include "core/angle.hpp"
@@ -140,8 +141,49 @@ std::vector<core::Pose2> Cloud(const core::Pose2& truth, int kind, core::Rng& rn
   return X;
 }
 
-TEST(DynamicBounds, TheMaskIsTheSameAsWithEveryRatioComputed) {
+// How the beams of TheMaskIsTheSameAsWithEveryRatioComputed were decided.
+struct DecisionCounts {
   int decided = 0, exact = 0, dynamic = 0, near_chi = 0, total = 0;
+};
+
+// One scene and cloud with one ray-cast method: every ratio computed once (the mask for a χ is
+// the ratios above it, as the test decides a beam whose ratio it computes), then the test by
+// bounds at χ as given and at χ on one beam's own ratio give or take a rounding, where no bound
+// can decide that beam and the exact sums must. `near_beam` picks that beam.
+void ExpectTheMaskOfEveryRatio(const BeamModel& model, const GridRayCaster& caster,
+                               std::span<const core::Pose2> X, std::span<const double> w,
+                               const core::LaserScan& scan, RayCastMethod method,
+                               std::size_t near_beam, DecisionCounts* counts) {
+  std::vector<int> beams(scan.size());
+  for (std::size_t i = 0; i < beams.size(); ++i) beams[i] = static_cast<int>(i);
+  DynamicBeamResult all, bounded;
+  TestDynamicBeams(model, caster, X, w, scan, beams, 0.9, {method, false}, &all);
+  const double near = all.ratio[near_beam % beams.size()];
+  for (const double chi : {0.9, 0.5, near, std::nextafter(near, 0.0)}) {
+    std::vector<std::uint8_t> mask(beams.size());
+    for (std::size_t b = 0; b < beams.size(); ++b) mask[b] = all.ratio[b] > chi ? 1 : 0;
+    if (chi == 0.9) {
+      ASSERT_EQ(mask, all.dynamic);
+    }
+    TestDynamicBeams(model, caster, X, w, scan, beams, chi, {method, true}, &bounded);
+    ASSERT_EQ(bounded.dynamic, mask) << "chi " << chi;
+    for (std::size_t b = 0; b < beams.size(); ++b) {
+      ++counts->total;
+      counts->dynamic += mask[b];
+      if (std::isnan(bounded.ratio[b])) {
+        ++counts->decided;
+        continue;
+      }
+      ++counts->exact;
+      counts->near_chi += chi == near ? 1 : 0;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(bounded.ratio[b]),
+                std::bit_cast<std::uint64_t>(all.ratio[b]));
+    }
+  }
+}
+
+TEST(DynamicBounds, TheMaskIsTheSameAsWithEveryRatioComputed) {
+  DecisionCounts c;
   for (std::uint64_t seed = 0; seed < 3; ++seed) {
     const core::OccupancyGrid g = BlobMap(seed);
     const LikelihoodField f(g, {}, 30.0);
@@ -157,52 +199,26 @@ TEST(DynamicBounds, TheMaskIsTheSameAsWithEveryRatioComputed) {
       if (trial % 3 == 1) {
         for (std::size_t j = 0; j < X.size(); ++j) w.push_back(j % 7 == 0 ? 0.0 : rng.Uniform());
       }
-      std::vector<int> beams(scan.size());
-      for (std::size_t i = 0; i < beams.size(); ++i) beams[i] = static_cast<int>(i);
       // The reference casts give the same ranges bit for bit (GridRayCaster's tests), so they
       // run on the first map only: the slow leg under the sanitizers.
       std::vector<RayCastMethod> methods = {RayCastMethod::kSphereTracing};
       if (seed == 0) methods.push_back(RayCastMethod::kDda);
       for (const RayCastMethod method : methods) {
-        // Every ratio computed once; the mask for a χ is the ratios above it (as the test
-        // decides a beam whose ratio it computes).
-        DynamicBeamResult all, bounded;
-        TestDynamicBeams(model, caster, X, w, scan, beams, 0.9, {method, false}, &all);
-        // χ as given, and χ on a beam's own ratio give or take a rounding: no bound can decide
-        // that beam, so the exact sums must.
-        const double near = all.ratio[static_cast<std::size_t>(trial) % beams.size()];
-        for (const double chi : {0.9, 0.5, near, std::nextafter(near, 0.0)}) {
-          std::vector<std::uint8_t> mask(beams.size());
-          for (std::size_t b = 0; b < beams.size(); ++b) mask[b] = all.ratio[b] > chi ? 1 : 0;
-          if (chi == 0.9) {
-            ASSERT_EQ(mask, all.dynamic);
-          }
-          TestDynamicBeams(model, caster, X, w, scan, beams, chi, {method, true}, &bounded);
-          ASSERT_EQ(bounded.dynamic, mask) << "seed " << seed << " trial " << trial;
-          for (std::size_t b = 0; b < beams.size(); ++b) {
-            ++total;
-            dynamic += mask[b];
-            if (std::isnan(bounded.ratio[b])) {
-              ++decided;
-              continue;
-            }
-            ++exact;
-            near_chi += chi == near ? 1 : 0;
-            ASSERT_EQ(std::bit_cast<std::uint64_t>(bounded.ratio[b]),
-                      std::bit_cast<std::uint64_t>(all.ratio[b]));
-          }
-        }
+        SCOPED_TRACE(::testing::Message() << "seed " << seed << " trial " << trial);
+        ExpectTheMaskOfEveryRatio(model, caster, X, w, scan, method,
+                                  static_cast<std::size_t>(trial), &c);
+        if (::testing::Test::HasFatalFailure()) return;
       }
     }
   }
   std::printf(
       "[ report ] %d beam tests: %d decided by bounds, %d by the exact sums (%d at a chi "
       "on their own ratio), %d dynamic\n",
-      total, decided, exact, near_chi, dynamic);
-  EXPECT_GT(decided, total / 2);
-  EXPECT_GT(exact, 100);
-  EXPECT_GT(near_chi, 40);
-  EXPECT_GT(dynamic, total / 5);
+      c.total, c.decided, c.exact, c.near_chi, c.dynamic);
+  EXPECT_GT(c.decided, c.total / 2);
+  EXPECT_GT(c.exact, 100);
+  EXPECT_GT(c.near_chi, 40);
+  EXPECT_GT(c.dynamic, c.total / 5);
 }
 
 }  // namespace dynamic_bounds_test
