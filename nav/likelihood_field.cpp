@@ -109,6 +109,9 @@ LikelihoodField::LikelihoodField(const core::OccupancyGrid& map,
   occupied_.resize(n);
   const std::vector<float>& l = map.log_odds();
   for (std::size_t i = 0; i < n; ++i) occupied_[i] = static_cast<double>(l[i]) >= occupied_log_odds;
+  const double known_log_odds = core::Logit(kKnownProbability);
+  known_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) known_[i] = std::abs(static_cast<double>(l[i])) >= known_log_odds;
 
   distance_ = DistanceTransformCells(occupied_, width_, height_);
   log_likelihood_.resize(n);

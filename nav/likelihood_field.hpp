@@ -52,6 +52,11 @@ struct LikelihoodFieldConfig {
 std::vector<float> DistanceTransformCells(const std::vector<std::uint8_t>& occupied, int width,
                                           int height);
 
+/// A cell counts as observed (LikelihoodField::Known) when its probability is at least this, or
+/// at most 1 minus this: a cell never observed holds 0.5 (log-odds 0), and one observed once
+/// holds the inverse sensor model's free or occupied value, well outside this band.
+inline constexpr double kKnownProbability = 0.55;
+
 /// The likelihood field of one occupancy grid in its map frame M.
 class LikelihoodField {
  public:
@@ -101,6 +106,25 @@ class LikelihoodField {
     return occupied_[static_cast<std::size_t>(c.y) * static_cast<std::size_t>(width_) +
                      static_cast<std::size_t>(c.x)] != 0;
   }
+  /// The cell holding p_M (M) was observed by the mapper (its probability lies outside
+  /// [1 - kKnownProbability, kKnownProbability]); false outside the map.
+  bool Known(const core::Vec2& p_M) const {
+    const double gx = (p_M.x() - origin_.x()) * inv_resolution_;
+    const double gy = (p_M.y() - origin_.y()) * inv_resolution_;
+    if (!(gx >= 0.0 && gy >= 0.0 && gx < width_d_ && gy < height_d_)) return false;
+    return known_[static_cast<std::size_t>(static_cast<int>(gy)) * static_cast<std::size_t>(width_) +
+                  static_cast<std::size_t>(static_cast<int>(gx))] != 0;
+  }
+  /// Distance (m) from the cell holding p_M to the nearest occupied cell; +inf outside the map.
+  float DistanceAt(const core::Vec2& p_M) const {
+    const double gx = (p_M.x() - origin_.x()) * inv_resolution_;
+    const double gy = (p_M.y() - origin_.y()) * inv_resolution_;
+    if (!(gx >= 0.0 && gy >= 0.0 && gx < width_d_ && gy < height_d_))
+      return std::numeric_limits<float>::infinity();
+    return distance_[static_cast<std::size_t>(static_cast<int>(gy)) *
+                         static_cast<std::size_t>(width_) +
+                     static_cast<std::size_t>(static_cast<int>(gx))];
+  }
   float Distance(core::CellIndex c) const {
     return distance_[static_cast<std::size_t>(c.y) * static_cast<std::size_t>(width_) +
                      static_cast<std::size_t>(c.x)];
@@ -118,6 +142,7 @@ class LikelihoodField {
   core::Vec2 origin_ = core::Vec2::Zero();
   float outside_log_likelihood_ = 0.0f;
   std::vector<std::uint8_t> occupied_;
+  std::vector<std::uint8_t> known_;
   std::vector<float> distance_;
   std::vector<float> log_likelihood_;
 };

@@ -537,7 +537,13 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
     if (k < near || (recovery_poses_.empty() && free_cells_.empty())) {
       out.push_back(around(estimate, aug.near_sigma_xy, aug.near_sigma_theta));
     } else if (!recovery_poses_.empty()) {
-      const core::Pose2& X = recovery_poses_[reachable[rng_.UniformIndex(reachable.size())]];
+      core::Pose2 X = recovery_poses_[reachable[rng_.UniformIndex(reachable.size())]];
+      // The taught heading is the way the teaching drove; a robot that drives the route the
+      // other way (its estimate's heading, which the odometry keeps when the place is lost,
+      // says so) is there facing back.
+      if (std::cos(core::AngleDiff(estimate.theta, X.theta)) < 0.0) {
+        X.theta = core::WrapAngle(X.theta + core::kPi);
+      }
       out.push_back(around(X, aug.path_sigma_xy, aug.path_sigma_theta));
     } else {
       out.push_back(FreeCellPose());

@@ -89,7 +89,9 @@ struct AugmentedMclConfig {
   double near_sigma_xy = 1.0;     ///< m
   double near_sigma_theta = 0.3;  ///< rad
   double path_sigma_xy = 1.0;     ///< m, around the taught path's poses
-  double path_sigma_theta = 0.3;  ///< rad, around the taught heading
+  /// rad, around the taught heading, or its reverse where the estimate faces back (a drive that
+  /// follows the route backwards)
+  double path_sigma_theta = 0.3;
   /// m: only the taught poses this close to the estimate (the whole path when none is)
   double path_reach = 10.0;
   double reach_per_metre = 0.1;    ///< m of reach more per metre driven while lost

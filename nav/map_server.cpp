@@ -6,31 +6,49 @@
 #include <vector>
 
 #include "core/check.hpp"
+#include "core/config.hpp"
 #include "core/errors.hpp"
+#include "nav/beam_evidence.hpp"
 
 namespace retrace::nav {
 namespace {
 
-std::shared_ptr<const TeachBundle> Linked(TeachBundle bundle, const MapServerConfig& config) {
+std::shared_ptr<const TeachBundle> Linked(TeachBundle bundle, const MapServerConfig& config,
+                                          const RouteLinkConfig& link) {
+  config.Validate();
   if (bundle.maps.empty()) throw core::ConfigError("maps", "the teach bundle holds no partial map");
-  if (!bundle.linked) {
-    RouteLinkConfig link;
-    link.drift = config.drift;
-    link.revisit_radius = config.closure_radius;
-    LinkRoute(bundle, link);
-  }
+  if (!bundle.linked) LinkRoute(bundle, link);
   return std::make_shared<const TeachBundle>(std::move(bundle));
+}
+
+// A candidate's heading agrees with the robot's direction of travel (or either is unknown).
+bool SameWay(Travel robot, Travel candidate) {
+  return robot == Travel::kUnknown || candidate == Travel::kUnknown || robot == candidate;
 }
 
 }  // namespace
 
-MapServer::MapServer(TeachBundle bundle, const MapServerConfig& config)
-    : bundle_(Linked(std::move(bundle), config)), config_(config), graph_(bundle_, config.drift) {
+void MapServerConfig::Validate() const {
+  core::RequirePositive("max_sigma", max_sigma);
+  core::RequirePositive("min_sigma_xy", min_sigma_xy);
+  core::RequirePositive("min_sigma_theta", min_sigma_theta);
+  core::RequireIntInRange("settle_updates", settle_updates, 1, 1000);
+  core::RequirePositive("settle_rms", settle_rms);
+  core::RequirePositive("settle_wait", settle_wait);
+  core::RequireInRange("min_coverage", min_coverage, 0.0, 1.0);
+}
+
+MapServer::MapServer(TeachBundle bundle, const MapServerConfig& config,
+                     const RouteLinkConfig& link, bool loop)
+    : bundle_(Linked(std::move(bundle), config, link)),
+      config_(config),
+      link_(link),
+      graph_(bundle_, link.drift) {
   const TeachBundle& b = *bundle_;
-  if (config_.loop && !b.maps.back().path.empty() && !b.maps.front().path.empty()) {
+  if (loop && !b.maps.back().path.empty() && !b.maps.front().path.empty()) {
     const core::Pose2 end_in_first = LastMapInFirst() * b.maps.back().path.back();
     loops_ = core::Distance(end_in_first, b.maps.front().path.front()) <=
-             config_.closure_radius + config_.drift * graph_.Length();
+             link_.revisit_radius + link_.drift * graph_.Length();
   }
 }
 
@@ -56,20 +74,21 @@ void MapServer::Start(Localizer& localizer, PathFollower& follower, std::size_t 
   HandOver(localizer, follower, Project(current().path, X_MR.translation()).s);
 }
 
-MapDecision MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
-                              double max_distance) const {
+MapDecision MapServer::Decide(const FollowerOutput& f, const RoutePosition& pos,
+                              const core::Pose2& X_MR, double max_distance,
+                              const ScanPoints* scan) const {
   MapDecision d;
-  if (f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path)) {
+  if (scan != nullptr && !scan->xs_L.empty()) d.coverage = Coverage(index_, X_MR, *scan);
+  // The follower's goal stays reached once it was: it counts while the robot is at the end.
+  const bool at_end = pos.s >= current().path.Length() - max_distance;
+  if (pos.travel != Travel::kBackward && at_end &&
+      (f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path))) {
+    d.travel = Travel::kForward;
     if (!IsLast()) {
       // The common case: path k+1 begins where path k ends, at the switch pose (eq. 1).
       d.step = MapStep::kSwitch;
-      d.place = {index_ + 1,
-                 TransformToNextMap(current().X_MS, X_MR),
-                 current().X_MS.Inverse(),
-                 0.0,
-                 0.0,
-                 0.0,
-                 false};
+      d.place = {index_ + 1, TransformToNextMap(current().X_MS, X_MR), current().X_MS.Inverse(),
+                 0.0, 0.0, 0.0, false};
       return d;
     }
     if (!loops_) {
@@ -83,21 +102,70 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const core::Pose2& X_MR,
     }
     return d;
   }
-  if (!f.off_path) return d;
-  const std::vector<RoutePlace> places = graph_.Place(index_, X_MR, config_.max_sigma);
-  const RoutePlace* best = nullptr;
-  for (const RoutePlace& p : places) {
-    // Still on the current path, behind the progress or beyond the follower's rejoin window:
-    // the map holds the robot.
-    if (p.map == index_ && p.distance <= max_distance) return d;
-    if (p.map == index_ || p.distance > max_distance) continue;
-    if (best == nullptr || p.distance + p.sigma < best->distance + best->sigma) best = &p;
+  if (pos.travel == Travel::kBackward && pos.on_path && pos.s_extended <= kPathEndTolerance &&
+      (index_ > 0 || loops_)) {
+    const double coverage = d.coverage;
+    d = Backward(X_MR);
+    d.coverage = coverage;
+    return d;
   }
-  if (best != nullptr) {
+  const bool covered = d.coverage >= config_.min_coverage;
+  if (pos.on_path && covered) return d;
+  if (const std::optional<RoutePlace> place = ByPlace(pos, X_MR, max_distance, scan, d.coverage)) {
     d.step = MapStep::kSwitch;
-    d.place = *best;
+    d.place = *place;
+    d.travel = TravelOf(bundle_->maps[place->map].path, place->s, place->X_MR.theta);
+    if (d.travel == Travel::kUnknown) d.travel = pos.travel;
+  } else if (!covered) {
+    d.step = MapStep::kOffMap;
   }
   return d;
+}
+
+MapDecision MapServer::Backward(const core::Pose2& X_MR) const {
+  MapDecision d;
+  d.travel = Travel::kBackward;
+  if (index_ > 0) {
+    // Path k begins where path k-1 ends: eq. (1) inverted, X_{M_{k-1} R} = X_{M_{k-1} S} X_{M_k R}.
+    const PartialMap& previous = bundle_->maps[index_ - 1];
+    d.step = MapStep::kSwitch;
+    d.place = {index_ - 1, previous.X_MS * X_MR, previous.X_MS, previous.path.Length(), 0.0, 0.0,
+               false};
+    return d;
+  }
+  d.step = MapStep::kWrap;
+  // Round the loop backward: through a revisit edge that joins map 0's start to the last map.
+  for (const RoutePlace& p : graph_.Place(0, X_MR, config_.max_sigma)) {
+    if (p.map + 1 == size() && p.via_revisit) d.place = p;
+  }
+  return d;
+}
+
+std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const core::Pose2& X_MR,
+                                             double max_distance, const ScanPoints* scan,
+                                             double coverage) const {
+  std::optional<RoutePlace> best;
+  for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma)) {
+    if (p.distance > max_distance) continue;
+    // The current map holds the robot elsewhere on its path only where the route passes the
+    // place again: farther along the path than the robot can have driven since it left it.
+    if (p.map == index_ &&
+        (pos.on_path || std::abs(p.s - pos.s) <= pos.off_path_driven + max_distance)) {
+      continue;
+    }
+    if (!SameWay(pos.travel, TravelOf(bundle_->maps[p.map].path, p.s, p.X_MR.theta))) continue;
+    if (scan != nullptr && !scan->xs_L.empty()) {
+      const double c = Coverage(p.map, p.X_MR, *scan);
+      if (c < config_.min_coverage || (p.map != index_ && c <= coverage && pos.on_path)) continue;
+    }
+    if (!best || p.distance + p.sigma < best->distance + best->sigma) best = p;
+  }
+  return best;
+}
+
+double MapServer::Coverage(std::size_t map, const core::Pose2& X_MR, const ScanPoints& scan) const {
+  RETRACE_CHECK(map < size());
+  return GridCoverage(bundle_->maps[map].grid, X_MR * scan.X_RL, scan.xs_L, scan.ys_L);
 }
 
 RoutePlace MapServer::Resume(const core::Pose2& X_MR) const {
@@ -150,13 +218,16 @@ MapSwitch MapServer::Commit(const RoutePlace& place, Localizer&& settled, Locali
 }
 
 RoutePlace MapServer::WrapPlace(const MapDecision& decision) const {
-  RETRACE_CHECK(IsLast());
-  if (decision.place.map == 0 && decision.place.via_revisit) return decision.place;
+  const bool forward = decision.travel != Travel::kBackward;
+  RETRACE_CHECK(forward ? IsLast() : index_ == 0);
+  const std::size_t to = forward ? 0 : size() - 1;
+  if (decision.place.map == to && decision.place.via_revisit) return decision.place;
   // By the chain over the whole loop, which carries the maps' drift over the route.
   RoutePlace place;
-  place.map = 0;
-  place.X_jk = LastMapInFirst();
-  place.sigma = std::max(config_.min_sigma_xy, 0.5 * config_.drift * graph_.Length());
+  place.map = to;
+  place.X_jk = forward ? LastMapInFirst() : LastMapInFirst().Inverse();
+  place.s = forward ? 0.0 : bundle_->maps[to].path.Length();
+  place.sigma = std::max(config_.min_sigma_xy, 0.5 * link_.drift * graph_.Length());
   return place;
 }
 

@@ -13,12 +13,14 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/pose2.hpp"
 #include "nav/localizer.hpp"
 #include "nav/path_follower.hpp"
 #include "nav/route_graph.hpp"
+#include "nav/route_position.hpp"
 #include "nav/teach_bundle.hpp"
 
 namespace retrace::nav {
@@ -39,14 +41,11 @@ struct MapSwitch {
   double sigma = 0.0;    ///< m: the expected error of the transform used (the particles' spread)
 };
 
-/// How the map server reads the route graph, and driving the route again after its last map as
-/// a log that goes round a loop lap after lap does. The route is a loop when the end of its last
-/// path lies, through a revisit edge or the chain of switch poses, within closure_radius + drift
-/// × the route's length of map 0's start.
+/// The map server's options (`nav.map_server`). How far the route graph carries a transform,
+/// how a switch through an uncertain transform settles, and how much of a scan a map must cover
+/// to hold the robot. The route's drift and revisit radius come from `route.online_drift` and
+/// `route.revisit_radius` (RouteLinkConfig), whether it loops from how it is driven.
 struct MapServerConfig {
-  bool loop = false;            ///< a loop is driven again after its last map
-  double closure_radius = 3.0;  ///< m (route.revisit_radius)
-  double drift = 0.03;          ///< odometry error per metre driven (route.online_drift)
   /// m: the largest expected error of a transform the graph composes: farther along the route
   /// (at 3 % drift, 33 m of route between the two places) a map is not handed over by place.
   double max_sigma = 1.0;
@@ -64,19 +63,51 @@ struct MapServerConfig {
   int settle_updates = 3;
   double settle_rms = 0.2;    ///< m
   double settle_wait = 10.0;  ///< s
+  /// A map covers the robot's place when at least this share of the scan's tested beams end in
+  /// cells it observed (nav/beam_evidence.hpp). Below it, another map that covers the place
+  /// takes over; where none does, the robot is off map: odometry only, until a map covers it.
+  double min_coverage = 0.3;
+
+  template <class V>
+  void Reflect(V& v) {
+    v("max_sigma", max_sigma);
+    v("min_sigma_xy", min_sigma_xy);
+    v("min_sigma_theta", min_sigma_theta);
+    v("settle_updates", settle_updates);
+    v("settle_rms", settle_rms);
+    v("settle_wait", settle_wait);
+    v("min_coverage", min_coverage);
+  }
+  /// Throws core::ConfigError naming the key: sigmas, settle_rms and settle_wait > 0,
+  /// settle_updates >= 1, min_coverage in [0, 1].
+  void Validate() const;
+};
+
+/// The end points (LiDAR frame) of a scan's tested beams, and where the LiDAR sits on the robot:
+/// what the map server needs to tell whether a map covers the scene.
+struct ScanPoints {
+  std::span<const double> xs_L;
+  std::span<const double> ys_L;
+  core::Pose2 X_RL;
 };
 
 /// What the map server does at a control tick (MapServer::Decide).
 enum class MapStep {
   kStay,    ///< the robot is on the current path, or on no other
   kSwitch,  ///< the robot is on another map's path: `place` says which and where
-  kWrap,    ///< at the end of the last path of a loop (MapServerConfig::loop): back to map 0
+  kWrap,    ///< past an end of a loop's route (MapServer::loops): round to its other end
   kDone,    ///< at the end of the last path: the route is done
+  kOffMap,  ///< no map covers the robot's place: odometry only
 };
 
 struct MapDecision {
   MapStep step = MapStep::kStay;
   RoutePlace place;  ///< kSwitch, and kWrap through a revisit edge: the map entered and where
+  /// The direction of travel on the path entered (kSwitch, kWrap): forward at the next map's
+  /// start, backward at the previous map's end, by the estimate's heading for a switch by place.
+  Travel travel = Travel::kUnknown;
+  /// The share of the scan's beams the current map covers (1 without a scan).
+  double coverage = 1.0;
 };
 
 class MapServer {
@@ -85,9 +116,14 @@ class MapServer {
   /// when the follower says its goal is reached.
   static constexpr double kPathEndTolerance = 0.05;
 
-  /// Takes the teach bundle (its revisits are searched for here if it was never linked,
-  /// nav::LinkRoute). Throws core::ConfigError if it holds no map.
-  explicit MapServer(TeachBundle bundle, const MapServerConfig& config = {});
+  /// Takes the teach bundle (its revisits are searched for here with `link` if it was never
+  /// linked, nav::LinkRoute; link.drift is the graph's drift). `loop`: the route is driven again
+  /// after its last map, as a log that goes round a loop lap after lap, when its last path ends,
+  /// through a revisit edge or the chain of switch poses, within link.revisit_radius + drift ×
+  /// the route's length of map 0's start. Throws core::ConfigError for an invalid config or a
+  /// bundle without maps.
+  MapServer(TeachBundle bundle, const MapServerConfig& config, const RouteLinkConfig& link,
+            bool loop);
 
   std::size_t index() const { return index_; }
   std::size_t size() const { return bundle_->maps.size(); }
@@ -95,7 +131,7 @@ class MapServer {
   const PartialMap& current() const { return bundle_->maps[index_]; }
   const TeachBundle& bundle() const { return *bundle_; }
   const RouteGraph& graph() const { return graph_; }
-  /// The route is a loop and is driven again after its last map (MapServerConfig).
+  /// The route is a loop and is driven again after its last map (the constructor's `loop`).
   bool loops() const { return loops_; }
 
   /// The map whose taught path lies nearest the robot at X_M0R (a pose in map 0's frame,
@@ -105,14 +141,26 @@ class MapServer {
   /// follower's progress at the robot's place X_MR on the path.
   void Start(Localizer& localizer, PathFollower& follower, std::size_t map = 0,
              const core::Pose2& X_MR = core::Pose2::Identity());
-  /// The one rule. At the end of the current path (follower goal reached, or within
-  /// kPathEndTolerance of the end): the next map, entered at the robot's place on its path;
-  /// after the last one, map 0 again for a loop that is driven again, else done. Off the current
-  /// path (the follower's progress waits) and farther than max_distance from all of it: the map
-  /// whose path the estimate, carried through the graph, lies within max_distance of (the nearest
-  /// counting the transform's expected error), if any. Otherwise stay.
-  MapDecision Decide(const FollowerOutput& follower_output, const core::Pose2& X_MR,
-                     double max_distance) const;
+  /// The one rule, on the robot's place on the route (`position`, tracked along the current
+  /// path: nav/route_position.hpp) and, when given, the scan's tested beams:
+  ///  - travelling forward at the end of the current path (the follower's goal reached, or
+  ///    within kPathEndTolerance of the end): the next map at the start of its path, by eq. (1);
+  ///    after the last one, map 0 again for a loop, else done;
+  ///  - travelling backward past the start of the current path: the previous map at the end of
+  ///    its path, by eq. (1) inverted; before the first one, the last map for a loop;
+  ///  - on the current path, in a map that covers the scan (MapServerConfig::min_coverage): stay;
+  ///  - off it (farther than max_distance from the path around the robot's place), or in a map
+  ///    that no longer covers the scan: the map whose path the estimate, carried through the
+  ///    graph, lies within max_distance of, going the same way as the robot travels, and that
+  ///    covers the scan (the nearest counting the transform's expected error); the current map
+  ///    at another part of its path counts too. None, and the current map does not cover the
+  ///    scan: off map. None, and it does: stay.
+  MapDecision Decide(const FollowerOutput& follower_output, const RoutePosition& position,
+                     const core::Pose2& X_MR, double max_distance,
+                     const ScanPoints* scan = nullptr) const;
+  /// The share of the scan's beams that end in cells map `map` observed, for the robot at X_MR
+  /// in that map (nav::GridCoverage).
+  double Coverage(std::size_t map, const core::Pose2& X_MR, const ScanPoints& scan) const;
   /// Where the robot is on the route now, whatever the follower's progress (an operator drove
   /// it and hands it back): the map whose taught path lies nearest the estimate through the
   /// graph (the current one included, transforms within max_sigma), entered at the robot's place.
@@ -139,14 +187,11 @@ class MapServer {
   /// through the switch poses by eq. (1), X_{M_0 M_n} = X_{M_0 S_0} * ... * X_{M_{n-1} S_{n-1}}
   /// (the identity for one map). It carries the drift the maps accumulated over the route.
   core::Pose2 LastMapInFirst() const { return graph_.Chain(0, size() - 1); }
-  /// From the end of the last path back to map 0 and path 0 (the loop driven again): through
-  /// the revisit edge that closes the loop when Decide found one (`place`), else by the chain,
-  /// X_{M_0 R} = LastMapInFirst() * X_{M_n R}, with the particles spread over the drift the
-  /// chain may hold (drift × the route's length as two standard deviations). Requires IsLast().
-  MapSwitch WrapToFirst(const MapDecision& decision, Localizer& localizer, PathFollower& follower) {
-    return Switch(WrapPlace(decision), localizer, follower);
-  }
-  /// Where a kWrap enters map 0: through its revisit edge, else by the chain with its sigma.
+  /// Where a kWrap enters the route's other end: from the end of the last path to map 0
+  /// (forward), or from the start of map 0 to the last map (backward). Through the revisit edge
+  /// that closes the loop when Decide found one (decision.place), else by the chain,
+  /// X_{M_0 R} = LastMapInFirst() * X_{M_n R} (or its inverse), with the particles spread over
+  /// the drift the chain may hold (drift × the route's length as two standard deviations).
   RoutePlace WrapPlace(const MapDecision& decision) const;
   const MapServerConfig& config() const { return config_; }
 
@@ -154,14 +199,21 @@ class MapServer {
   // Hands the current map's grid and path over; recovery's poses: the taught paths within
   // reach through the graph.
   void HandOver(Localizer& localizer, PathFollower& follower, double s);
-  std::vector<core::Pose2> PosesInReach() const;
   // Switch and Commit: place.map becomes current, the localizer carried by eq. (1) (and spread
   // over place.sigma) or replaced by a settled belief, the follower on its path at place.s.
   MapSwitch Enter(const RoutePlace& place, Localizer& localizer, PathFollower& follower,
                   Localizer* settled);
 
+  // The backward rule: the previous map at the end of its path, or round a loop to the last.
+  MapDecision Backward(const core::Pose2& X_MR) const;
+  // The by-place rule: the best map the estimate carried through the graph lies on.
+  std::optional<RoutePlace> ByPlace(const RoutePosition& position, const core::Pose2& X_MR,
+                                    double max_distance, const ScanPoints* scan,
+                                    double coverage) const;
+
   std::shared_ptr<const TeachBundle> bundle_;
   MapServerConfig config_;
+  RouteLinkConfig link_;
   RouteGraph graph_;
   bool loops_ = false;
   std::size_t index_ = 0;

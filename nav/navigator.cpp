@@ -11,17 +11,23 @@ namespace retrace::nav {
 
 Navigator::Navigator(const LocalizerConfig& localizer, const PathFollowerConfig& follower,
                      const RobotGeometry& robot, TeachBundle bundle, const MapServerConfig& server,
-                     core::Rng localizer_rng)
+                     const RouteLinkConfig& link, bool loop, core::Rng localizer_rng)
     : localizer_(localizer, robot, localizer_rng),
       follower_(follower),
-      server_(std::move(bundle), server),
+      server_(std::move(bundle), server, link, loop),
       settle_rng_(localizer_rng.Split("settle")) {}
 
 void Navigator::Start(std::size_t map, const core::Pose2& X_MR, double sigma_xy,
                       double sigma_theta) {
   pending_.reset();
+  off_map_ = false;
   server_.Start(localizer_, follower_, map, X_MR);
   localizer_.Initialize(X_MR, sigma_xy, sigma_theta);
+  Track(Project(server_.current().path, X_MR.translation()).s, Travel::kUnknown);
+}
+
+void Navigator::Track(double s, Travel travel) {
+  tracker_.Reset(server_.current().path, server_.index(), s, localizer_.Estimate(), travel);
 }
 
 void Navigator::StartNearest(const core::Pose2& X_M0R, double sigma_xy, double sigma_theta) {
@@ -31,10 +37,16 @@ void Navigator::StartNearest(const core::Pose2& X_M0R, double sigma_xy, double s
 
 std::optional<MapSwitch> Navigator::Resume() {
   pending_.reset();
+  off_map_ = false;
   const RoutePlace place = server_.Resume(localizer_.Estimate());
-  if (place.map != server_.index()) return server_.Switch(place, localizer_, follower_);
-  follower_.SetPathAt(server_.current().path, place.s);
-  return std::nullopt;
+  std::optional<MapSwitch> s;
+  if (place.map != server_.index()) {
+    s = server_.Switch(place, localizer_, follower_);
+  } else {
+    follower_.SetPathAt(server_.current().path, place.s);
+  }
+  Track(place.s, Travel::kUnknown);
+  return s;
 }
 
 void Navigator::OnOdometry(const core::OdometryDelta& delta) {
@@ -43,10 +55,12 @@ void Navigator::OnOdometry(const core::OdometryDelta& delta) {
 }
 
 LocalizerUpdate Navigator::OnScan(const core::LaserScan& scan) {
+  ScanEndPoints(scan, localizer_.robot(), localizer_.config().beam_step, &scan_xs_, &scan_ys_);
   if (pending_) {
     if (!pending_->seeded) Seed(scan);
     if (pending_->belief.Update(scan).ran) ++pending_->updates;
   }
+  if (off_map_) return {};  // odometry only: no map explains the scan
   LocalizerUpdate update = localizer_.Update(scan);
   if (update.reacquired) {
     confirming_ = localizer_.config().augmented.confirm_updates;
@@ -58,34 +72,45 @@ LocalizerUpdate Navigator::OnScan(const core::LaserScan& scan) {
 
 NavigatorTick Navigator::OnControlTick(double dt) {
   NavigatorTick tick;
-  tick.follow = follower_.Compute(localizer_.Estimate(), dt);
-  const MapDecision decision =
-      server_.Decide(tick.follow, localizer_.Estimate(), follower_.config().progress_max_distance);
+  const core::Pose2 estimate = localizer_.Estimate();
+  tick.follow = follower_.Compute(estimate, dt);
+  const PathFollowerConfig& fc = follower_.config();
+  const RoutePosition& position =
+      tracker_.Update(estimate, fc.progress_window, fc.progress_max_distance);
+  const ScanPoints points{scan_xs_, scan_ys_, localizer_.robot().X_RL};
+  const MapDecision decision = server_.Decide(tick.follow, position, estimate,
+                                              fc.progress_max_distance,
+                                              scan_xs_.empty() ? nullptr : &points);
+  tick.coverage = decision.coverage;
+  off_map_ = decision.step == MapStep::kOffMap;
   if (pending_) pending_->waited += dt;
   switch (decision.step) {
     case MapStep::kStay:
+    case MapStep::kOffMap:
       break;
     case MapStep::kDone:
       pending_.reset();
       tick.route_done = true;
       break;
     case MapStep::kSwitch:
-      tick.map_switch = SwitchTo(decision.place, false);
+      tick.map_switch = SwitchTo(decision.place, decision.travel, false);
       break;
     case MapStep::kWrap:
-      tick.map_switch = SwitchTo(server_.WrapPlace(decision), true);
+      tick.map_switch = SwitchTo(server_.WrapPlace(decision), decision.travel, true);
       break;
   }
   if (pending_ && Settled(*pending_)) {
     tick.wrapped = pending_->wrap;
     tick.map_switch =
         server_.Commit(pending_->place, std::move(pending_->belief), localizer_, follower_);
+    Track(pending_->place.s, pending_->travel);
     pending_.reset();
   }
   if (tick.map_switch) tick.follow = follower_.Compute(localizer_.Estimate(), dt);
-  const double creep = follower_.config().creep_speed;
+  tick.off_map = off_map_;
+  const double creep = fc.creep_speed;
   core::Twist& command = tick.follow.command;
-  if ((localizer_.lost() || confirming_ > 0) && command.v > creep) {
+  if ((localizer_.lost() || off_map_ || confirming_ > 0) && command.v > creep) {
     command.omega *= creep / command.v;
     command.v = creep;
     tick.creeping = true;
@@ -93,19 +118,22 @@ NavigatorTick Navigator::OnControlTick(double dt) {
   return tick;
 }
 
-std::optional<MapSwitch> Navigator::SwitchTo(const RoutePlace& place, bool wrap) {
+std::optional<MapSwitch> Navigator::SwitchTo(const RoutePlace& place, Travel travel, bool wrap) {
   if (!server_.Settles(place)) {
     pending_.reset();
-    return server_.Switch(place, localizer_, follower_);
+    MapSwitch s = server_.Switch(place, localizer_, follower_);
+    Track(place.s, travel);
+    return s;
   }
   if (pending_ && pending_->place.map == place.map) {
     pending_->place.s = place.s;  // the robot's progress on that path now
+    pending_->travel = travel;
     return std::nullopt;
   }
   const core::Rng rng = settle_rng_.Split(settles_++);
   Localizer belief(localizer_.config(), localizer_.robot(), rng.Split("belief"));
   server_.Prepare(place, localizer_.Estimate(), belief);
-  pending_.emplace(PendingSwitch{place, std::move(belief), rng.Split("seed"), wrap});
+  pending_.emplace(PendingSwitch{place, std::move(belief), rng.Split("seed"), travel, wrap});
   return std::nullopt;
 }
 

@@ -30,6 +30,7 @@ struct StackOutput {
   core::Pose2 X_MR;
   std::size_t map = 0;
   bool lost = false;        ///< the stack deems itself lost
+  bool off_map = false;     ///< no map covers its place: it runs on odometry alone
   bool route_done = false;  ///< it reached the end of the route
   bool last_map = false;    ///< map is the route's last
   double remaining = 0.0;   ///< m of its current path left (the end conditions' progress)

@@ -199,7 +199,8 @@ bool PlaybackEpisode::Act() {
   s.map = out.map;
   // 5. Record; scripted events; check the end.
   const core::Pose2 X_MR_truth =
-      s.recorder.OnControlTick(t, out.map, X_WR, out.X_MR, out.lost, out.drive, s.simulator);
+      s.recorder.OnControlTick(t, out.map, X_WR, out.X_MR, out.lost, out.off_map, out.drive,
+                               s.simulator);
   s.feed.OnTick(t, X_WR, X_MR_truth, s.command.v, s.simulator);
   s.recorder.OnEvents(t,
                       s.events.Fire(t, s.route_progress.Update(X_WR.translation()), s.simulator));

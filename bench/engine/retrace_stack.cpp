@@ -8,11 +8,9 @@ namespace {
 nav::Navigator StartNavigator(const Scenario& scenario, const nav::TeachBundle& bundle,
                               const core::Rng& rng) {
   const ScenarioConfig& config = scenario.config;
-  nav::MapServerConfig server;
-  server.closure_radius = config.route.revisit_radius;
-  server.drift = config.route.online_drift;
-  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle, server,
-                     rng.Split("localizer"));
+  // A playback run drives the route once: it does not loop.
+  nav::Navigator nav(config.nav.localizer, config.nav.follower, scenario.robot, bundle,
+                     config.nav.map_server, config.route.Link(), false, rng.Split("localizer"));
   nav.Start(0, core::Pose2::Identity(), config.playback.initial_sigma_xy,
             core::DegToRad(config.playback.initial_sigma_yaw_deg));
   return nav;
@@ -57,6 +55,7 @@ void RetraceStack::Report(StackOutput* out) const {
   out->X_MR = nav_.Estimate();
   out->map = nav_.server().index();
   out->lost = nav_.localizer().lost();
+  out->off_map = nav_.off_map();
   out->last_map = nav_.server().IsLast();
 }
 

@@ -77,7 +77,7 @@ void RunRecorder::OnSwitch(double t, const nav::MapSwitch& map_switch, const cor
 }
 
 core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const core::Pose2& X_WR,
-                                       const core::Pose2& X_MR, bool lost,
+                                       const core::Pose2& X_MR, bool lost, bool off_map,
                                        const nav::AvoidanceOutput& command,
                                        const sim::Simulator& simulator) {
   PlaybackSample sample;
@@ -93,6 +93,7 @@ core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const co
   sample.pedestrian_gap = PedestrianGap(people, X_WR.translation(), robot_radius_);
   sample.avoiding = command.modified;
   sample.lost = lost;
+  sample.off_map = off_map;
   if (sample.pedestrian_gap <= NearbyPedestrian::kNearbyRange) {
     RecordNearby(simulator, people, X_WR.translation(), robot_radius_,
                  static_cast<int>(trace_.samples.size()), &trace_.nearby);

@@ -39,7 +39,7 @@ class RunRecorder {
   /// localizer deems itself lost, the command sent. Returns the local truth of the robot in that
   /// map.
   core::Pose2 OnControlTick(double t, std::size_t map_index, const core::Pose2& X_WR,
-                            const core::Pose2& X_MR, bool lost,
+                            const core::Pose2& X_MR, bool lost, bool off_map,
                             const nav::AvoidanceOutput& command, const sim::Simulator& simulator);
   /// Scripted events that fired at time t.
   void OnEvents(double t, const std::vector<std::string>& names);

@@ -93,6 +93,13 @@ void RouteConfig::Validate() const {
   core::RequirePositive("revisit_radius", revisit_radius);
 }
 
+nav::RouteLinkConfig RouteConfig::Link() const {
+  nav::RouteLinkConfig link;
+  link.drift = online_drift;
+  link.revisit_radius = revisit_radius;
+  return link;
+}
+
 nav::OnlineSwitchingConfig RouteConfig::OnlineSwitching() const {
   return nav::OnlineSwitchingConfig{revisit_radius, switch_window, online_drift,
                                     online_drift_budget, revisit_tolerance};

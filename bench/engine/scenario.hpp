@@ -21,10 +21,12 @@
 #include "core/pose2.hpp"
 #include "io/config_override.hpp"
 #include "nav/localizer.hpp"
+#include "nav/map_server.hpp"
 #include "nav/mapper.hpp"
 #include "nav/obstacle_avoidance.hpp"
 #include "nav/online_switcher.hpp"
 #include "nav/path_follower.hpp"
+#include "nav/route_graph.hpp"
 #include "nav/robot_geometry.hpp"
 #include "nav/scan_matcher.hpp"
 #include "sim/simulator.hpp"
@@ -119,6 +121,9 @@ struct RouteConfig {
   void Validate() const;
   /// The settings of `online` switching (nav/online_switcher.hpp) these keys give.
   nav::OnlineSwitchingConfig OnlineSwitching() const;
+  /// The route graph's settings these keys give (drift and revisit radius): how the teach
+  /// recorder links the maps (nav::LinkRoute) and how the map server reads them.
+  nav::RouteLinkConfig Link() const;
 };
 
 /// Static objects that exist only during teaching or only during playback (parked cars, a
@@ -268,6 +273,7 @@ struct NavConfig {
   nav::PathFollowerConfig follower;
   nav::ObstacleAvoidanceConfig avoidance;
   nav::ScanMatcherConfig scan_matcher;  ///< the scan_matched mode's keyframe correction
+  nav::MapServerConfig map_server;      ///< which map holds the robot, in playback and replay
 
   template <class V>
   void Reflect(V& v) {
@@ -277,6 +283,7 @@ struct NavConfig {
     v("localizer", localizer);
     v("follower", follower);
     v("avoidance", avoidance);
+    v("map_server", map_server);
   }
   void Validate() const;
 };

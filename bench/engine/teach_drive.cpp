@@ -75,9 +75,7 @@ std::vector<ModeTeach> FinishModeRecorders(std::vector<ModeRecorder>& recorders,
                                            const TeachTrace& trace, const std::vector<double>& time,
                                            const std::vector<core::Pose2>& X_WR,
                                            const RouteConfig& route) {
-  nav::RouteLinkConfig link;
-  link.drift = route.online_drift;
-  link.revisit_radius = route.revisit_radius;
+  const nav::RouteLinkConfig link = route.Link();
   std::vector<ModeTeach> teaches;
   for (ModeRecorder& r : recorders) {
     ModeTeach m;

@@ -61,6 +61,7 @@ struct PlaybackSample {
   double pedestrian_gap = 0.0;  ///< m from the robot's edge to the nearest pedestrian's (inf: none)
   bool avoiding = false;        ///< obstacle avoidance changed the follower's command
   bool lost = false;            ///< the localizer's own verdict (nav::Localizer::lost)
+  bool off_map = false;         ///< the stack ran on odometry alone: no map covered the place
 };
 
 /// A pedestrian near the robot at one control tick (its edge within kNearbyRange of the robot's),

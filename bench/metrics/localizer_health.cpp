@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace retrace::bench {
 
@@ -31,6 +33,7 @@ LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
   for (std::size_t k = 0; k < track.size(); ++k) {
     const EstimateSample& s = track[k];
     if (s.lost && k + 1 < track.size()) h.lost_time_s += track[k + 1].time - s.time;
+    if (s.off_map && k + 1 < track.size()) h.off_map_time_s += track[k + 1].time - s.time;
     if (k == 0) {
       h.lost_spells += s.lost ? 1 : 0;
       continue;
@@ -55,10 +58,32 @@ LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
   return h;
 }
 
+int CountWrongSwitches(std::span<const SwitchRecord> switches, const TeachTrace& teach) {
+  int wrong = 0;
+  for (const SwitchRecord& sw : switches) {
+    if (sw.to < 0 || static_cast<std::size_t>(sw.to) >= teach.maps.size()) continue;
+    const std::vector<core::Pose2>& taught = teach.maps[static_cast<std::size_t>(sw.to)].X_WR;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < taught.size(); ++i) {
+      const core::Vec2 a = taught[i].translation();
+      const core::Vec2 b = taught[std::min(i + 1, taught.size() - 1)].translation();
+      const core::Vec2 ab = b - a;
+      const double len2 = ab.squaredNorm();
+      const double t =
+          len2 > 0.0 ? std::clamp((sw.X_WR.translation() - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, (sw.X_WR.translation() - (a + t * ab)).norm());
+    }
+    wrong += nearest > kWrongSwitchDistance ? 1 : 0;
+  }
+  return wrong;
+}
+
 LocalizerHealth CombineLocalizerHealth(std::span<const LocalizerHealth> runs) {
   LocalizerHealth all;
   for (const LocalizerHealth& h : runs) {
     all.lost_time_s += h.lost_time_s;
+    all.off_map_time_s += h.off_map_time_s;
+    all.wrong_switches += h.wrong_switches;
     all.lost_spells += h.lost_spells;
     all.reacquisitions += h.reacquisitions;
     all.reacquisitions_closer += h.reacquisitions_closer;

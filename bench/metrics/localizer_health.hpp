@@ -23,6 +23,7 @@ struct EstimateSample {
   /// measured against this sample's local truth (ErrorIncrease); NaN without a truth, at the
   /// first sample and across a map switch.
   double error_increase = std::numeric_limits<double>::quiet_NaN();
+  bool off_map = false;  ///< no map covered the place: the stack ran on odometry alone
 };
 
 /// A re-acquisition that took the estimate this much (m) farther from the truth is wrong.
@@ -38,8 +39,18 @@ double ErrorIncrease(const core::Pose2& X_MR_prev, const core::Pose2& X_MR,
                      const core::Pose2& X_WR_prev, const core::Pose2& X_WR,
                      const core::Pose2& X_MR_truth);
 
+/// m: a map switch whose truth lies farther than this from the taught path of the map it enters
+/// (the teaching drive's ground truth in that map) entered a wrong map.
+inline constexpr double kWrongSwitchDistance = 1.0;
+
 struct LocalizerHealth {
   double lost_time_s = 0.0;  ///< each lost sample holds until the next
+  /// s off map by the stack's own account (no map covered the place: odometry only), each such
+  /// sample holding until the next
+  double off_map_time_s = 0.0;
+  /// Map switches (and wraps) into a map whose taught path the truth was not on (within
+  /// kWrongSwitchDistance): CountWrongSwitches, 0 without a truth.
+  int wrong_switches = 0;
   int lost_spells = 0;       ///< times the localizer went from not lost to lost
   int reacquisitions = 0;    ///< recovery trials that replaced the belief
   /// Max over consecutive samples in the same map of |X_MR(k) − X_MR(k−1) ⊕ odometry step| (m):
@@ -58,6 +69,10 @@ struct LocalizerHealth {
 
 LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
                                        std::span<const LocalizerSample> updates);
+
+/// The switches into a map whose taught trajectory (the teaching drive's ground truth in that
+/// map) passes no nearer than kWrongSwitchDistance to the switch's truth X_WR.
+int CountWrongSwitches(std::span<const SwitchRecord> switches, const TeachTrace& teach);
 
 /// Over several runs: sums of the times and counts, the largest jump and error increase (and
 /// their times, of the runs that had them).

@@ -129,7 +129,9 @@ nlohmann::json ToJson(const LocalizerHealth& h) {
           {"max_error_increase_m", io::JsonNumber(h.max_error_increase_m)},
           {"max_error_increase_time_s", io::JsonNumber(h.max_error_increase_time_s)},
           {"reacquisitions_closer", h.reacquisitions_closer},
-          {"reacquisitions_wrong", h.reacquisitions_wrong}};
+          {"reacquisitions_wrong", h.reacquisitions_wrong},
+          {"off_map_time_s", io::JsonNumber(h.off_map_time_s)},
+          {"wrong_switches", h.wrong_switches}};
 }
 
 nlohmann::json ToJson(const Summary& s) {

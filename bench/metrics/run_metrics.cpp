@@ -16,14 +16,17 @@ using namespace internal;
 namespace {
 
 // The localizer's own account and its estimate's jumps (bench/metrics/localizer_health.hpp).
-LocalizerHealth Health(const RunTrace& run, const RunSeries& series) {
+LocalizerHealth Health(const TeachTrace& teach, const RunTrace& run, const RunSeries& series) {
   std::vector<EstimateSample> track;
   track.reserve(run.samples.size());
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const PlaybackSample& p = run.samples[i];
-    track.push_back({p.time, p.map_index, p.X_MR, p.X_OR, p.lost, series.error_increase_m[i]});
+    track.push_back({p.time, p.map_index, p.X_MR, p.X_OR, p.lost, series.error_increase_m[i],
+                     p.off_map});
   }
-  return ComputeLocalizerHealth(track, run.updates);
+  LocalizerHealth h = ComputeLocalizerHealth(track, run.updates);
+  h.wrong_switches = CountWrongSwitches(run.switches, teach);
+  return h;
 }
 
 // Each switch's transformed estimate against the local truth at the start of the map entered.
@@ -94,7 +97,7 @@ RunMetrics ComputeRunMetrics(const TeachTrace& teach, const RunTrace& run,
   m.localization_error_rad = Summarize(series.localization_error_rad);
   m.lost_fraction = FractionAbove(series.localization_error_m, config.lost_error);
   m.collisions = Collisions(run, config);
-  m.localizer = Health(run, series);
+  m.localizer = Health(teach, run, series);
   SwitchErrors(run, index, &m);
   UpdateTotals(run, &m);
   const double taught_time_s = teach.time.empty() ? 0.0 : teach.time.back() - teach.time.front();

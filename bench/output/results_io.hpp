@@ -23,6 +23,7 @@
 //
 // TUM lines are `t x y z qx qy qz qw` (z = 0, rotation about z), readable by evo.
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -73,6 +74,10 @@ struct EventRow {
 };
 /// The map switches as events.csv rows ("map_switch", "k->l").
 std::vector<EventRow> SwitchEvents(const std::vector<SwitchRecord>& switches);
+/// "off_map" and "on_map" rows where the stack's off-map flag changes: off_map[i] held from
+/// time[i] on (the same sizes).
+std::vector<EventRow> OffMapEvents(const std::vector<double>& time,
+                                   const std::vector<std::uint8_t>& off_map);
 /// Writes events.csv (the rows as given).
 void WriteEventsCsv(const std::filesystem::path& path, const std::vector<EventRow>& rows);
 

@@ -26,10 +26,6 @@ core::OdometryDelta ArcDelta(const core::Pose2& a, const core::Pose2& b) {
   return {step.x >= 0.0 ? arc : -arc, step.theta};
 }
 
-// Heading spread after going round a loop: the odometry's scale error alone over-counts a full
-// turn by about 1 % (3.6 degrees, sim/odometry.hpp).
-constexpr double kWrapSigmaTheta = 0.0873;  // rad, 5 degrees
-
 // Consecutive odometry samples are merged into one prediction while the arc from the first to
 // the last ends this close to the last (the arc leaves the chord at half the heading change).
 constexpr double kArcTolerance = 0.001;  // m
@@ -123,18 +119,6 @@ core::Rng LogLocalizeRng(std::uint64_t seed) {
 
 namespace {
 
-// The route graph read with the route's drift; a loop is driven again after its last map.
-nav::MapServerConfig ServerOf(const LogConfig& config) {
-  nav::MapServerConfig server;
-  server.loop = true;
-  server.closure_radius = config.route.revisit_radius;
-  server.drift = config.route.online_drift;
-  server.min_sigma_xy = config.playback.initial_sigma_xy;
-  server.min_sigma_theta =
-      std::max(core::DegToRad(config.playback.initial_sigma_yaw_deg), kWrapSigmaTheta);
-  return server;
-}
-
 // The replay of one log: per scan, the navigator's step and what the metrics keep of it.
 class LogReplay {
  public:
@@ -145,7 +129,7 @@ class LogReplay {
         options_(options),
         from_log_start_(window.from_s <= 0.0),
         nav_(config.nav.localizer, config.nav.follower, streams.robot, teach.bundle,
-             ServerOf(config), LogLocalizeRng(config.seed)),
+             config.nav.map_server, config.route.Link(), true, LogLocalizeRng(config.seed)),
         feed_(streams.odometry, options.every_odometry_tick) {
     result_.loop = nav_.server().loops();
     if (!streams.reference.empty() && !teach.trace.X_WR.empty()) {
@@ -185,7 +169,7 @@ class LogReplay {
       result_.laps_completed = std::max(result_.laps_completed, 1);
     }
     result_.samples.push_back({stamp, static_cast<int>(nav_.server().index()), nav_.Estimate(),
-                               *X_OR, nav_.localizer().lost(), X_WR, X_MR_truth});
+                               *X_OR, nav_.localizer().lost(), tick.off_map, X_WR, X_MR_truth});
   }
 
   LogLocalizeResult Finish(double cpu_time_s) {

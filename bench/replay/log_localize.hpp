@@ -36,6 +36,7 @@ struct LogLocalizeSample {
   core::Pose2 X_MR;                       ///< the estimate in map `map`
   core::Pose2 X_OR;                       ///< the odometry at the scan's stamp
   bool lost = false;                      ///< the localizer's own verdict
+  bool off_map = false;                   ///< no map covers the place: odometry only
   std::optional<core::Pose2> X_WR;        ///< the reference
   std::optional<core::Pose2> X_MR_truth;  ///< the local truth (reference and teach trace)
 };
@@ -50,7 +51,7 @@ struct LogLocalizeResult {
   double last_s = 0.0;
   std::size_t scans_outside = 0;  ///< scans in the window without odometry
   /// The taught route is a loop: after its last map the run goes on in map 0 (the loop driven
-  /// again), the particles carried by nav::MapServer::WrapToFirst.
+  /// again; nav::MapServer::WrapPlace).
   bool loop = false;
   /// Times the estimate reached the end of the last taught path.
   int laps_completed = 0;

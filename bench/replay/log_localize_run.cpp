@@ -1,5 +1,6 @@
 #include "bench/replay/log_localize_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bench/engine/local_truth.hpp"
@@ -45,7 +46,17 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
                     int{u.reacquired}});
   }
   updates.Commit();
-  WriteEventsCsv(dir / "events.csv", SwitchEvents(run.switches));
+  std::vector<EventRow> events = SwitchEvents(run.switches);
+  std::vector<double> times;
+  std::vector<std::uint8_t> off_map;
+  for (const LogLocalizeSample& s : run.samples) {
+    times.push_back(s.time);
+    off_map.push_back(s.off_map ? 1 : 0);
+  }
+  for (EventRow& r : OffMapEvents(times, off_map)) events.push_back(std::move(r));
+  std::stable_sort(events.begin(), events.end(),
+                   [](const EventRow& a, const EventRow& b) { return a.time < b.time; });
+  WriteEventsCsv(dir / "events.csv", events);
   if (run.snapshot) WriteSnapshot(dir / "snapshot.json", *run.snapshot);
 }
 
@@ -115,14 +126,17 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
           " s in " + std::to_string(h.lost_spells) + (h.lost_spells == 1 ? " spell" : " spells") +
           ", " + std::to_string(h.reacquisitions) +
           " re-acquisitions; largest single-update jump " + core::FixedText(h.max_jump_m, 2) +
-          " m (at " + core::FixedText(h.max_jump_time_s, 1) + " s)\n";
+          " m (at " + core::FixedText(h.max_jump_time_s, 1) + " s); off map (odometry only) " +
+          core::FixedText(h.off_map_time_s, 1) + " s\n";
   if (m.has_truth) {
     text += "  against the reference: " + std::to_string(h.reacquisitions_closer) +
             " re-acquisitions brought the estimate closer, " +
             std::to_string(h.reacquisitions_wrong) +
             " took it more than 0.5 m farther; largest single-update error increase " +
             core::FixedText(h.max_error_increase_m, 2) + " m (at " +
-            core::FixedText(h.max_error_increase_time_s, 1) + " s)\n";
+            core::FixedText(h.max_error_increase_time_s, 1) + " s); " +
+            std::to_string(m.switches) + " map switches, " + std::to_string(h.wrong_switches) +
+            " into a map whose taught path the reference was not on\n";
   }
   text += "  beams rejected as dynamic: " + core::FixedText(100.0 * m.rejected_fraction, 2) +
           " %; update time mean " + core::FixedText(m.update_time_ms.mean, 2) + " ms, p95 " +
@@ -176,7 +190,7 @@ LogLocalization LocalizeLog(const LogLocalizeRequest& request) {
       PrepareLogStreams(l.index, l.config, request.run.synthetic_odometry, request.run.reference);
   l.run = RunLogLocalize(l.index, l.streams, l.teach, l.config, request.run.window, replay);
   l.series = ComputeLogSeries(l.run, l.teach.trace);
-  l.metrics = ComputeLogMetrics(l.run, l.series, l.teach.bundle, l.config.metrics);
+  l.metrics = ComputeLogMetrics(l.run, l.series, l.teach.bundle, l.teach.trace, l.config.metrics);
   return l;
 }
 

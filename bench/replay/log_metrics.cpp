@@ -49,13 +49,15 @@ LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const TeachTrac
 }
 
 LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLocalizeSeries& series,
-                                     const nav::TeachBundle& bundle, const MetricsConfig& config) {
+                                     const nav::TeachBundle& bundle, const TeachTrace& teach,
+                                     const MetricsConfig& config) {
   LogLocalizeMetrics m;
   std::vector<EstimateSample> track;
   track.reserve(run.samples.size());
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const LogLocalizeSample& s = run.samples[i];
     track.push_back({s.time, s.map, s.X_MR, s.X_OR, s.lost});
+    track.back().off_map = s.off_map;
     if (i == 0) continue;
     const LogLocalizeSample& prev = run.samples[i - 1];
     if (prev.map == s.map && s.X_MR_truth && s.X_WR && prev.X_WR) {
@@ -64,6 +66,9 @@ LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLoca
     }
   }
   m.localizer = ComputeLocalizerHealth(track, run.updates);
+  const bool reference = std::any_of(run.samples.begin(), run.samples.end(),
+                                     [](const LogLocalizeSample& s) { return s.X_WR.has_value(); });
+  if (reference) m.localizer.wrong_switches = CountWrongSwitches(run.switches, teach);
   m.scans = static_cast<int>(run.samples.size());
   m.updates = static_cast<int>(run.updates.size());
   m.switches = static_cast<int>(run.switches.size());

@@ -67,8 +67,11 @@ struct LogLocalizeMetrics {
 /// localization errors and path distances are NaN).
 LogLocalizeSeries ComputeLogSeries(const LogLocalizeResult& run, const TeachTrace& teach);
 
+/// The metrics of `run` in the maps of `bundle`, taught on the drive `teach` (its reference
+/// judges the map switches: CountWrongSwitches).
 LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLocalizeSeries& series,
-                                     const nav::TeachBundle& bundle, const MetricsConfig& config);
+                                     const nav::TeachBundle& bundle, const TeachTrace& teach,
+                                     const MetricsConfig& config);
 
 nlohmann::json ToJson(const LogLocalizeMetrics& metrics);
 

@@ -184,7 +184,8 @@ void LocalizingTheRunLogMatchesTheLiveRun() {
     const LogStreams streams = PrepareLogStreams(index, config, false, std::nullopt);
     const LogLocalizeResult run = RunLogLocalize(index, streams, live.teach, config, {});
     const LogLocalizeMetrics m = ComputeLogMetrics(run, ComputeLogSeries(run, live.teach.trace),
-                                                   live.teach.bundle, config.metrics);
+                                                   live.teach.bundle, live.teach.trace,
+                                                   config.metrics);
     EXPECT_EQ(m.switches, 1) << file;
     EXPECT_TRUE(m.has_truth) << file;
     EXPECT_LT(m.localization_error_m.rms, 2.0 * live_rms + 0.05) << file << " live " << live_rms;
@@ -265,7 +266,7 @@ LocalizedLog LocalizeRunLog(const char* file) {
   const LogLocalizeResult run = RunLogLocalize(index, streams, live.teach, config, {});
   LocalizedLog out;
   out.metrics = ToJson(ComputeLogMetrics(run, ComputeLogSeries(run, live.teach.trace),
-                                         live.teach.bundle, config.metrics));
+                                         live.teach.bundle, live.teach.trace, config.metrics));
   out.metrics.erase("update_time_ms");
   out.metrics.erase("real_time_factor");
   for (const LogLocalizeSample& s : run.samples) out.estimates.push_back(s.X_MR);
@@ -344,7 +345,7 @@ void SimulatedScansOfTheLogLocalizeInItsConsistentMap() {
       RunLogLocalize(sim_index, sim_streams, taught.modes.front(), config, {});
   const LogLocalizeMetrics m =
       ComputeLogMetrics(run, ComputeLogSeries(run, taught.modes.front().trace),
-                        taught.modes.front().bundle, config.metrics);
+                        taught.modes.front().bundle, taught.modes.front().trace, config.metrics);
   EXPECT_LT(m.localization_error_m.rms, 0.15);
   EXPECT_LT(m.rejected_fraction, 0.05);  // nobody walks in the simulated world
 

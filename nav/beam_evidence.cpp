@@ -1,0 +1,71 @@
+#include "nav/beam_evidence.hpp"
+
+#include <cmath>
+
+#include "core/check.hpp"
+
+namespace retrace::nav {
+namespace {
+
+double Share(int n, int total) {
+  return total > 0 ? static_cast<double>(n) / static_cast<double>(total) : 0.0;
+}
+
+}  // namespace
+
+double BeamEvidence::Coverage() const { return Share(total() - unknown, total()); }
+double BeamEvidence::Explained() const { return Share(explained, total()); }
+double BeamEvidence::Contradicted() const { return Share(through_wall, total()); }
+
+BeamEvidenceThresholds BeamEvidenceThresholds::Of(const LikelihoodField& field) {
+  const double sigma = field.config().sigma_hit;
+  return {1.5 * sigma, 2.0 * sigma};
+}
+
+BeamEvidence ClassifyBeams(const LikelihoodField& field, const GridRayCaster& caster,
+                           const core::Pose2& X_ML, std::span<const double> xs_L,
+                           std::span<const double> ys_L) {
+  RETRACE_CHECK(xs_L.size() == ys_L.size());
+  const BeamEvidenceThresholds t = BeamEvidenceThresholds::Of(field);
+  const core::Vec2 origin = X_ML.translation();
+  const double c = std::cos(X_ML.theta), s = std::sin(X_ML.theta);
+  BeamEvidence e;
+  for (std::size_t i = 0; i < xs_L.size(); ++i) {
+    const double range = std::hypot(xs_L[i], ys_L[i]);
+    if (!(range > 0.0)) continue;
+    const core::Vec2 end(origin.x() + c * xs_L[i] - s * ys_L[i],
+                         origin.y() + s * xs_L[i] + c * ys_L[i]);
+    if (field.DistanceAt(end) <= t.explained_distance) {
+      ++e.explained;
+      continue;
+    }
+    const core::Vec2 dir = (end - origin) / range;
+    const double expected = caster.Cast(origin, dir, range);
+    if (expected < range - t.contradiction_margin) {
+      ++e.through_wall;
+    } else if (!field.Known(end)) {
+      ++e.unknown;
+    } else {
+      ++e.shorter;
+    }
+  }
+  return e;
+}
+
+double GridCoverage(const core::OccupancyGrid& grid, const core::Pose2& X_ML,
+                    std::span<const double> xs_L, std::span<const double> ys_L) {
+  RETRACE_CHECK(xs_L.size() == ys_L.size());
+  if (xs_L.empty() || grid.empty()) return 0.0;
+  const double known = core::Logit(kKnownProbability);
+  int covered = 0;
+  for (std::size_t i = 0; i < xs_L.size(); ++i) {
+    const core::Vec2 end = (X_ML * core::Pose2(xs_L[i], ys_L[i], 0.0)).translation();
+    const core::CellIndex cell = grid.WorldToCell(end);
+    if (grid.Contains(cell) && std::abs(static_cast<double>(grid.LogOdds(cell))) >= known) {
+      ++covered;
+    }
+  }
+  return static_cast<double>(covered) / static_cast<double>(xs_L.size());
+}
+
+}  // namespace retrace::nav
