@@ -34,7 +34,7 @@ void MapServerConfig::Validate() const {
   core::RequirePositive("min_sigma_theta", min_sigma_theta);
   core::RequireIntInRange("settle_updates", settle_updates, 1, 1000);
   core::RequirePositive("settle_rms", settle_rms);
-  core::RequirePositive("settle_wait", settle_wait);
+  core::RequireNonNegative("settle_wait", settle_wait);
   core::RequireInRange("min_coverage", min_coverage, 0.0, 1.0);
 }
 
@@ -144,9 +144,12 @@ MapDecision MapServer::Backward(const core::Pose2& X_MR) const {
 std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const core::Pose2& X_MR,
                                              double max_distance, const ScanPoints* scan,
                                              double coverage) const {
+  // Off the path the estimate drifts with the odometry: the farther it has driven since, the
+  // farther from its estimate and the farther through the graph the place may be.
+  const double drifted = link_.drift * pos.off_path_driven;
   std::optional<RoutePlace> best;
-  for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma)) {
-    if (p.distance > max_distance) continue;
+  for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma + drifted)) {
+    if (p.distance > max_distance + drifted) continue;
     // The current map holds the robot elsewhere on its path only where the route passes the
     // place again: farther along the path than the robot can have driven since it left it.
     if (p.map == index_ &&

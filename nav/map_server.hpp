@@ -78,7 +78,7 @@ struct MapServerConfig {
     v("settle_wait", settle_wait);
     v("min_coverage", min_coverage);
   }
-  /// Throws core::ConfigError naming the key: sigmas, settle_rms and settle_wait > 0,
+  /// Throws core::ConfigError naming the key: sigmas and settle_rms > 0, settle_wait >= 0,
   /// settle_updates >= 1, min_coverage in [0, 1].
   void Validate() const;
 };

@@ -191,8 +191,8 @@ def main():
             "max": m["localization_error_on_route_m"]["max"],
             "increase": h["max_error_increase_m"] or 0.0,
             "switches": m["switches"],
-            "wrong_switches": m.get("wrong_switches", 0),
-            "off_map_s": m.get("off_map_time_s", 0.0),
+            "wrong_switches": h.get("wrong_switches", 0),
+            "off_map_s": h.get("off_map_time_s", 0.0),
             "silent_s": h.get("silent_failure_time_s", float("nan")),
         }
     print("| route | drive | seed | mode | on-route RMS (m) | × consistent | max (m) "

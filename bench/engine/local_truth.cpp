@@ -92,13 +92,18 @@ void LocalTruthAcrossMaps::Enter(std::size_t map) {
 }
 
 std::size_t LocalTruthAcrossMaps::NearestMap(const core::Pose2& X_WR) const {
+  // Where two maps' paths pass the place (a street the route drove twice, a crossing), the one
+  // driven along the robot's heading, either way, is where it is: a teaching sample counts as
+  // kHeadingCost m farther for a heading across the robot's.
+  constexpr double kHeadingCost = 1.0;
   std::size_t best = 0;
-  double best_d2 = std::numeric_limits<double>::infinity();
+  double best_cost = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < teach_.maps.size(); ++k) {
     for (const core::Pose2& X : teach_.maps[k].X_WR) {
-      const double d2 = (X.translation() - X_WR.translation()).squaredNorm();
-      if (d2 < best_d2) {
-        best_d2 = d2;
+      const double across = 1.0 - std::abs(std::cos(core::AngleDiff(X.theta, X_WR.theta)));
+      const double cost = (X.translation() - X_WR.translation()).norm() + kHeadingCost * across;
+      if (cost < best_cost) {
+        best_cost = cost;
         best = k;
       }
     }

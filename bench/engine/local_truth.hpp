@@ -72,8 +72,9 @@ class LocalTruthAcrossMaps {
   LocalTruthAcrossMaps(const TeachTrace& teach, double window, double fallback_distance);
   /// The robot entered map `map` (a switch, or map 0 again after a loop's last map).
   void Enter(std::size_t map);
-  /// The map whose teaching samples pass nearest the ground truth X_WR (the first of equals):
-  /// where a run that begins mid-route begins.
+  /// The map whose teaching samples pass nearest the ground truth X_WR, a sample driven across
+  /// the truth's heading counting up to 1 m farther (the first of equals): where a run that
+  /// begins mid-route begins.
   std::size_t NearestMap(const core::Pose2& X_WR) const;
   /// The local truth X_{M_k R} in the current map for the ground truth X_WR.
   core::Pose2 InMap(const core::Pose2& X_WR) { return current_.InMap(X_WR); }

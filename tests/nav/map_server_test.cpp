@@ -29,6 +29,33 @@ core::OccupancyGrid RoomMap() {
   return grid;
 }
 
+// The map server of a route with the given drift and revisit radius, the default options.
+MapServer Server(TeachBundle bundle, double drift = 0.03, double radius = 3.0, bool loop = false) {
+  RouteLinkConfig link;
+  link.drift = drift;
+  link.revisit_radius = radius;
+  return MapServer(std::move(bundle), MapServerConfig{}, link, loop);
+}
+
+// The robot's place on the current path for the estimate X_MR, travelling `travel`.
+RoutePosition PlaceOn(const MapServer& server, const core::Pose2& X_MR, double max_distance,
+                      Travel travel) {
+  const core::PathProjection p = Project(server.current().path, X_MR.translation());
+  RoutePosition pos;
+  pos.map = server.index();
+  pos.s = pos.s_extended = p.s;
+  pos.distance = p.distance;
+  pos.on_path = p.distance <= max_distance;
+  pos.travel = travel;
+  return pos;
+}
+
+// The map server's decision for a robot at X_MR travelling `travel`, without a scan.
+MapDecision DecideAt(const MapServer& server, const FollowerOutput& f, const core::Pose2& X_MR,
+                     double max_distance, Travel travel = Travel::kForward) {
+  return server.Decide(f, PlaceOn(server, X_MR, max_distance, travel), X_MR, max_distance);
+}
+
 TeachBundle TwoMaps(const core::Pose2& X_M0S) {
   TeachBundle bundle;
   PartialMap m0;
@@ -59,14 +86,14 @@ TEST(MapServer, EquationOneMapsTheSwitchPoseToIdentityAndKeepsRelativePoses) {
 RoutePlace NextAtEnd(const MapServer& server, const core::Pose2& X_MR) {
   FollowerOutput end;
   end.goal_reached = true;
-  const MapDecision d = server.Decide(end, X_MR, 2.0);
+  const MapDecision d = DecideAt(server, end, X_MR, 2.0);
   EXPECT_EQ(d.step, MapStep::kSwitch);
   return d.place;
 }
 
 TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
   const core::Pose2 X_M0S(4.0, 1.0, 0.7);
-  MapServer server(TwoMaps(X_M0S));
+  MapServer server = Server(TwoMaps(X_M0S));
   Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(3));
   PathFollower follower(PathFollowerConfig{});
   server.Start(localizer, follower);
@@ -103,34 +130,30 @@ TEST(MapServer, HandoverTransformsTheEstimateAndEveryParticleByEquationOne) {
 }
 
 TEST(MapServer, DecidesOnTheEndOfThePathByGoalOrRemainingArc) {
-  MapServer server(TwoMaps(core::Pose2(4.0, 0.0, 0.0)));
+  MapServer server = Server(TwoMaps(core::Pose2(4.0, 0.0, 0.0)));
   const core::Pose2 X_MR(3.9, 0.0, 0.0);
   FollowerOutput out;
   out.goal_reached = false;
   out.remaining = 0.2;
-  EXPECT_EQ(server.Decide(out, X_MR, 2.0).step, MapStep::kStay);
+  EXPECT_EQ(DecideAt(server, out, X_MR, 2.0).step, MapStep::kStay);
   out.remaining = MapServer::kPathEndTolerance;  // a log's estimate that passed the end
-  EXPECT_EQ(server.Decide(out, X_MR, 2.0).step, MapStep::kSwitch);
+  EXPECT_EQ(DecideAt(server, out, X_MR, 2.0).step, MapStep::kSwitch);
   out.off_path = true;  // the progress is at the end, but the robot is elsewhere: on path 0
-  EXPECT_EQ(server.Decide(out, X_MR, 2.0).step, MapStep::kStay);
+  EXPECT_EQ(DecideAt(server, out, X_MR, 2.0).step, MapStep::kStay);
   out.off_path = false;
   out.remaining = 0.2;
   out.goal_reached = true;
-  const MapDecision d = server.Decide(out, X_MR, 2.0);
+  const MapDecision d = DecideAt(server, out, X_MR, 2.0);
   EXPECT_EQ(d.step, MapStep::kSwitch);
   EXPECT_EQ(d.place.map, 1u);
-  EXPECT_THROW(MapServer(TeachBundle{}), core::ConfigError);
+  EXPECT_THROW(Server(TeachBundle{}), core::ConfigError);
 }
 
 TEST(MapServer, WrapsOnlyALoopWhenLoopingIsOn) {
   // Paths of 4 m and 2 m along x: the route ends 6 m from where it began. Within a 1 m radius
   // it is no loop, within 100 m it is; looping off never wraps.
   const TeachBundle straight = TwoMaps(core::Pose2(4.0, 0.0, 0.0));
-  MapServerConfig loop;
-  loop.loop = true;
-  loop.closure_radius = 1.0;
-  loop.drift = 0.0;
-  MapServer line(straight, loop);
+  MapServer line = Server(straight, 0.0, 1.0, true);
   EXPECT_FALSE(line.loops());
   Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(1));
   PathFollower follower{PathFollowerConfig{}};
@@ -139,19 +162,17 @@ TEST(MapServer, WrapsOnlyALoopWhenLoopingIsOn) {
   line.Switch(NextAtEnd(line, core::Pose2(4.0, 0.0, 0.0)), localizer, follower);
   FollowerOutput end;
   end.goal_reached = true;
-  EXPECT_EQ(line.Decide(end, core::Pose2::Identity(), 2.0).step, MapStep::kDone);
-  loop.closure_radius = 100.0;  // everything closes within 100 m
-  MapServer ring(straight, loop);
+  EXPECT_EQ(DecideAt(line, end, core::Pose2::Identity(), 2.0).step, MapStep::kDone);
+  MapServer ring = Server(straight, 0.0, 100.0, true);  // everything closes within 100 m
   EXPECT_TRUE(ring.loops());
   ring.Start(localizer, follower);
   ring.Switch(NextAtEnd(ring, core::Pose2(4.0, 0.0, 0.0)), localizer, follower);
-  const MapDecision wrap = ring.Decide(end, core::Pose2::Identity(), 2.0);
+  const MapDecision wrap = DecideAt(ring, end, core::Pose2::Identity(), 2.0);
   EXPECT_EQ(wrap.step, MapStep::kWrap);
-  const MapSwitch s = ring.WrapToFirst(wrap, localizer, follower);
+  const MapSwitch s = ring.Switch(ring.WrapPlace(wrap), localizer, follower);
   EXPECT_EQ(s.to, 0u);
   EXPECT_EQ(ring.index(), 0u);
-  loop.loop = false;
-  EXPECT_FALSE(MapServer(straight, loop).loops());
+  EXPECT_FALSE(Server(straight, 0.0, 100.0, false).loops());
 }
 
 TEST(MapServer, SwitchesBackWhenTheRouteIsDrivenBackwards) {
@@ -162,7 +183,7 @@ TEST(MapServer, SwitchesBackWhenTheRouteIsDrivenBackwards) {
   const core::Pose2 X_M0S(4.0, 0.0, core::kPi / 2);
   TeachBundle bundle = TwoMaps(X_M0S);
   bundle.maps[0].path = core::Path({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, X_M0S});
-  MapServer server(bundle);
+  MapServer server = Server(bundle);
   Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(5));
   PathFollower follower(PathFollowerConfig{});
   server.Start(localizer, follower);
@@ -172,17 +193,19 @@ TEST(MapServer, SwitchesBackWhenTheRouteIsDrivenBackwards) {
   // In map 1, on its path: stay. Map 0's (1.5, 0) facing back is (0, 2.5) in map 1, and 2.5 m
   // from map 1's path.
   FollowerOutput on = follower.Compute(core::Pose2(0.5, 0.0, 0.0), 0.05);
-  EXPECT_EQ(server.Decide(on, core::Pose2(0.5, 0.0, 0.0), 2.0).step, MapStep::kStay);
+  EXPECT_EQ(DecideAt(server, on, core::Pose2(0.5, 0.0, 0.0), 2.0).step, MapStep::kStay);
   const core::Pose2 X_M1R = X_M0S.Inverse() * core::Pose2(1.5, 0.0, core::kPi);
   localizer.Initialize(X_M1R, 0.01, 0.01);
   FollowerOutput off = follower.Compute(X_M1R, 0.05);
   ASSERT_TRUE(off.off_path);
-  const MapDecision back = server.Decide(off, X_M1R, 2.0);
+  // Driving forward it would be going against path 0: not there. Driving back, it is.
+  EXPECT_EQ(DecideAt(server, off, X_M1R, 2.0).step, MapStep::kStay);
+  const MapDecision back = DecideAt(server, off, X_M1R, 2.0, Travel::kBackward);
   ASSERT_EQ(back.step, MapStep::kSwitch);
   EXPECT_EQ(back.place.map, 0u);
   EXPECT_NEAR(back.place.s, 1.5, 1e-9);
   const core::Pose2 elsewhere(5.0, 5.0, 0.0);  // 5 m from both paths
-  EXPECT_EQ(server.Decide(off, elsewhere, 2.0).step, MapStep::kStay);
+  EXPECT_EQ(DecideAt(server, off, elsewhere, 2.0, Travel::kBackward).step, MapStep::kStay);
 
   const MapSwitch s = server.Switch(back.place, localizer, follower);
   EXPECT_EQ(s.from, 1u);
@@ -193,7 +216,8 @@ TEST(MapServer, SwitchesBackWhenTheRouteIsDrivenBackwards) {
   // Off map 0's path and near no other: it stays.
   FollowerOutput lost = follower.Compute(core::Pose2(1.5, 6.0, 0.0), 0.05);
   ASSERT_TRUE(lost.off_path);
-  EXPECT_EQ(server.Decide(lost, core::Pose2(1.5, 6.0, 0.0), 2.0).step, MapStep::kStay);
+  EXPECT_EQ(DecideAt(server, lost, core::Pose2(1.5, 6.0, 0.0), 2.0, Travel::kBackward).step,
+            MapStep::kStay);
 }
 
 // Three maps of 10 m each: along +x in map 0, then up +y, then back along -x 10 m above map 0's
@@ -218,8 +242,8 @@ TEST(MapServer, HandsOverTheMapWhosePathTheRobotIsOnByPlace) {
   FollowerOutput off;
   off.off_path = true;
   off.remaining = 5.0;
-  MapServer server(ThreeMaps());
-  const MapDecision d = server.Decide(off, X_M0R, 2.0);
+  MapServer server = Server(ThreeMaps());
+  const MapDecision d = DecideAt(server, off, X_M0R, 2.0);
   ASSERT_EQ(d.step, MapStep::kSwitch);
   EXPECT_EQ(d.place.map, 2u);
   EXPECT_NEAR(d.place.s, 5.0, 1e-9);
@@ -237,13 +261,11 @@ TEST(MapServer, HandsOverTheMapWhosePathTheRobotIsOnByPlace) {
   EXPECT_NEAR(std::sqrt(testing::ParticleCovariance(localizer.particles(), localizer.Estimate())(0, 0)), 0.6, 0.1);
 
   // At 10 % drift that chain may be off by 2 m: too long a chain, no hand-over.
-  MapServerConfig drifty;
-  drifty.drift = 0.1;
-  EXPECT_EQ(MapServer(ThreeMaps(), drifty).Decide(off, X_M0R, 2.0).step, MapStep::kStay);
+  EXPECT_EQ(DecideAt(Server(ThreeMaps(), 0.1), off, X_M0R, 2.0).step, MapStep::kStay);
   // A revisit edge registered between path 0 and path 2 at that place is exact there.
   TeachBundle linked = ThreeMaps();
-  linked.revisits.push_back({0, 2, 5.0, 5.0, MapServer(ThreeMaps()).graph().Chain(0, 2)});
-  const MapDecision via = MapServer(linked, drifty).Decide(off, X_M0R, 2.0);
+  linked.revisits.push_back({0, 2, 5.0, 5.0, Server(ThreeMaps()).graph().Chain(0, 2)});
+  const MapDecision via = DecideAt(Server(linked, 0.1), off, X_M0R, 2.0);
   ASSERT_EQ(via.step, MapStep::kSwitch);
   EXPECT_EQ(via.place.map, 2u);
   EXPECT_TRUE(via.place.via_revisit);
@@ -251,7 +273,7 @@ TEST(MapServer, HandsOverTheMapWhosePathTheRobotIsOnByPlace) {
 }
 
 TEST(MapServer, StartsInTheMapNearestTheStart) {
-  MapServer server(ThreeMaps());
+  MapServer server = Server(ThreeMaps());
   const RoutePlace start = server.NearestMap(core::Pose2(3.0, 10.2, core::kPi));
   EXPECT_EQ(start.map, 2u);
   ExpectPoseNear(start.X_MR, core::Pose2(7.0, -0.2, 0.0), 1e-9);
@@ -261,6 +283,76 @@ TEST(MapServer, StartsInTheMapNearestTheStart) {
   server.Start(localizer, follower, start.map, start.X_MR);
   EXPECT_EQ(server.index(), 2u);
   EXPECT_NEAR(follower.Compute(start.X_MR, 0.05).remaining, 3.0, 1e-9);
+}
+
+TEST(MapServer, EntersThePreviousMapAtItsEndWhenTheStartIsPassedBackwards) {
+  // A robot in map 1 that drives back past map 1's start is at the end of map 0's path: eq. (1)
+  // inverted carries its pose, X_{M_0 R} = X_{M_0 S} X_{M_1 R}, exactly as the switch forward did.
+  const core::Pose2 X_M0S(4.0, 0.0, core::kPi / 2);
+  MapServer server = Server(TwoMaps(X_M0S));
+  Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(5));
+  PathFollower follower(PathFollowerConfig{});
+  server.Start(localizer, follower, 1);
+  const core::Pose2 X_M1R(-0.1, 0.02, core::kPi);  // just behind map 1's start, facing back
+  FollowerOutput f = follower.Compute(X_M1R, 0.05);
+  RoutePosition pos = PlaceOn(server, X_M1R, 2.0, Travel::kBackward);
+  pos.s_extended = -0.1;
+  const MapDecision back = server.Decide(f, pos, X_M1R, 2.0);
+  ASSERT_EQ(back.step, MapStep::kSwitch);
+  EXPECT_EQ(back.place.map, 0u);
+  EXPECT_EQ(back.travel, Travel::kBackward);
+  EXPECT_EQ(back.place.sigma, 0.0);
+  EXPECT_NEAR(back.place.s, server.bundle().maps[0].path.Length(), 1e-12);
+  ExpectPoseNear(back.place.X_MR, X_M0S * X_M1R, 1e-12);
+  // Driving forward at the same place, or backward mid-path, it stays.
+  pos.travel = Travel::kForward;
+  EXPECT_EQ(server.Decide(f, pos, X_M1R, 2.0).step, MapStep::kStay);
+  pos = PlaceOn(server, core::Pose2(1.0, 0.0, core::kPi), 2.0, Travel::kBackward);
+  EXPECT_EQ(server.Decide(f, pos, core::Pose2(1.0, 0.0, core::kPi), 2.0).step, MapStep::kStay);
+  // Before map 0 there is nothing to go back to on a route driven once.
+  server.Start(localizer, follower, 0);
+  pos = PlaceOn(server, core::Pose2(-0.1, 0.0, core::kPi), 2.0, Travel::kBackward);
+  EXPECT_EQ(server.Decide(f, pos, core::Pose2(-0.1, 0.0, core::kPi), 2.0).step, MapStep::kStay);
+}
+
+TEST(MapServer, AMapThatDoesNotCoverTheScanHandsOverOrSaysOffMap) {
+  // Map 1's grid is the room; map 0's knows only a 2 m square round its origin. A scan of the
+  // room's walls from (1, 0) ends in cells map 0 never observed.
+  TeachBundle bundle = TwoMaps(core::Pose2(2.0, 0.0, 0.0));
+  core::OccupancyGrid small(40, 40, 0.1, core::Vec2(-2.0, -2.0));
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 40; ++x) small.SetProbability({x, y}, 0.05);
+  }
+  bundle.maps[0].grid = small;
+  std::vector<double> xs, ys;
+  for (int i = 0; i < 36; ++i) {  // end points on the room's walls, 9 m away or so
+    const double a = 2.0 * core::kPi * i / 36.0;
+    const double r = 8.8 / std::max(std::abs(std::cos(a)), std::abs(std::sin(a)));
+    xs.push_back(std::min(r, 12.0) * std::cos(a));
+    ys.push_back(std::min(r, 12.0) * std::sin(a));
+  }
+  const ScanPoints scan{xs, ys, core::Pose2::Identity()};
+  MapServer server = Server(bundle);
+  Localizer localizer(LocalizerConfig{}, RobotGeometry{}, core::Rng(5));
+  PathFollower follower(PathFollowerConfig{});
+  server.Start(localizer, follower, 0);
+  const core::Pose2 X_M0R(1.0, 0.0, 0.0);
+  EXPECT_LT(server.Coverage(0, X_M0R, scan), 0.1);
+  EXPECT_GT(server.Coverage(1, core::Pose2(-1.0, 0.0, 0.0), scan), 0.9);
+  const FollowerOutput f = follower.Compute(X_M0R, 0.05);
+  const RoutePosition pos = PlaceOn(server, X_M0R, 2.0, Travel::kForward);
+  // Map 1's path (its start is map 0's (2, 0)) lies at the place and its grid covers the scan.
+  const MapDecision d = server.Decide(f, pos, X_M0R, 2.0, &scan);
+  EXPECT_LT(d.coverage, 0.1);
+  ASSERT_EQ(d.step, MapStep::kSwitch);
+  EXPECT_EQ(d.place.map, 1u);
+  // With map 1's grid as small as map 0's, no map covers the place: off map.
+  bundle.maps[1].grid = small;
+  MapServer blind = Server(bundle);
+  blind.Start(localizer, follower, 0);
+  EXPECT_EQ(blind.Decide(f, pos, X_M0R, 2.0, &scan).step, MapStep::kOffMap);
+  // Without a scan there is nothing to judge coverage by: the path holds the robot.
+  EXPECT_EQ(blind.Decide(f, pos, X_M0R, 2.0).step, MapStep::kStay);
 }
 
 }  // namespace

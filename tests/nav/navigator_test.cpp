@@ -71,16 +71,19 @@ struct WrapDrive {
 
   explicit WrapDrive(double settle_wait)
       : nav(testing_room::TestConfig(), PathFollowerConfig{}, testing_room::TestRobot(),
-            LoopOfTwo(0.8), Server(settle_wait), core::Rng(7)) {
+            LoopOfTwo(0.8), Server(settle_wait), Link(), true, core::Rng(7)) {
     drive.X_WR = OnCircle(2.0 * std::numbers::pi - 0.96);
     nav.Start(1, X_WM1.Inverse() * drive.X_WR, 0.05, 0.02);
   }
   static MapServerConfig Server(double settle_wait) {
     MapServerConfig server;
-    server.loop = true;
-    server.drift = 0.12;
     server.settle_wait = settle_wait;
     return server;
+  }
+  static RouteLinkConfig Link() {
+    RouteLinkConfig link;
+    link.drift = 0.12;
+    return link;
   }
   // Step i of the drive: odometry, a scan every second step, a control tick every fourth.
   std::optional<NavigatorTick> Step(int i) {
