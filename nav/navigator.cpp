@@ -119,6 +119,14 @@ NavigatorTick Navigator::OnControlTick(double dt) {
 }
 
 std::optional<MapSwitch> Navigator::SwitchTo(const RoutePlace& place, Travel travel, bool wrap) {
+  if (place.map == server_.index() && !wrap) {
+    // Another stretch of the current path (a street its map drove twice): no switch, the
+    // follower and the place move there.
+    pending_.reset();
+    follower_.SetPathAt(server_.current().path, place.s);
+    Track(place.s, travel);
+    return std::nullopt;
+  }
   if (!server_.Settles(place)) {
     pending_.reset();
     MapSwitch s = server_.Switch(place, localizer_, follower_);

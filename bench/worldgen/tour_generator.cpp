@@ -74,6 +74,7 @@ void TourConfig::Validate() const {
   core::RequireInRange("block_size", block_size[1], block_size[0], 500.0);
   core::RequireIntInRange("max_loop_blocks", max_loop_blocks, 1, 50);
   core::RequireIntInRange("max_transfer", max_transfer, 1, 50);
+  core::RequireIntInRange("out_and_back", out_and_back, 0, 1000);
 }
 
 std::vector<core::Vec2> GenerateTour(const TourConfig& config, std::uint64_t seed) {
@@ -90,6 +91,7 @@ std::vector<core::Vec2> GenerateTour(const TourConfig& config, std::uint64_t see
   w.j = static_cast<int>(rng.UniformIndex(static_cast<std::uint64_t>(config.rows) + 1));
   w.route.emplace_back(w.xs[w.i], w.ys[w.j]);
 
+  int legs = config.out_and_back;
   while (w.length < config.length) {
     // A loop round a rectangle of blocks with a corner here, never starting with a U-turn.
     std::vector<std::vector<int>> laps;
@@ -111,6 +113,24 @@ std::vector<core::Vec2> GenerateTour(const TourConfig& config, std::uint64_t see
         if (w.length >= config.length) break;
         w.Drive(d);
       }
+    }
+    // An out-and-back leg: on along one to max_transfer streets, then back along them.
+    if (legs > 0 && w.length < config.length) {
+      --legs;
+      std::vector<int> ways;
+      for (int d = 0; d < 4; ++d) {
+        if ((w.heading < 0 || d != Reverse(w.heading)) && w.Inside(w.i + kDx[d], w.j + kDy[d]))
+          ways.push_back(d);
+      }
+      const int out = ways[rng.UniformIndex(ways.size())];
+      const int streets =
+          1 + static_cast<int>(rng.UniformIndex(static_cast<std::uint64_t>(config.max_transfer)));
+      int driven = 0;
+      while (driven < streets && w.Inside(w.i + kDx[out], w.j + kDy[out])) {
+        w.Drive(out);
+        ++driven;
+      }
+      for (int k = 0; k < driven; ++k) w.Drive(Reverse(out));
     }
     // Then on along one to max_transfer streets, never back the way it came.
     const int transfer =

@@ -3,7 +3,8 @@
 // route along its streets made of loops round rectangles of blocks, chained by short transfers.
 // Every loop comes back to where it began and later loops drive streets that earlier ones drove,
 // so a tour revisits itself many times, in both directions and at crossings — what partial maps
-// and their switch points must cope with. No U-turns: the route never reverses along a street.
+// and their switch points must cope with. No U-turns, unless out_and_back asks for legs that go
+// along a street and come straight back along it.
 // Pure and deterministic: the same config and seed give the same route. `retrace generate-tour`
 // builds a campus world round it (campus_generator.hpp) and a scenario.
 
@@ -23,6 +24,10 @@ struct TourConfig {
   std::array<double, 2> block_size{30.0, 60.0};  ///< m, [min, max] of each column's and row's size
   int max_loop_blocks = 2;  ///< a loop goes round at most this many blocks in each direction
   int max_transfer = 2;     ///< streets driven between two loops: 1 to this many
+  /// Out-and-back legs: after each of the first this many loops, the route drives 1 to
+  /// max_transfer streets on and comes back along them (a U-turn at the far crossing), so that
+  /// it drives the same street both ways in a row. 0: none (the tour as without the key).
+  int out_and_back = 0;
 
   template <class V>
   void Reflect(V& v) {
@@ -32,9 +37,11 @@ struct TourConfig {
     v("block_size", block_size);
     v("max_loop_blocks", max_loop_blocks);
     v("max_transfer", max_transfer);
+    v("out_and_back", out_and_back);
   }
   /// Throws core::ConfigError naming the key: length in (0, 100 km], 1..50 columns and rows,
-  /// block sizes 10..500 m with min <= max, max_loop_blocks >= 1, max_transfer >= 1.
+  /// block sizes 10..500 m with min <= max, max_loop_blocks >= 1, max_transfer >= 1,
+  /// out_and_back 0..1000.
   void Validate() const;
 };
 

@@ -228,7 +228,7 @@ void ReplayingTheRunLogTickByTickGivesTheLiveEstimates() {
     if (j == trace.samples.size()) break;
     if (std::abs(trace.samples[j].time - s.time) > 1e-6) continue;
     ++matched;
-    ASSERT_EQ(s.map, trace.samples[j].map_index) << s.time;
+    ASSERT_EQ(s.map, trace.samples[j].map_index) << s.time << " first apart " << first_apart << " max " << max_difference;
     const double d = core::Distance(s.X_MR, trace.samples[j].X_MR);
     identical += d == 0.0 ? 1 : 0;
     to_rounding += d < 1e-9 ? 1 : 0;
