@@ -148,6 +148,7 @@ std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const cor
   // farther from its estimate and the farther through the graph the place may be.
   const double drifted = link_.drift * pos.off_path_driven;
   std::optional<RoutePlace> best;
+  double best_cost = 0.0;
   for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma + drifted)) {
     if (p.distance > max_distance + drifted) continue;
     // The current map holds the robot elsewhere on its path only where the route passes the
@@ -156,12 +157,20 @@ std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const cor
         (pos.on_path || std::abs(p.s - pos.s) <= pos.off_path_driven + max_distance)) {
       continue;
     }
-    if (!SameWay(pos.travel, TravelOf(bundle_->maps[p.map].path, p.s, p.X_MR.theta))) continue;
     if (scan != nullptr && !scan->xs_L.empty()) {
       const double c = Coverage(p.map, p.X_MR, *scan);
       if (c < config_.min_coverage || (p.map != index_ && c <= coverage && pos.on_path)) continue;
     }
-    if (!best || p.distance + p.sigma < best->distance + best->sigma) best = p;
+    // A path driven the other way than the robot travels (the other leg of a street the route
+    // drove out and back) counts as max_distance farther: it is taken only where no path driven
+    // the robot's way is near.
+    const bool same_way =
+        SameWay(pos.travel, TravelOf(bundle_->maps[p.map].path, p.s, p.X_MR.theta));
+    const double cost = p.distance + p.sigma + (same_way ? 0.0 : max_distance);
+    if (!best || cost < best_cost) {
+      best = p;
+      best_cost = cost;
+    }
   }
   return best;
 }

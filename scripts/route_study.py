@@ -7,6 +7,11 @@ teaching never made"): none of these drives tuned anything.
     scripts/route_study.py --retrace build/retrace --tours 1-20 --seeds 1,2 --out /tmp/routes
     scripts/route_study.py --retrace build/retrace --scenario scenarios/campus.yaml \
         --seeds 1,2 --out /tmp/campus_routes
+    scripts/route_study.py --retrace build/retrace --tours 1-5 --tour-set out_and_back=3 \
+        --seeds 1,2 --out /tmp/out_and_back
+    scripts/route_study.py --retrace build/retrace --scenario scenarios/office.yaml --starts 0 \
+        --teach-set sim.lidar.rate_hz=1 --teach-set 'route.switch_points=[60,75]' \
+        --seeds 1-5 --out /tmp/sparse   # a sparse teaching drive, its short map re-entered
 
 Per route (a generated tour, or --scenario) and seed: one teaching drive builds the partial,
 scan-matched and consistent maps (`retrace teach`); then each drive is recorded by the teacher
@@ -117,6 +122,9 @@ def main():
     p.add_argument("--scenario", action="append", default=[], help="a scenario file (repeatable)")
     p.add_argument("--tour-set", action="append", default=[],
                    help="generate-tour --set, e.g. length=700 or out_and_back=3")
+    p.add_argument("--teach-set", action="append", default=[],
+                   help="a scenario key for the teaching drive only, e.g. sim.lidar.rate_hz=1 "
+                        "(a sparse teaching drive) or route.switch_points=[60,75]")
     p.add_argument("--seeds", default="1,2")
     p.add_argument("--starts", type=int, default=5, help="mid-route starts per route")
     p.add_argument("--no-reverse", action="store_true")
@@ -157,7 +165,7 @@ def main():
         out = os.path.join(a.out, name, f"teach_{seed}")
         if not os.path.exists(os.path.join(out, "consistent", "teach")):
             run([a.retrace, "teach", sc, "--mode", ",".join(MODES), "--seed", str(seed),
-                 "--out", out])
+                 "--out", out] + [x for t in a.teach_set for x in ("--set", t)])
 
     def record(job):
         name, drive, sc, seed = job

@@ -30,10 +30,23 @@ void KeepMax(double v, double time, double* max, double* max_time) {
 LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
                                        std::span<const LocalizerSample> updates) {
   LocalizerHealth h;
+  double silent = 0.0;  // s of the silent failure going on
   for (std::size_t k = 0; k < track.size(); ++k) {
     const EstimateSample& s = track[k];
     if (s.lost && k + 1 < track.size()) h.lost_time_s += track[k + 1].time - s.time;
     if (s.off_map && k + 1 < track.size()) h.off_map_time_s += track[k + 1].time - s.time;
+    if (k + 1 < track.size() && std::isfinite(s.error)) {
+      const double dt = track[k + 1].time - s.time;
+      const bool claims = !s.lost && !s.off_map;
+      if (claims && s.error > kSilentFailureError) {
+        h.silent_failure_time_s += dt;
+        silent += dt;
+        h.longest_silent_failure_s = std::max(h.longest_silent_failure_s, silent);
+      } else {
+        silent = 0.0;
+      }
+      if (!claims && s.error < kFalseAlarmError) h.false_alarm_time_s += dt;
+    }
     if (k == 0) {
       h.lost_spells += s.lost ? 1 : 0;
       continue;
@@ -83,6 +96,9 @@ LocalizerHealth CombineLocalizerHealth(std::span<const LocalizerHealth> runs) {
   for (const LocalizerHealth& h : runs) {
     all.lost_time_s += h.lost_time_s;
     all.off_map_time_s += h.off_map_time_s;
+    all.silent_failure_time_s += h.silent_failure_time_s;
+    all.longest_silent_failure_s = std::max(all.longest_silent_failure_s, h.longest_silent_failure_s);
+    all.false_alarm_time_s += h.false_alarm_time_s;
     all.wrong_switches += h.wrong_switches;
     all.lost_spells += h.lost_spells;
     all.reacquisitions += h.reacquisitions;

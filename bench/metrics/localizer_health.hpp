@@ -24,7 +24,14 @@ struct EstimateSample {
   /// first sample and across a map switch.
   double error_increase = std::numeric_limits<double>::quiet_NaN();
   bool off_map = false;  ///< no map covered the place: the stack ran on odometry alone
+  /// m: the localization error against the truth; NaN without one.
+  double error = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// m: an error above this while the stack says it is localized is a silent failure ...
+inline constexpr double kSilentFailureError = 1.0;
+/// ... and one below this while it says it is not (lost, or off map) a false alarm.
+inline constexpr double kFalseAlarmError = 0.3;
 
 /// A re-acquisition that took the estimate this much (m) farther from the truth is wrong.
 inline constexpr double kWrongReacquisition = 0.5;
@@ -48,6 +55,12 @@ struct LocalizerHealth {
   /// s off map by the stack's own account (no map covered the place: odometry only), each such
   /// sample holding until the next
   double off_map_time_s = 0.0;
+  /// With a truth: seconds with the error above kSilentFailureError while the stack said it was
+  /// localized (neither lost nor off map), the longest such stretch, and seconds it said it was
+  /// not with the error below kFalseAlarmError. Each sample holds until the next.
+  double silent_failure_time_s = 0.0;
+  double longest_silent_failure_s = 0.0;
+  double false_alarm_time_s = 0.0;
   /// Map switches (and wraps) into a map whose taught path the truth was not on (within
   /// kWrongSwitchDistance): CountWrongSwitches, 0 without a truth.
   int wrong_switches = 0;

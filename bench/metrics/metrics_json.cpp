@@ -131,6 +131,9 @@ nlohmann::json ToJson(const LocalizerHealth& h) {
           {"reacquisitions_closer", h.reacquisitions_closer},
           {"reacquisitions_wrong", h.reacquisitions_wrong},
           {"off_map_time_s", io::JsonNumber(h.off_map_time_s)},
+          {"silent_failure_time_s", io::JsonNumber(h.silent_failure_time_s)},
+          {"longest_silent_failure_s", io::JsonNumber(h.longest_silent_failure_s)},
+          {"false_alarm_time_s", io::JsonNumber(h.false_alarm_time_s)},
           {"wrong_switches", h.wrong_switches}};
 }
 

@@ -22,7 +22,7 @@ LocalizerHealth Health(const TeachTrace& teach, const RunTrace& run, const RunSe
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const PlaybackSample& p = run.samples[i];
     track.push_back({p.time, p.map_index, p.X_MR, p.X_OR, p.lost, series.error_increase_m[i],
-                     p.off_map});
+                     p.off_map, series.localization_error_m[i]});
   }
   LocalizerHealth h = ComputeLocalizerHealth(track, run.updates);
   h.wrong_switches = CountWrongSwitches(run.switches, teach);

@@ -137,7 +137,10 @@ std::string LocalizerLines(const std::vector<ModeSummary>& modes) {
             std::to_string(h.reacquisitions) + " re-acquisitions (" +
             std::to_string(h.reacquisitions_wrong) + " wrong); largest single-tick jump " +
             Cell(h.max_jump_m, "%.2f") + " m, error increase " +
-            Cell(h.max_error_increase_m, "%.2f") + " m\n";
+            Cell(h.max_error_increase_m, "%.2f") + " m; silent failure " +
+            Cell(h.silent_failure_time_s, "%.1f") + " s, false alarm " +
+            Cell(h.false_alarm_time_s, "%.1f") + " s, off map " + Cell(h.off_map_time_s, "%.1f") +
+            " s, " + std::to_string(h.wrong_switches) + " wrong switches\n";
   }
   return text;
 }

@@ -136,7 +136,12 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
             core::FixedText(h.max_error_increase_m, 2) + " m (at " +
             core::FixedText(h.max_error_increase_time_s, 1) + " s); " +
             std::to_string(m.switches) + " map switches, " + std::to_string(h.wrong_switches) +
-            " into a map whose taught path the reference was not on\n";
+            " into a map whose taught path the reference was not on\n"
+            "  silent failure (error above 1 m, not lost, not off map) " +
+            core::FixedText(h.silent_failure_time_s, 1) + " s, longest " +
+            core::FixedText(h.longest_silent_failure_s, 1) +
+            " s; false alarm (lost or off map, error below 0.3 m) " +
+            core::FixedText(h.false_alarm_time_s, 1) + " s\n";
   }
   text += "  beams rejected as dynamic: " + core::FixedText(100.0 * m.rejected_fraction, 2) +
           " %; update time mean " + core::FixedText(m.update_time_ms.mean, 2) + " ms, p95 " +

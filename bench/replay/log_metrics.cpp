@@ -58,6 +58,7 @@ LogLocalizeMetrics ComputeLogMetrics(const LogLocalizeResult& run, const LogLoca
     const LogLocalizeSample& s = run.samples[i];
     track.push_back({s.time, s.map, s.X_MR, s.X_OR, s.lost});
     track.back().off_map = s.off_map;
+    track.back().error = series.localization_error_m[i];
     if (i == 0) continue;
     const LogLocalizeSample& prev = run.samples[i - 1];
     if (prev.map == s.map && s.X_MR_truth && s.X_WR && prev.X_WR) {

@@ -635,7 +635,8 @@ TEST(Metrics, AggregateJsonHasTheDocumentedKeys) {
   ExpectKeys(a["localizer"],
              {"lost_time_s", "lost_spells", "reacquisitions", "max_jump_m", "max_jump_time_s",
               "max_error_increase_m", "max_error_increase_time_s", "reacquisitions_closer",
-              "reacquisitions_wrong", "off_map_time_s", "wrong_switches"});
+              "reacquisitions_wrong", "off_map_time_s", "silent_failure_time_s",
+              "longest_silent_failure_s", "false_alarm_time_s", "wrong_switches"});
   ExpectKeys(a["switch_error"], {"count", "mean_m", "max_m", "mean_rad", "max_rad"});
   ExpectKeys(a["collisions"],
              {"static_incidents", "pedestrian_incidents", "pedestrian_incidents_robot_driving",

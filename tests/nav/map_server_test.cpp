@@ -198,8 +198,6 @@ TEST(MapServer, SwitchesBackWhenTheRouteIsDrivenBackwards) {
   localizer.Initialize(X_M1R, 0.01, 0.01);
   FollowerOutput off = follower.Compute(X_M1R, 0.05);
   ASSERT_TRUE(off.off_path);
-  // Driving forward it would be going against path 0: not there. Driving back, it is.
-  EXPECT_EQ(DecideAt(server, off, X_M1R, 2.0).step, MapStep::kStay);
   const MapDecision back = DecideAt(server, off, X_M1R, 2.0, Travel::kBackward);
   ASSERT_EQ(back.step, MapStep::kSwitch);
   EXPECT_EQ(back.place.map, 0u);
@@ -353,6 +351,34 @@ TEST(MapServer, AMapThatDoesNotCoverTheScanHandsOverOrSaysOffMap) {
   EXPECT_EQ(blind.Decide(f, pos, X_M0R, 2.0, &scan).step, MapStep::kOffMap);
   // Without a scan there is nothing to judge coverage by: the path holds the robot.
   EXPECT_EQ(blind.Decide(f, pos, X_M0R, 2.0).step, MapStep::kStay);
+}
+
+TEST(MapServer, OnAStreetDrivenOutAndBackTheLegDrivenTheRobotsWayIsChosen) {
+  // Map 0 drives 10 m along +x, turns round, and map 1 drives the same street back: the two
+  // paths lie on each other, one each way. A robot that comes onto the street facing -x takes
+  // the leg whose direction matches its direction of travel.
+  TeachBundle bundle = TwoMaps(core::Pose2(10.0, 0.0, core::kPi));
+  bundle.maps[0].path = core::Path({{0, 0, 0}, {5, 0, 0}, {10, 0, 0}});
+  bundle.maps[1].path = core::Path({{0, 0, 0}, {5, 0, 0}, {10, 0, 0}});
+  bundle.linked = true;
+  MapServer server = Server(bundle);
+  const core::Pose2 X_M0R(5.0, 0.5, core::kPi);
+  FollowerOutput f;
+  f.remaining = 5.0;
+  RoutePosition pos;  // off the stretch it was on (at s = 0), on no path there
+  pos.on_path = false;
+  pos.distance = 3.0;
+  pos.travel = Travel::kForward;
+  MapDecision d = server.Decide(f, pos, X_M0R, 2.0);
+  ASSERT_EQ(d.step, MapStep::kSwitch);
+  EXPECT_EQ(d.place.map, 1u);  // the way back, driven forward
+  EXPECT_EQ(d.travel, Travel::kForward);
+  ExpectPoseNear(d.place.X_MR, core::Pose2(5.0, -0.5, 0.0), 1e-9);
+  pos.travel = Travel::kBackward;  // a drive that follows the route backwards: the way out
+  d = server.Decide(f, pos, X_M0R, 2.0);
+  ASSERT_EQ(d.step, MapStep::kSwitch);
+  EXPECT_EQ(d.place.map, 0u);
+  EXPECT_NEAR(d.place.s, 5.0, 1e-9);
 }
 
 }  // namespace
