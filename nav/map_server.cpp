@@ -79,10 +79,13 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const RoutePosition& pos,
                               const ScanPoints* scan) const {
   MapDecision d;
   if (scan != nullptr && !scan->xs_L.empty()) d.coverage = Coverage(index_, X_MR, *scan);
-  // The follower's goal stays reached once it was: it counts while the robot is at the end.
-  const bool at_end = pos.s >= current().path.Length() - max_distance;
-  if (pos.travel != Travel::kBackward && at_end &&
-      (f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path))) {
+  // At the end: the tracked place, or the follower's progress (its goal stays reached once it
+  // was: it counts while the robot is at the end).
+  const double length = current().path.Length();
+  const bool tracked_end = pos.on_path && pos.s_extended >= length - kPathEndTolerance;
+  const bool follower_end = pos.s >= length - max_distance &&
+                            (f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path));
+  if (pos.travel != Travel::kBackward && (tracked_end || follower_end)) {
     d.travel = Travel::kForward;
     if (!IsLast()) {
       // The common case: path k+1 begins where path k ends, at the switch pose (eq. 1).
@@ -164,9 +167,13 @@ std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const cor
     // A path driven the other way than the robot travels (the other leg of a street the route
     // drove out and back) counts as max_distance farther: it is taken only where no path driven
     // the robot's way is near.
+    // Another stretch of the current path was driven at another time: the map's own drift
+    // between the two lies between them, as between two maps.
+    const double sigma = p.map == index_ ? link_.drift * std::abs(p.s - pos.s) : p.sigma;
+    if (sigma > config_.max_sigma + drifted) continue;
     const bool same_way =
         SameWay(pos.travel, TravelOf(bundle_->maps[p.map].path, p.s, p.X_MR.theta));
-    const double cost = p.distance + p.sigma + (same_way ? 0.0 : max_distance);
+    const double cost = p.distance + sigma + (same_way ? 0.0 : max_distance);
     if (!best || cost < best_cost) {
       best = p;
       best_cost = cost;

@@ -55,11 +55,14 @@ struct MapServerConfig {
   double min_sigma_theta = 0.0873;  ///< rad: the odometry's 1 % scale error over a full turn
   /// Such a switch settles before it commits (nav::Navigator): a second belief, spread in the
   /// map entered, takes the same odometry and scans while the estimate stays in the map left.
-  /// The switch commits once that belief has had settle_updates updates and its particles lie
-  /// within settle_rms of their mean (weighted RMS distance), or after settle_wait s whatever
-  /// it holds. One update is not enough: resampling can gather a wide cloud in one place, right
-  /// or not, at once. So the estimate the robot drives on never converges in the new map by a
-  /// jump.
+  /// The switch commits once that belief has had settle_updates updates, its particles lie
+  /// within settle_rms of their mean (weighted RMS distance), and the scans confirm it: over
+  /// the scans both beliefs weighed, the map entered explains them at least as well as the map
+  /// left (the sum of the log ratios of their average per-beam likelihoods is >= 0). After
+  /// settle_wait s it commits if confirmed and is abandoned if not (a loop's wrap, with no path
+  /// left to stay on, commits). One update is not enough: resampling can gather a wide cloud in
+  /// one place, right or not, at once. So the estimate the robot drives on never converges in
+  /// the new map by a jump, nor enters a map the scans do not support.
   int settle_updates = 3;
   double settle_rms = 0.2;    ///< m
   double settle_wait = 10.0;  ///< s

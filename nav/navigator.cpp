@@ -1,6 +1,7 @@
 #include "nav/navigator.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -56,12 +57,18 @@ void Navigator::OnOdometry(const core::OdometryDelta& delta) {
 
 LocalizerUpdate Navigator::OnScan(const core::LaserScan& scan) {
   ScanEndPoints(scan, localizer_.robot(), localizer_.config().beam_step, &scan_xs_, &scan_ys_);
+  LocalizerUpdate settling;
   if (pending_) {
     if (!pending_->seeded) Seed(scan);
-    if (pending_->belief.Update(scan).ran) ++pending_->updates;
+    settling = pending_->belief.Update(scan);
+    if (settling.ran) ++pending_->updates;
   }
   if (off_map_) return {};  // odometry only: no map explains the scan
   LocalizerUpdate update = localizer_.Update(scan);
+  if (pending_ && settling.ran && update.ran && settling.w_avg > 0.0 && update.w_avg > 0.0) {
+    // The two beliefs on the same scan: which map explains what the robot sees?
+    pending_->evidence += std::log(settling.w_avg) - std::log(update.w_avg);
+  }
   if (update.reacquired) {
     confirming_ = localizer_.config().augmented.confirm_updates;
   } else if (update.ran && !update.lost && confirming_ > 0) {
@@ -99,6 +106,7 @@ NavigatorTick Navigator::OnControlTick(double dt) {
       tick.map_switch = SwitchTo(server_.WrapPlace(decision), decision.travel, true);
       break;
   }
+  if (pending_ && Abandoned(*pending_)) pending_.reset();
   if (pending_ && Settled(*pending_)) {
     tick.wrapped = pending_->wrap;
     tick.map_switch =
@@ -163,8 +171,18 @@ void Navigator::Seed(const core::LaserScan& scan) {
 
 bool Navigator::Settled(const PendingSwitch& p) const {
   const MapServerConfig& c = server_.config();
-  if (p.waited >= c.settle_wait) return true;
-  return p.updates >= c.settle_updates && ParticleSpread(p.belief.particles()) <= c.settle_rms;
+  // Confirmed by the scans: the map entered explains them at least as well as the map left. A
+  // loop's wrap has no path left to stay on: it needs no confirmation.
+  const bool confirmed = p.wrap || p.evidence >= 0.0;
+  if (p.waited >= c.settle_wait) return confirmed;
+  return confirmed && p.updates >= c.settle_updates &&
+         ParticleSpread(p.belief.particles()) <= c.settle_rms;
+}
+
+bool Navigator::Abandoned(const PendingSwitch& p) const {
+  // A switch by place that the scans did not confirm in settle_wait: the map left explains them
+  // better. (A loop's wrap has no path left to stay on: it commits.)
+  return !p.wrap && p.waited >= server_.config().settle_wait && p.evidence < 0.0;
 }
 
 }  // namespace retrace::nav

@@ -98,11 +98,15 @@ class Navigator {
     bool seeded = false;
     int updates = 0;
     double waited = 0.0;
+    // Σ over the scans both beliefs weighed of log(w_avg settling / w_avg current): > 0 when the
+    // map entered explains the scans better than the map left (nats per beam, summed).
+    double evidence = 0.0;
   };
   // The switch (or wrap) the rule asks for at this tick: made now, or settling first (a new
   // settling switch when it goes to another map than the one settling).
   std::optional<MapSwitch> SwitchTo(const RoutePlace& place, Travel travel, bool wrap);
   bool Settled(const PendingSwitch& p) const;
+  bool Abandoned(const PendingSwitch& p) const;
   // The settling belief's particles at the best places for its first scan.
   void Seed(const core::LaserScan& scan);
   // The tracker on the current path at arc length s, going `travel`.
