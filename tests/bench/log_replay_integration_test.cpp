@@ -227,8 +227,15 @@ void ReplayingTheRunLogTickByTickGivesTheLiveEstimates() {
     while (j < trace.samples.size() && trace.samples[j].time < s.time - 1e-6) ++j;
     if (j == trace.samples.size()) break;
     if (std::abs(trace.samples[j].time - s.time) > 1e-6) continue;
+    // The switch at the end of a path fires within 5 cm of its end: estimates a few millimetres
+    // apart may cross that line a control tick apart.
+    const bool at_switch = std::any_of(trace.switches.begin(), trace.switches.end(),
+                                       [&](const SwitchRecord& sw) {
+                                         return std::abs(sw.time - s.time) <= 0.11;
+                                       });
+    if (at_switch && s.map != trace.samples[j].map_index) continue;
     ++matched;
-    ASSERT_EQ(s.map, trace.samples[j].map_index) << s.time << " first apart " << first_apart << " max " << max_difference;
+    ASSERT_EQ(s.map, trace.samples[j].map_index) << s.time;
     const double d = core::Distance(s.X_MR, trace.samples[j].X_MR);
     identical += d == 0.0 ? 1 : 0;
     to_rounding += d < 1e-9 ? 1 : 0;
@@ -243,10 +250,10 @@ void ReplayingTheRunLogTickByTickGivesTheLiveEstimates() {
   EXPECT_GT(matched, run.samples.size() * 9 / 10);
   EXPECT_EQ(run.switches.size(), trace.switches.size());
   // Identical to rounding at first; once a draw or a resampling comb falls on the other side of
-  // a rounding boundary the two are two runs of the same filter (GCC Release: never, 2e-14 m
-  // over the whole run; Clang with the sanitizers: after 4.4 s (87 scans), then at most 2.2 cm
-  // apart; with the motion noise before 2026-11-28, after 9.2 s). When that happens is chance:
-  // the bound asks for the first 50 scans (2.5 s).
+  // a rounding boundary the two are two runs of the same filter (GCC Release with unity builds:
+  // after 3.4 s, then at most 8 mm apart; Clang with the sanitizers: after 4.4 s (87 scans), then
+  // at most 2.2 cm apart; with the motion noise before 2026-11-28, after 9.2 s). When that
+  // happens is chance: the bound asks for the first 50 scans (2.5 s).
   EXPECT_GE(to_rounding, 50U);
   EXPECT_LT(max_difference, 0.05);
 }
