@@ -69,7 +69,10 @@ struct MapServerConfig {
   /// A map covers the robot's place when at least this share of the scan's tested beams end in
   /// cells it observed (nav/beam_evidence.hpp). Below it, another map that covers the place
   /// takes over; where none does, the robot is off map: odometry only, until a map covers it.
-  double min_coverage = 0.3;
+  /// Low: in a room the teaching never entered, the beams through its door that reach mapped
+  /// walls still hold the belief (Intel, consistent map, seeds 1-10: 10/10 under 1 m at 0.1,
+  /// 9/10 at 0.2, 22/40 at 0.3).
+  double min_coverage = 0.1;
 
   template <class V>
   void Reflect(V& v) {

@@ -12,7 +12,10 @@ Per mode: the median [min, max] of the on-route RMS over the seeds, how many see
 than 0.5 m larger after) or closer, the time lost by the localizer's own account, and, for
 comparison with earlier studies, the largest jump of est.tum against reference.tum (whose
 alignment moves with the teaching sample the reference matches: far off the route it moves by
-metres, and counts as a jump). Every log command runs with --synthetic-odometry (the logs
+metres, and counts as a jump). A second table says whether the localizer knew when it was wrong:
+the silent failure time (error above 1 m while neither lost nor off map) as a share of the run,
+the false alarms (lost with the error below 0.3 m), the time off map and the wrong map switches.
+`--reuse` summarizes the folders already in --out without running anything again. Every log command runs with --synthetic-odometry (the logs
 are corrected ones: their poses are the reference). Runs two commands at a time.
 """
 import argparse
@@ -78,6 +81,8 @@ def main():
     p.add_argument("--out", required=True)
     p.add_argument("--set", action="append", default=[], help="passed to both commands")
     p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--reuse", action="store_true",
+                   help="keep the teach and localize folders already in --out (only summarize)")
     a = p.parse_args()
     seeds = seeds_of(a.seeds)
     modes = a.modes.split(",")
@@ -86,6 +91,8 @@ def main():
 
     def teach(seed):
         out = os.path.join(a.out, f"teach_{seed}")
+        if a.reuse and os.path.isdir(out):
+            return
         cmd = [a.retrace, "log-teach", a.log, "--to", a.teach_to, "--synthetic-odometry",
                "--seed", str(seed), "--out", out, "--mode", ",".join(modes), "--no-figures"]
         if a.teach_from:
@@ -94,9 +101,10 @@ def main():
 
     def localize(seed, mode):
         out = os.path.join(a.out, f"{mode}_{seed}")
-        run([a.retrace, "log-localize", a.log, "--teach",
-             os.path.join(a.out, f"teach_{seed}", mode, "teach"), "--from", a.localize_from,
-             "--synthetic-odometry", "--seed", str(seed), "--out", out, "--no-figures"] + sets)
+        if not (a.reuse and os.path.exists(os.path.join(out, "metrics.json"))):
+            run([a.retrace, "log-localize", a.log, "--teach",
+                 os.path.join(a.out, f"teach_{seed}", mode, "teach"), "--from", a.localize_from,
+                 "--synthetic-odometry", "--seed", str(seed), "--out", out, "--no-figures"] + sets)
         with open(os.path.join(out, "metrics.json")) as f:
             m = json.load(f)
         h = m["localizer"]
@@ -131,6 +139,20 @@ def main():
               f"| {statistics.median(away):.2f} [{max(away):.1f}] | {sum(x > 1.0 for x in away)} "
               f"| {reacq} ({wrong}, {closer}) | {lost:.0f} "
               f"| {','.join(map(str, sorted(maps)))} | {sum(x > 1.0 for x in tum)} |")
+    # Whether the stack knew when it was wrong (docs/FORMATS.md, metrics.json's localizer).
+    print()
+    print("| mode | silent failure, % of the run: median [max] | longest silent stretch, max (s) "
+          "| false alarm (s), total | off map (s), total | map switches (wrong) |")
+    print("|---|---|---|---|---|---|")
+    for mode in modes:
+        rows = [r for r in results if r[1] == mode]
+        h = [r[2]["localizer"] for r in rows]
+        silent = [100.0 * x["silent_failure_time_s"] / r[2]["duration_s"] for x, r in zip(h, rows)]
+        print(f"| {mode} | {statistics.median(silent):.2f} [{max(silent):.1f}] "
+              f"| {max(x['longest_silent_failure_s'] for x in h):.0f} "
+              f"| {sum(x['false_alarm_time_s'] for x in h):.0f} "
+              f"| {sum(x['off_map_time_s'] for x in h):.0f} "
+              f"| {sum(r[2]['switches'] for r in rows)} ({sum(x['wrong_switches'] for x in h)}) |")
     with open(os.path.join(a.out, "study.json"), "w") as f:
         json.dump([{"seed": r[0], "mode": r[1], "on_route_rms": r[2]["localization_error_on_route_m"]["rms"],
                     "jump": r[3][0], "error_increase": r[3][1], "reacquisitions": r[3][2],

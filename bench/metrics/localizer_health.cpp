@@ -45,7 +45,7 @@ LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
       } else {
         silent = 0.0;
       }
-      if (!claims && s.error < kFalseAlarmError) h.false_alarm_time_s += dt;
+      if (s.lost && s.error < kFalseAlarmError) h.false_alarm_time_s += dt;
     }
     if (k == 0) {
       h.lost_spells += s.lost ? 1 : 0;
@@ -71,22 +71,34 @@ LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
   return h;
 }
 
+namespace {
+
+// m from p to the polyline through the poses' positions (+inf for none).
+double DistanceToTrajectory(const core::Vec2& p, const std::vector<core::Pose2>& poses) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const core::Vec2 a = poses[i].translation();
+    const core::Vec2 ab = poses[std::min(i + 1, poses.size() - 1)].translation() - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    nearest = std::min(nearest, (p - (a + t * ab)).norm());
+  }
+  return nearest;
+}
+
+}  // namespace
+
 int CountWrongSwitches(std::span<const SwitchRecord> switches, const TeachTrace& teach) {
   int wrong = 0;
   for (const SwitchRecord& sw : switches) {
     if (sw.to < 0 || static_cast<std::size_t>(sw.to) >= teach.maps.size()) continue;
-    const std::vector<core::Pose2>& taught = teach.maps[static_cast<std::size_t>(sw.to)].X_WR;
+    const core::Vec2 p = sw.X_WR.translation();
     double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < taught.size(); ++i) {
-      const core::Vec2 a = taught[i].translation();
-      const core::Vec2 b = taught[std::min(i + 1, taught.size() - 1)].translation();
-      const core::Vec2 ab = b - a;
-      const double len2 = ab.squaredNorm();
-      const double t =
-          len2 > 0.0 ? std::clamp((sw.X_WR.translation() - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-      nearest = std::min(nearest, (sw.X_WR.translation() - (a + t * ab)).norm());
+    for (const TeachMapTrace& map : teach.maps) {
+      nearest = std::min(nearest, DistanceToTrajectory(p, map.X_WR));
     }
-    wrong += nearest > kWrongSwitchDistance ? 1 : 0;
+    const double entered = DistanceToTrajectory(p, teach.maps[static_cast<std::size_t>(sw.to)].X_WR);
+    wrong += entered > nearest + kWrongSwitchDistance ? 1 : 0;
   }
   return wrong;
 }

@@ -30,7 +30,8 @@ struct EstimateSample {
 
 /// m: an error above this while the stack says it is localized is a silent failure ...
 inline constexpr double kSilentFailureError = 1.0;
-/// ... and one below this while it says it is not (lost, or off map) a false alarm.
+/// ... and one below this while it says it is lost a false alarm (off map is no false alarm: the
+/// map does not cover the place, whatever the odometry's estimate is worth).
 inline constexpr double kFalseAlarmError = 0.3;
 
 /// A re-acquisition that took the estimate this much (m) farther from the truth is wrong.
@@ -46,8 +47,10 @@ double ErrorIncrease(const core::Pose2& X_MR_prev, const core::Pose2& X_MR,
                      const core::Pose2& X_WR_prev, const core::Pose2& X_WR,
                      const core::Pose2& X_MR_truth);
 
-/// m: a map switch whose truth lies farther than this from the taught path of the map it enters
-/// (the teaching drive's ground truth in that map) entered a wrong map.
+/// m: a map switch whose truth lies this much farther from the taught trajectory of the map it
+/// enters (the teaching drive's ground truth in that map) than from the nearest map's entered a
+/// wrong map. (Against the nearest map's, not absolutely: a real drive strays from the taught
+/// route by a metre or more.)
 inline constexpr double kWrongSwitchDistance = 1.0;
 
 struct LocalizerHealth {
@@ -57,12 +60,12 @@ struct LocalizerHealth {
   double off_map_time_s = 0.0;
   /// With a truth: seconds with the error above kSilentFailureError while the stack said it was
   /// localized (neither lost nor off map), the longest such stretch, and seconds it said it was
-  /// not with the error below kFalseAlarmError. Each sample holds until the next.
+  /// lost with the error below kFalseAlarmError. Each sample holds until the next.
   double silent_failure_time_s = 0.0;
   double longest_silent_failure_s = 0.0;
   double false_alarm_time_s = 0.0;
   /// Map switches (and wraps) into a map whose taught path the truth was not on (within
-  /// kWrongSwitchDistance): CountWrongSwitches, 0 without a truth.
+  /// kWrongSwitchDistance of the nearest map's): CountWrongSwitches, 0 without a truth.
   int wrong_switches = 0;
   int lost_spells = 0;       ///< times the localizer went from not lost to lost
   int reacquisitions = 0;    ///< recovery trials that replaced the belief
@@ -84,7 +87,7 @@ LocalizerHealth ComputeLocalizerHealth(std::span<const EstimateSample> track,
                                        std::span<const LocalizerSample> updates);
 
 /// The switches into a map whose taught trajectory (the teaching drive's ground truth in that
-/// map) passes no nearer than kWrongSwitchDistance to the switch's truth X_WR.
+/// map) passes kWrongSwitchDistance farther from the switch's truth X_WR than the nearest map's.
 int CountWrongSwitches(std::span<const SwitchRecord> switches, const TeachTrace& teach);
 
 /// Over several runs: sums of the times and counts, the largest jump and error increase (and

@@ -140,7 +140,7 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
             "  silent failure (error above 1 m, not lost, not off map) " +
             core::FixedText(h.silent_failure_time_s, 1) + " s, longest " +
             core::FixedText(h.longest_silent_failure_s, 1) +
-            " s; false alarm (lost or off map, error below 0.3 m) " +
+            " s; false alarm (lost, error below 0.3 m) " +
             core::FixedText(h.false_alarm_time_s, 1) + " s\n";
   }
   text += "  beams rejected as dynamic: " + core::FixedText(100.0 * m.rejected_fraction, 2) +
