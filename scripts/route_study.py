@@ -109,6 +109,7 @@ def drive_scenario(base, pts, folder, name, comment):
                                  folder)
     s["route"] = {"file": "route.txt", "switch_points": []}
     s["modes"] = ["consistent"]
+    s.pop("events", None)  # playback's scripted events, placed along the taught route
     path = os.path.join(folder, "scenario.yaml")
     with open(path, "w") as f:
         yaml.safe_dump(s, f, sort_keys=False)
