@@ -53,6 +53,28 @@ struct Walker {
     }
     return dirs;
   }
+  // The directions that go on from here without turning back.
+  std::vector<int> WaysOn() const {
+    std::vector<int> ways;
+    for (int d = 0; d < 4; ++d) {
+      if ((heading < 0 || d != Reverse(heading)) && Inside(i + kDx[d], j + kDy[d]))
+        ways.push_back(d);
+    }
+    return ways;
+  }
+  // An out-and-back leg: on along one to max_transfer streets, then straight back along them.
+  void OutAndBack(core::Rng& rng) {
+    const std::vector<int> ways = WaysOn();
+    const int out = ways[rng.UniformIndex(ways.size())];
+    const int streets =
+        1 + static_cast<int>(rng.UniformIndex(static_cast<std::uint64_t>(config.max_transfer)));
+    int driven = 0;
+    while (driven < streets && Inside(i + kDx[out], j + kDy[out])) {
+      Drive(out);
+      ++driven;
+    }
+    for (int k = 0; k < driven; ++k) Drive(Reverse(out));
+  }
   bool Fits(const std::vector<int>& dirs) const {
     int a = i, b = j;
     for (int d : dirs) {
@@ -114,33 +136,15 @@ std::vector<core::Vec2> GenerateTour(const TourConfig& config, std::uint64_t see
         w.Drive(d);
       }
     }
-    // An out-and-back leg: on along one to max_transfer streets, then back along them.
     if (legs > 0 && w.length < config.length) {
       --legs;
-      std::vector<int> ways;
-      for (int d = 0; d < 4; ++d) {
-        if ((w.heading < 0 || d != Reverse(w.heading)) && w.Inside(w.i + kDx[d], w.j + kDy[d]))
-          ways.push_back(d);
-      }
-      const int out = ways[rng.UniformIndex(ways.size())];
-      const int streets =
-          1 + static_cast<int>(rng.UniformIndex(static_cast<std::uint64_t>(config.max_transfer)));
-      int driven = 0;
-      while (driven < streets && w.Inside(w.i + kDx[out], w.j + kDy[out])) {
-        w.Drive(out);
-        ++driven;
-      }
-      for (int k = 0; k < driven; ++k) w.Drive(Reverse(out));
+      w.OutAndBack(rng);
     }
     // Then on along one to max_transfer streets, never back the way it came.
     const int transfer =
         1 + static_cast<int>(rng.UniformIndex(static_cast<std::uint64_t>(config.max_transfer)));
     for (int k = 0; k < transfer && w.length < config.length; ++k) {
-      std::vector<int> ways;
-      for (int d = 0; d < 4; ++d) {
-        if ((w.heading < 0 || d != Reverse(w.heading)) && w.Inside(w.i + kDx[d], w.j + kDy[d]))
-          ways.push_back(d);
-      }
+      const std::vector<int> ways = w.WaysOn();
       w.Drive(ways[rng.UniformIndex(ways.size())]);  // a grid crossing always has a way on
     }
   }
