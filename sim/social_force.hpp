@@ -30,7 +30,7 @@ using core::Vec2;
 /// 2 s, field of view 200° with weight 0.5 behind, v_max = 1.3 v0) except the pedestrian
 /// strength V0: 0.5 m²/s² instead of 2.1, so that the crowd's speed-density relation follows
 /// Weidmann's (1993) curve within 15 % from free walking to 2 persons/m² (`retrace
-/// crowd-check`, docs/METHOD.md "Crowd check"). 2.1 belongs to the 1995 ellipse built on the
+/// crowd-check`, docs/CROWD.md "Crowd check"). 2.1 belongs to the 1995 ellipse built on the
 /// other person's velocity; on the relative velocity and the gap between bodies used here it
 /// made people walking towards each other brake from 5 m away, and a two-way corridor jammed
 /// at 2 persons/m². Plus a robot repulsion stronger and with a longer range than a

@@ -15,7 +15,7 @@
 
 namespace retrace::sim {
 
-/// The rule's parameters (docs/METHOD.md "Crowd check": l and T fitted to Weidmann's curve).
+/// The rule's parameters (docs/CROWD.md "Crowd check": l and T fitted to Weidmann's curve).
 struct SpeedHeadwayConfig {
   double length = 0.2;     ///< l (m): the headway at which a walker stops
   double time_gap = 0.95;  ///< T (s): how much each second of walking needs of headway

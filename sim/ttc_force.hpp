@@ -21,7 +21,7 @@
 // everyone walks alike, tau is infinite and nobody slows down however dense the crowd. The
 // headway rule (Seyfried et al. 2005's linear speed-spacing relation, as in Tordeux, Chraibi &
 // Seyfried's 2016 collision-free speed model) makes the desired speed depend on the space to the
-// person ahead; docs/METHOD.md "Crowd check" says how its two parameters were fitted.
+// person ahead; docs/CROWD.md "Crowd check" says how its two parameters were fitted.
 
 #include "core/config.hpp"
 #include "core/pose2.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // The crowd checked against measurements: the fundamental diagram (walking speed against
 // density) of the simulated crowd in a closed corridor, one-way and two-way, compared with
-// Weidmann's (1993) empirical curve (docs/METHOD.md, "Crowd check").
+// Weidmann's (1993) empirical curve (docs/CROWD.md, "Crowd check").
 //
 // The corridor is a ring without ends, so the density stays constant: a solid inner disc and an
 // outer wall of many thick segments. In one-way flow everyone walks counter-clockwise; in two-way

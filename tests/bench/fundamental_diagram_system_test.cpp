@@ -42,7 +42,7 @@ TEST(CrowdCheck, AlmostAloneEveryoneWalksNearTheDesiredSpeed) {
 
 TEST(CrowdCheck, TheSocialForceIsFasterOneWayThanTwoWay) {
   // One-way flow: everyone walks counter-clockwise, nobody meets anyone head-on. The social force
-  // slows a crowd only through counterflow (METHOD: one way it keeps its speed up to 1 /m²).
+  // slows a crowd only through counterflow (docs/CROWD.md: one way it keeps its speed up to 1 /m²).
   FundamentalDiagramConfig config = SmallRing();
   config.duration = 2.0;
   config.crowd.model = sim::CrowdModel::kSocialForce;

@@ -1,6 +1,6 @@
 // How far people keep from the robot when they walk past it: the robot term of the social force
 // (SocialForceConfig::robot_strength, robot_range) against the distances people keep in the
-// literature (docs/METHOD.md, "The robot's repulsion").
+// literature (docs/CROWD.md, "The robot's repulsion").
 
 #include <gtest/gtest.h>
 
@@ -73,7 +73,7 @@ TEST_P(RobotPassing, PeopleKeepOutOfItsIntimateZoneAndGiveWayWithoutStopping) {
   // 0.15 to 0.9 m beside its centre (exactly on it, the model's symmetric head-on case, they
   // nearly stop before stepping aside). Robot strength 4 m²/s² at range 0.2 m puts them
   // 0.41-0.67 m from it, 8 at 0.7 m 1.02-1.49 m, mean 1.23 m; the defaults 0.90-1.28 m, mean
-  // 1.06 m (docs/METHOD.md, "The robot's repulsion"). The same robot term in the ttc model,
+  // 1.06 m (docs/CROWD.md, "The robot's repulsion"). The same robot term in the ttc model,
   // where people also keep right of a robot in their way (just clear of it): mean 1.16 m.
   CrowdConfig config;
   config.model = GetParam();
