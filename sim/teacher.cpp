@@ -130,7 +130,11 @@ double Teacher::TurnNear(double s) const {
 void Teacher::AdvanceProgress(const core::Vec2& p_WR) {
   progress_.Advance(route_, arc_, p_WR,
                     std::min(progress_.value() + config_.lookahead, arc_[next_stop_]));
+  // A stop is reached where the robot stands at it and the progress has come up to it: a route
+  // that turns back at a crossing it comes to again later (an out-and-back leg) must not take
+  // the later visit for this one.
   if (next_stop_ + 1 < route_.size() &&
+      arc_[next_stop_] - progress_.value() <= config_.lookahead &&
       (p_WR - route_[next_stop_]).norm() <= config_.goal_tolerance) {
     progress_.MoveTo(arc_[next_stop_]);
     last_stop_arc_ = progress_.value();

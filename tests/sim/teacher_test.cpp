@@ -253,6 +253,20 @@ TEST(Teacher, LoopRouteIsNotDoneAtItsStart) {
   EXPECT_GT(u.v, 0.0);
 }
 
+TEST(Teacher, TurnsBackAtACrossingItComesToAgainAndDrivesTheWholeRoute) {
+  // Out to (10, 0) and back, round a block, and out to (10, 0) again to turn back there: both
+  // U-turns are stops at the same place. The first must not be taken for the second (before, the
+  // progress jumped from 10 m to 45 m and the drive skipped the block).
+  const std::vector<Vec2> route{{0, 0}, {10, 0}, {0, 0}, {0, 5}, {10, 5}, {10, 0}, {10, 5}};
+  const DriveLog d = DriveRoute(route, TeacherConfig{}, 3);
+  EXPECT_TRUE(d.done);
+  EXPECT_TRUE(d.progress_monotone);
+  EXPECT_NEAR(d.driven, Length(route), 1.5);
+  for (std::size_t i = 1; i < d.ticks.size(); ++i) {
+    ASSERT_LT(d.ticks[i].progress - d.ticks[i - 1].progress, 1.0) << "a jump at tick " << i;
+  }
+}
+
 TEST(Teacher, IsDeterministicPerSeed) {
   const DriveLog a = DriveRoute(kLRoute, TeacherConfig{}, 3);
   const DriveLog b = DriveRoute(kLRoute, TeacherConfig{}, 3);
