@@ -34,7 +34,7 @@ def seeds_of(text):
         if "-" in part:
             a, b = part.split("-")
             out.extend(range(int(a), int(b) + 1))
-        else:
+        elif part:
             out.append(int(part))
     return out
 
@@ -43,6 +43,7 @@ def run(cmd):
     proc = subprocess.run(cmd, capture_output=True, text=True)
     if proc.returncode not in (0, 1):
         sys.exit("failed: " + " ".join(cmd) + "\n" + proc.stderr)
+    return proc
 
 
 def read_tum(path):

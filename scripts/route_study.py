@@ -28,28 +28,12 @@ import json
 import math
 import os
 import random
-import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from log_study import run, seeds_of  # noqa: E402  (the seed lists and commands as there)
+
 MODES = ["partial", "scan_matched", "consistent"]
-
-
-def seeds_of(text):
-    out = []
-    for part in text.split(","):
-        if "-" in part:
-            a, b = part.split("-")
-            out.extend(range(int(a), int(b) + 1))
-        elif part:
-            out.append(int(part))
-    return out
-
-
-def run(cmd):
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    if proc.returncode not in (0, 1):
-        sys.exit("failed: " + " ".join(cmd) + "\n" + proc.stderr)
-    return proc
 
 
 def read_route(path):

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "bench/engine/local_truth.hpp"
-#include "core/check.hpp"
 #include "bench/metrics/metrics_json.hpp"
 #include "core/errors.hpp"
 #include "io/csv_reader.hpp"
@@ -203,19 +202,6 @@ std::vector<EventRow> SwitchEvents(const std::vector<SwitchRecord>& switches) {
   return rows;
 }
 
-std::vector<EventRow> OffMapEvents(const std::vector<double>& time,
-                                   const std::vector<std::uint8_t>& off_map) {
-  RETRACE_CHECK(time.size() == off_map.size());
-  std::vector<EventRow> rows;
-  bool was = false;
-  for (std::size_t i = 0; i < time.size(); ++i) {
-    const bool now = off_map[i] != 0;
-    if (now != was) rows.push_back({time[i], now ? "off_map" : "on_map", ""});
-    was = now;
-  }
-  return rows;
-}
-
 void WriteEventsCsv(const std::filesystem::path& path, const std::vector<EventRow>& rows) {
   io::CsvWriter events(path, {"time", "event", "detail"});
   for (const EventRow& r : rows) events.AddRow({r.time, r.event, r.detail});
@@ -242,13 +228,7 @@ void WriteRunFolder(const std::filesystem::path& dir, const TeachTrace& teach, c
                         : "pedestrian " + std::to_string(c.pedestrian_id)});
   }
   for (const EventRecord& e : run.events) rows.push_back({e.time, "scripted", e.name});
-  std::vector<double> times;
-  std::vector<std::uint8_t> off_map;
-  for (const PlaybackSample& s : run.samples) {
-    times.push_back(s.time);
-    off_map.push_back(s.off_map ? 1 : 0);
-  }
-  for (EventRow& r : OffMapEvents(times, off_map)) rows.push_back(std::move(r));
+  for (EventRow& r : OffMapEvents(run.samples)) rows.push_back(std::move(r));
   std::stable_sort(rows.begin(), rows.end(),
                    [](const EventRow& a, const EventRow& b) { return a.time < b.time; });
   rows.push_back({run.sim_time_s, "end", std::string(core::EnumName(run.outcome))});

@@ -74,10 +74,18 @@ struct EventRow {
 };
 /// The map switches as events.csv rows ("map_switch", "k->l").
 std::vector<EventRow> SwitchEvents(const std::vector<SwitchRecord>& switches);
-/// "off_map" and "on_map" rows where the stack's off-map flag changes: off_map[i] held from
-/// time[i] on (the same sizes).
-std::vector<EventRow> OffMapEvents(const std::vector<double>& time,
-                                   const std::vector<std::uint8_t>& off_map);
+/// "off_map" and "on_map" rows where the stack's off-map flag changes, over samples with `time`
+/// and `off_map` members (a simulated run's or a replay's), each flag holding from its time on.
+template <class Sample>
+std::vector<EventRow> OffMapEvents(const std::vector<Sample>& samples) {
+  std::vector<EventRow> rows;
+  bool was = false;
+  for (const Sample& s : samples) {
+    if (s.off_map != was) rows.push_back({s.time, s.off_map ? "off_map" : "on_map", ""});
+    was = s.off_map;
+  }
+  return rows;
+}
 /// Writes events.csv (the rows as given).
 void WriteEventsCsv(const std::filesystem::path& path, const std::vector<EventRow>& rows);
 

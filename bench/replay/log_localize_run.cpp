@@ -47,13 +47,7 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
   }
   updates.Commit();
   std::vector<EventRow> events = SwitchEvents(run.switches);
-  std::vector<double> times;
-  std::vector<std::uint8_t> off_map;
-  for (const LogLocalizeSample& s : run.samples) {
-    times.push_back(s.time);
-    off_map.push_back(s.off_map ? 1 : 0);
-  }
-  for (EventRow& r : OffMapEvents(times, off_map)) events.push_back(std::move(r));
+  for (EventRow& r : OffMapEvents(run.samples)) events.push_back(std::move(r));
   std::stable_sort(events.begin(), events.end(),
                    [](const EventRow& a, const EventRow& b) { return a.time < b.time; });
   WriteEventsCsv(dir / "events.csv", events);
