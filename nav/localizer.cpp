@@ -522,16 +522,19 @@ std::vector<core::Pose2> Localizer::RecoveryHypotheses() {
     return core::Pose2(X.x + sigma_xy * rng_.Normal(), X.y + sigma_xy * rng_.Normal(),
                        X.theta + sigma_theta * rng_.Normal());
   };
-  // The taught poses within reach of the estimate; all of them when none is. The reach widens
-  // with the distance driven while lost, by which the belief can have drifted meanwhile.
+  // The taught poses within reach of the estimate. The reach widens with the distance driven
+  // while lost, by which the belief can have drifted meanwhile. An estimate away from every
+  // taught pose (off the route) reaches as far beyond the nearest one: never the whole route,
+  // which puts a place that fits a few beams anywhere against a belief that drifted a little.
   const core::Pose2 estimate = Estimate();
-  const double reach = aug.path_reach + aug.reach_per_metre * lost_distance_;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const core::Pose2& X : recovery_poses_) {
+    nearest = std::min(nearest, core::Distance(X, estimate));
+  }
+  const double reach = std::max(aug.path_reach, nearest) + aug.reach_per_metre * lost_distance_;
   std::vector<std::size_t> reachable;
   for (std::size_t i = 0; i < recovery_poses_.size(); ++i) {
     if (core::Distance(recovery_poses_[i], estimate) <= reach) reachable.push_back(i);
-  }
-  if (reachable.empty()) {
-    for (std::size_t i = 0; i < recovery_poses_.size(); ++i) reachable.push_back(i);
   }
   for (int k = 0; k < count; ++k) {
     if (k < near || (recovery_poses_.empty() && free_cells_.empty())) {

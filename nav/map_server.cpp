@@ -36,6 +36,7 @@ void MapServerConfig::Validate() const {
   core::RequirePositive("settle_rms", settle_rms);
   core::RequireNonNegative("settle_wait", settle_wait);
   core::RequireInRange("min_coverage", min_coverage, 0.0, 1.0);
+  core::RequireNonNegative("search_sigma", search_sigma);
 }
 
 MapServer::MapServer(TeachBundle bundle, const MapServerConfig& config,
@@ -95,15 +96,21 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const RoutePosition& pos,
       return d;
     }
     if (!loops_) {
-      d.step = MapStep::kDone;
+      // The route is done while the robot is at its end. A drive that goes on past it (a log
+      // replayed beyond the taught route) is placed by the rules below, like any drive off the
+      // path.
+      if (pos.on_path) {
+        d.step = MapStep::kDone;
+        return d;
+      }
+    } else {
+      d.step = MapStep::kWrap;
+      // Through a revisit edge that closes the loop here, when there is one.
+      for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma)) {
+        if (p.map == 0 && p.via_revisit && p.distance <= max_distance) d.place = p;
+      }
       return d;
     }
-    d.step = MapStep::kWrap;
-    // Through a revisit edge that closes the loop here, when there is one.
-    for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma)) {
-      if (p.map == 0 && p.via_revisit && p.distance <= max_distance) d.place = p;
-    }
-    return d;
   }
   if (pos.travel == Travel::kBackward && pos.on_path && pos.s_extended <= kPathEndTolerance &&
       (index_ > 0 || loops_)) {
@@ -150,10 +157,15 @@ std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const cor
   // Off the path the estimate drifts with the odometry: the farther it has driven since, the
   // farther from its estimate and the farther through the graph the place may be.
   const double drifted = link_.drift * pos.off_path_driven;
+  const double near_sigma = config_.max_sigma + drifted;
+  const double reach = pos.on_path ? near_sigma : std::max(near_sigma, config_.search_sigma);
   std::optional<RoutePlace> best;
   double best_cost = 0.0;
-  for (const RoutePlace& p : graph_.Place(index_, X_MR, config_.max_sigma + drifted)) {
-    if (p.distance > max_distance + drifted) continue;
+  for (const RoutePlace& p : graph_.Place(index_, X_MR, reach)) {
+    // A transform off by more than max_sigma puts the place up to 2 sigma from the path the
+    // robot is on: the settling belief searches that far (Navigator::Seed).
+    const double far = p.sigma > near_sigma ? 2.0 * p.sigma : 0.0;
+    if (p.distance > max_distance + drifted + far) continue;
     // The current map holds the robot elsewhere on its path only where the route passes the
     // place again: farther along the path than the robot can have driven since it left it.
     if (p.map == index_ &&
@@ -170,7 +182,7 @@ std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const cor
     // Another stretch of the current path was driven at another time: the map's own drift
     // between the two lies between them, as between two maps.
     const double sigma = p.map == index_ ? link_.drift * std::abs(p.s - pos.s) : p.sigma;
-    if (sigma > config_.max_sigma + drifted) continue;
+    if (sigma > reach) continue;
     const bool same_way =
         SameWay(pos.travel, TravelOf(bundle_->maps[p.map].path, p.s, p.X_MR.theta));
     const double cost = p.distance + sigma + (same_way ? 0.0 : max_distance);
@@ -178,6 +190,15 @@ std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const cor
       best = p;
       best_cost = cost;
     }
+  }
+  if (best && Searched(*best)) {
+    // The hypothesis such a place stands for: the robot on that map's path at s. The transform's
+    // error lies mostly across the path (a turn of one map against the other), so the settling
+    // belief searches around the path point, not around where the transform put the estimate.
+    const core::Vec2 on = bundle_->maps[best->map].path.AtArcLength(best->s).translation();
+    best->X_MR = core::Pose2(on.x(), on.y(), best->X_MR.theta);
+    best->X_jk = best->X_MR * X_MR.Inverse();
+    best->distance = 0.0;
   }
   return best;
 }

@@ -73,6 +73,14 @@ struct MapServerConfig {
   /// walls still hold the belief (Intel, consistent map, seeds 1-10: 10/10 under 1 m at 0.1,
   /// 9/10 at 0.2, 22/40 at 0.3).
   double min_coverage = 0.1;
+  /// m: off the current path, a map whose transform may be off by more than max_sigma (a street
+  /// the route drove again much later, through maps that drifted apart) is still a candidate up
+  /// to this, its place searched by scan matching within 2 σ and confirmed by the scans before
+  /// it commits: the place the graph carries the estimate to may then lie up to 2 σ from that
+  /// map's path. Measured on the campus driven backwards (partial maps): the street the
+  /// reversed drive turns into lay 7.9 m from where map 1's estimate carried it in map 2,
+  /// σ = 3.7 m. 0 turns it off.
+  double search_sigma = 4.0;
 
   template <class V>
   void Reflect(V& v) {
@@ -83,9 +91,10 @@ struct MapServerConfig {
     v("settle_rms", settle_rms);
     v("settle_wait", settle_wait);
     v("min_coverage", min_coverage);
+    v("search_sigma", search_sigma);
   }
   /// Throws core::ConfigError naming the key: sigmas and settle_rms > 0, settle_wait >= 0,
-  /// settle_updates >= 1, min_coverage in [0, 1].
+  /// settle_updates >= 1, min_coverage in [0, 1], search_sigma >= 0.
   void Validate() const;
 };
 
@@ -135,6 +144,7 @@ class MapServer {
   std::size_t size() const { return bundle_->maps.size(); }
   bool IsLast() const { return index_ + 1 == bundle_->maps.size(); }
   const PartialMap& current() const { return bundle_->maps[index_]; }
+  const PartialMap& map(std::size_t k) const { return bundle_->maps.at(k); }
   const TeachBundle& bundle() const { return *bundle_; }
   const RouteGraph& graph() const { return graph_; }
   /// The route is a loop and is driven again after its last map (the constructor's `loop`).
@@ -159,8 +169,9 @@ class MapServer {
   ///    that no longer covers the scan: the map whose path the estimate, carried through the
   ///    graph, lies within max_distance of, going the same way as the robot travels, and that
   ///    covers the scan (the nearest counting the transform's expected error); the current map
-  ///    at another part of its path counts too. None, and the current map does not cover the
-  ///    scan: off map. None, and it does: stay.
+  ///    at another part of its path counts too. Off the path, a transform off by up to
+  ///    search_sigma counts too, its place within 2 σ of that map's path. None, and the current
+  ///    map does not cover the scan: off map. None, and it does: stay.
   MapDecision Decide(const FollowerOutput& follower_output, const RoutePosition& position,
                      const core::Pose2& X_MR, double max_distance,
                      const ScanPoints* scan = nullptr) const;
@@ -181,6 +192,9 @@ class MapServer {
   bool Settles(const RoutePlace& place) const {
     return place.map != index_ && place.sigma > config_.min_sigma_xy;
   }
+  /// A place through a transform off by more than max_sigma (MapServerConfig::search_sigma): it
+  /// stands for the robot on that map's path, and its settling belief must end there.
+  bool Searched(const RoutePlace& place) const { return place.sigma > config_.max_sigma; }
   /// The belief a settling switch starts from: `belief` gets place.map's grid and recovery poses,
   /// and particles spread over place.sigma around the estimate X_MkR carried by place.X_jk.
   void Prepare(const RoutePlace& place, const core::Pose2& X_MkR, Localizer& belief) const;

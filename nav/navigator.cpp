@@ -172,17 +172,26 @@ void Navigator::Seed(const core::LaserScan& scan) {
 bool Navigator::Settled(const PendingSwitch& p) const {
   const MapServerConfig& c = server_.config();
   // Confirmed by the scans: the map entered explains them at least as well as the map left. A
-  // loop's wrap has no path left to stay on: it needs no confirmation.
-  const bool confirmed = p.wrap || p.evidence >= 0.0;
+  // loop's wrap has no path left to stay on: it needs no confirmation. A belief that is lost in
+  // the map entered confirms nothing; nor does one that settled off the path a searched place
+  // stands for.
+  const bool on_path =
+      !server_.Searched(p.place) ||
+      Project(server_.map(p.place.map).path, p.belief.Estimate().translation()).distance <=
+          follower_.config().progress_max_distance;
+  const bool confirmed = p.wrap || (p.evidence >= 0.0 && !p.belief.lost() && on_path);
   if (p.waited >= c.settle_wait) return confirmed;
-  return confirmed && p.updates >= c.settle_updates &&
+  // A searched place may be wrong by metres along a street that looks the same all along: its
+  // belief gathers in one place of many at once. It commits only after settle_wait, the scans
+  // of that much driving having confirmed it.
+  return !server_.Searched(p.place) && confirmed && p.updates >= c.settle_updates &&
          ParticleSpread(p.belief.particles()) <= c.settle_rms;
 }
 
 bool Navigator::Abandoned(const PendingSwitch& p) const {
   // A switch by place that the scans did not confirm in settle_wait: the map left explains them
   // better. (A loop's wrap has no path left to stay on: it commits.)
-  return !p.wrap && p.waited >= server_.config().settle_wait && p.evidence < 0.0;
+  return !p.wrap && p.waited >= server_.config().settle_wait && !Settled(p);
 }
 
 }  // namespace retrace::nav

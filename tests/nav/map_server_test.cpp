@@ -30,11 +30,12 @@ core::OccupancyGrid RoomMap() {
 }
 
 // The map server of a route with the given drift and revisit radius, the default options.
-MapServer Server(TeachBundle bundle, double drift = 0.03, double radius = 3.0, bool loop = false) {
+MapServer Server(TeachBundle bundle, double drift = 0.03, double radius = 3.0, bool loop = false,
+                 const MapServerConfig& config = {}) {
   RouteLinkConfig link;
   link.drift = drift;
   link.revisit_radius = radius;
-  return MapServer(std::move(bundle), MapServerConfig{}, link, loop);
+  return MapServer(std::move(bundle), config, link, loop);
 }
 
 // The robot's place on the current path for the estimate X_MR, travelling `travel`.
@@ -258,8 +259,24 @@ TEST(MapServer, HandsOverTheMapWhosePathTheRobotIsOnByPlace) {
   EXPECT_EQ(server.index(), 2u);
   EXPECT_NEAR(std::sqrt(testing::ParticleCovariance(localizer.particles(), localizer.Estimate())(0, 0)), 0.6, 0.1);
 
-  // At 10 % drift that chain may be off by 2 m: too long a chain, no hand-over.
-  EXPECT_EQ(DecideAt(Server(ThreeMaps(), 0.1), off, X_M0R, 2.0).step, MapStep::kStay);
+  // At 10 % drift that chain may be off by 2 m, more than max_sigma: the place is searched. It
+  // stands for the robot on path 2 (the settling belief searches around the path point), and is
+  // as far as 2 sigma may take it from the path.
+  const MapServer drifting = Server(ThreeMaps(), 0.1);
+  const MapDecision searched = DecideAt(drifting, off, X_M0R, 2.0);
+  ASSERT_EQ(searched.step, MapStep::kSwitch);
+  EXPECT_EQ(searched.place.map, 2u);
+  EXPECT_TRUE(drifting.Searched(searched.place));
+  EXPECT_NEAR(searched.place.distance, 0.0, 1e-9);
+  ExpectPoseNear(searched.place.X_MR, core::Pose2(5.0, 0.0, 0.0), 1e-9);
+  ExpectPoseNear(searched.place.X_jk * X_M0R, searched.place.X_MR, 1e-9);
+  EXPECT_EQ(DecideAt(drifting, off, core::Pose2(5.0, 17.0, core::kPi), 2.0).step,
+            MapStep::kStay);  // 7 m from path 2: more than 2 m + 2 sigma
+  // Without the search, too long a chain: no hand-over.
+  MapServerConfig no_search;
+  no_search.search_sigma = 0.0;
+  EXPECT_EQ(DecideAt(Server(ThreeMaps(), 0.1, 3.0, false, no_search), off, X_M0R, 2.0).step,
+            MapStep::kStay);
   // A revisit edge registered between path 0 and path 2 at that place is exact there.
   TeachBundle linked = ThreeMaps();
   linked.revisits.push_back({0, 2, 5.0, 5.0, Server(ThreeMaps()).graph().Chain(0, 2)});
