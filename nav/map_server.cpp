@@ -77,7 +77,7 @@ void MapServer::Start(Localizer& localizer, PathFollower& follower, std::size_t 
 
 MapDecision MapServer::Decide(const FollowerOutput& f, const RoutePosition& pos,
                               const core::Pose2& X_MR, double max_distance,
-                              const ScanPoints* scan) const {
+                              const ScanPoints* scan, bool lost) const {
   MapDecision d;
   if (scan != nullptr && !scan->xs_L.empty()) d.coverage = Coverage(index_, X_MR, *scan);
   // At the end: the tracked place, or the follower's progress (its goal stays reached once it
@@ -121,7 +121,7 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const RoutePosition& pos,
   }
   const bool covered = d.coverage >= config_.min_coverage;
   if (pos.on_path && covered) return d;
-  if (const std::optional<RoutePlace> place = ByPlace(pos, X_MR, max_distance, scan, d.coverage)) {
+  if (const std::optional<RoutePlace> place = ByPlace(pos, X_MR, max_distance, scan, d.coverage, lost)) {
     d.step = MapStep::kSwitch;
     d.place = *place;
     d.travel = TravelOf(bundle_->maps[place->map].path, place->s, place->X_MR.theta);
@@ -153,12 +153,15 @@ MapDecision MapServer::Backward(const core::Pose2& X_MR) const {
 
 std::optional<RoutePlace> MapServer::ByPlace(const RoutePosition& pos, const core::Pose2& X_MR,
                                              double max_distance, const ScanPoints* scan,
-                                             double coverage) const {
+                                             double coverage, bool lost) const {
   // Off the path the estimate drifts with the odometry: the farther it has driven since, the
   // farther from its estimate and the farther through the graph the place may be.
   const double drifted = link_.drift * pos.off_path_driven;
   const double near_sigma = config_.max_sigma + drifted;
-  const double reach = pos.on_path ? near_sigma : std::max(near_sigma, config_.search_sigma);
+  // Through a transform off by more than that, a map is searched only for a robot off the path
+  // that is lost, or in a map that no longer covers the scan.
+  const bool blind = !pos.on_path && (lost || coverage < config_.min_coverage);
+  const double reach = blind ? std::max(near_sigma, config_.search_sigma) : near_sigma;
   std::optional<RoutePlace> best;
   double best_cost = 0.0;
   for (const RoutePlace& p : graph_.Place(index_, X_MR, reach)) {

@@ -73,11 +73,10 @@ struct MapServerConfig {
   /// walls still hold the belief (Intel, consistent map, seeds 1-10: 10/10 under 1 m at 0.1,
   /// 9/10 at 0.2, 22/40 at 0.3).
   double min_coverage = 0.1;
-  /// m: off the current path, a map whose transform may be off by more than max_sigma (a street
-  /// the route drove again much later, through maps that drifted apart) is still a candidate up
-  /// to this, its place searched by scan matching within 2 σ and confirmed by the scans before
-  /// it commits: the place the graph carries the estimate to may then lie up to 2 σ from that
-  /// map's path. Measured on the campus driven backwards (partial maps): the street the
+  /// m: off the current path, lost or in a map that no longer covers the scan, a map whose transform may be off by more than max_sigma (a street the route drove
+  /// again much later, through maps that drifted apart) is still a candidate up to this: the
+  /// robot on that map's path, within 2 σ of where the transform carries the estimate, searched
+  /// by scan matching and confirmed by settle_wait s of scans before it commits. Measured on the campus driven backwards (partial maps): the street the
   /// reversed drive turns into lay 7.9 m from where map 1's estimate carried it in map 2,
   /// σ = 3.7 m. 0 turns it off.
   double search_sigma = 4.0;
@@ -169,12 +168,13 @@ class MapServer {
   ///    that no longer covers the scan: the map whose path the estimate, carried through the
   ///    graph, lies within max_distance of, going the same way as the robot travels, and that
   ///    covers the scan (the nearest counting the transform's expected error); the current map
-  ///    at another part of its path counts too. Off the path, a transform off by up to
-  ///    search_sigma counts too, its place within 2 σ of that map's path. None, and the current
-  ///    map does not cover the scan: off map. None, and it does: stay.
+  ///    at another part of its path counts too. Off the path, `lost` (by the localizer's own
+  ///    account) or where the current map does not cover the scan, a transform off by up to
+  ///    search_sigma counts too, its place within 2 σ of that map's path. None, and the current map does not cover the scan: off map. None,
+  ///    and it does: stay.
   MapDecision Decide(const FollowerOutput& follower_output, const RoutePosition& position,
                      const core::Pose2& X_MR, double max_distance,
-                     const ScanPoints* scan = nullptr) const;
+                     const ScanPoints* scan = nullptr, bool lost = false) const;
   /// The share of the scan's beams that end in cells map `map` observed, for the robot at X_MR
   /// in that map (nav::GridCoverage).
   double Coverage(std::size_t map, const core::Pose2& X_MR, const ScanPoints& scan) const;
@@ -228,8 +228,8 @@ class MapServer {
   MapDecision Backward(const core::Pose2& X_MR) const;
   // The by-place rule: the best map the estimate carried through the graph lies on.
   std::optional<RoutePlace> ByPlace(const RoutePosition& position, const core::Pose2& X_MR,
-                                    double max_distance, const ScanPoints* scan,
-                                    double coverage) const;
+                                    double max_distance, const ScanPoints* scan, double coverage,
+                                    bool lost) const;
 
   std::shared_ptr<const TeachBundle> bundle_;
   MapServerConfig config_;

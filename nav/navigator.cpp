@@ -87,7 +87,8 @@ NavigatorTick Navigator::OnControlTick(double dt) {
   const ScanPoints points{scan_xs_, scan_ys_, localizer_.robot().X_RL};
   const MapDecision decision = server_.Decide(tick.follow, position, estimate,
                                               fc.progress_max_distance,
-                                              scan_xs_.empty() ? nullptr : &points);
+                                              scan_xs_.empty() ? nullptr : &points,
+                                              localizer_.lost());
   tick.coverage = decision.coverage;
   off_map_ = decision.step == MapStep::kOffMap;
   if (pending_) pending_->waited += dt;

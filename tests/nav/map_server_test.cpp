@@ -53,8 +53,9 @@ RoutePosition PlaceOn(const MapServer& server, const core::Pose2& X_MR, double m
 
 // The map server's decision for a robot at X_MR travelling `travel`, without a scan.
 MapDecision DecideAt(const MapServer& server, const FollowerOutput& f, const core::Pose2& X_MR,
-                     double max_distance, Travel travel = Travel::kForward) {
-  return server.Decide(f, PlaceOn(server, X_MR, max_distance, travel), X_MR, max_distance);
+                     double max_distance, Travel travel = Travel::kForward, bool lost = false) {
+  return server.Decide(f, PlaceOn(server, X_MR, max_distance, travel), X_MR, max_distance, nullptr,
+                       lost);
 }
 
 TeachBundle TwoMaps(const core::Pose2& X_M0S) {
@@ -259,23 +260,28 @@ TEST(MapServer, HandsOverTheMapWhosePathTheRobotIsOnByPlace) {
   EXPECT_EQ(server.index(), 2u);
   EXPECT_NEAR(std::sqrt(testing::ParticleCovariance(localizer.particles(), localizer.Estimate())(0, 0)), 0.6, 0.1);
 
-  // At 10 % drift that chain may be off by 2 m, more than max_sigma: the place is searched. It
-  // stands for the robot on path 2 (the settling belief searches around the path point), and is
-  // as far as 2 sigma may take it from the path.
+  // At 10 % drift that chain may be off by 2 m, more than max_sigma: no hand-over while the
+  // localizer holds the robot in map 0. Lost, the place is searched. It stands for the robot on
+  // path 2 (the settling belief searches around the path point), and is as far as 2 sigma may
+  // take it from the path.
   const MapServer drifting = Server(ThreeMaps(), 0.1);
-  const MapDecision searched = DecideAt(drifting, off, X_M0R, 2.0);
+  EXPECT_EQ(DecideAt(drifting, off, X_M0R, 2.0).step, MapStep::kStay);
+  const MapDecision searched = DecideAt(drifting, off, X_M0R, 2.0, Travel::kForward, true);
   ASSERT_EQ(searched.step, MapStep::kSwitch);
   EXPECT_EQ(searched.place.map, 2u);
   EXPECT_TRUE(drifting.Searched(searched.place));
   EXPECT_NEAR(searched.place.distance, 0.0, 1e-9);
   ExpectPoseNear(searched.place.X_MR, core::Pose2(5.0, 0.0, 0.0), 1e-9);
   ExpectPoseNear(searched.place.X_jk * X_M0R, searched.place.X_MR, 1e-9);
-  EXPECT_EQ(DecideAt(drifting, off, core::Pose2(5.0, 17.0, core::kPi), 2.0).step,
+  EXPECT_EQ(DecideAt(drifting, off, core::Pose2(5.0, 17.0, core::kPi), 2.0, Travel::kForward, true)
+                .step,
             MapStep::kStay);  // 7 m from path 2: more than 2 m + 2 sigma
   // Without the search, too long a chain: no hand-over.
   MapServerConfig no_search;
   no_search.search_sigma = 0.0;
-  EXPECT_EQ(DecideAt(Server(ThreeMaps(), 0.1, 3.0, false, no_search), off, X_M0R, 2.0).step,
+  EXPECT_EQ(DecideAt(Server(ThreeMaps(), 0.1, 3.0, false, no_search), off, X_M0R, 2.0,
+                     Travel::kForward, true)
+                .step,
             MapStep::kStay);
   // A revisit edge registered between path 0 and path 2 at that place is exact there.
   TeachBundle linked = ThreeMaps();
