@@ -22,34 +22,52 @@ BeamEvidenceThresholds BeamEvidenceThresholds::Of(const LikelihoodField& field) 
   return {1.5 * sigma, 2.0 * sigma};
 }
 
-BeamEvidence ClassifyBeams(const LikelihoodField& field, const GridRayCaster& caster,
-                           const core::Pose2& X_ML, std::span<const double> xs_L,
-                           std::span<const double> ys_L) {
+void ClassifyEachBeam(const LikelihoodField& field, const GridRayCaster& caster,
+                      const core::Pose2& X_ML, std::span<const double> xs_L,
+                      std::span<const double> ys_L, std::vector<BeamClass>* classes) {
   RETRACE_CHECK(xs_L.size() == ys_L.size());
   const BeamEvidenceThresholds t = BeamEvidenceThresholds::Of(field);
   const core::Vec2 origin = X_ML.translation();
   const double c = std::cos(X_ML.theta), s = std::sin(X_ML.theta);
-  BeamEvidence e;
+  classes->assign(xs_L.size(), BeamClass::kShorter);
   for (std::size_t i = 0; i < xs_L.size(); ++i) {
     const double range = std::hypot(xs_L[i], ys_L[i]);
     if (!(range > 0.0)) continue;
     const core::Vec2 end(origin.x() + c * xs_L[i] - s * ys_L[i],
                          origin.y() + s * xs_L[i] + c * ys_L[i]);
-    if (field.DistanceAt(end) <= t.explained_distance) {
-      ++e.explained;
-      continue;
-    }
+    BeamClass& k = (*classes)[i];
+    // A wall of the map on the ray, short of the end point: the beam saw through it, whatever
+    // it ends on.
     const core::Vec2 dir = (end - origin) / range;
-    const double expected = caster.Cast(origin, dir, range);
-    if (expected < range - t.contradiction_margin) {
-      ++e.through_wall;
+    if (caster.Cast(origin, dir, range) < range - t.contradiction_margin) {
+      k = BeamClass::kThroughWall;
+    } else if (field.DistanceAt(end) <= t.explained_distance) {
+      k = BeamClass::kExplained;
     } else if (!field.Known(end)) {
-      ++e.unknown;
-    } else {
-      ++e.shorter;
+      k = BeamClass::kUnknown;
+    }
+  }
+}
+
+BeamEvidence CountClasses(std::span<const BeamClass> classes) {
+  BeamEvidence e;
+  for (const BeamClass k : classes) {
+    switch (k) {
+      case BeamClass::kExplained: ++e.explained; break;
+      case BeamClass::kShorter: ++e.shorter; break;
+      case BeamClass::kUnknown: ++e.unknown; break;
+      case BeamClass::kThroughWall: ++e.through_wall; break;
     }
   }
   return e;
+}
+
+BeamEvidence ClassifyBeams(const LikelihoodField& field, const GridRayCaster& caster,
+                           const core::Pose2& X_ML, std::span<const double> xs_L,
+                           std::span<const double> ys_L) {
+  std::vector<BeamClass> classes;
+  ClassifyEachBeam(field, caster, X_ML, xs_L, ys_L, &classes);
+  return CountClasses(classes);
 }
 
 double GridCoverage(const core::OccupancyGrid& grid, const core::Pose2& X_ML,

@@ -7,13 +7,15 @@
 //                 wrong. No evidence for or against the pose;
 //   unknown       it ends in cells the map never observed: no evidence either way;
 //   through wall  it ends more than contradiction_margin beyond a wall of the map that lies on
-//                 its ray, and near none: it sees through the map. A person can only shorten a
+//                 its ray (wherever it ends): it sees through the map. A person can only shorten a
 //                 beam, so this contradicts the pose (or the map has changed).
 //
 // The map's coverage of the scene is the share of beams that end in observed cells (all but the
 // unknown ones); the scan supports the pose when enough beams are explained and few contradict.
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
@@ -46,8 +48,21 @@ struct BeamEvidenceThresholds {
   static BeamEvidenceThresholds Of(const LikelihoodField& field);
 };
 
-/// Sorts the beams whose end points (LiDAR frame) are xs_L, ys_L, for a LiDAR at X_ML in the
-/// field's map: one ray cast on the grid per beam.
+/// What one beam says (the classes above).
+enum class BeamClass : std::uint8_t { kExplained, kShorter, kUnknown, kThroughWall };
+
+/// The class of each beam whose end points (LiDAR frame) are xs_L, ys_L, for a LiDAR at X_ML in
+/// the field's map, into `classes` (resized): one ray cast on the grid per beam. A beam that
+/// passes a wall of the map more than contradiction_margin before its end sees through it, even
+/// if it ends on another wall.
+void ClassifyEachBeam(const LikelihoodField& field, const GridRayCaster& caster,
+                      const core::Pose2& X_ML, std::span<const double> xs_L,
+                      std::span<const double> ys_L, std::vector<BeamClass>* classes);
+
+/// The counts of the classes.
+BeamEvidence CountClasses(std::span<const BeamClass> classes);
+
+/// ClassifyEachBeam, counted.
 BeamEvidence ClassifyBeams(const LikelihoodField& field, const GridRayCaster& caster,
                            const core::Pose2& X_ML, std::span<const double> xs_L,
                            std::span<const double> ys_L);

@@ -152,10 +152,11 @@ void LocalizerConfig::Validate() const {
   ValidateNested("rejection", rejection);
   ValidateNested("augmented", augmented);
   ValidateNested("kld", kld);
+  ValidateNested("reliability", reliability);
 }
 
 Localizer::Localizer(const LocalizerConfig& config, const RobotGeometry& robot, core::Rng rng)
-    : config_(config), robot_(robot), rng_(rng) {
+    : config_(config), robot_(robot), rng_(rng), reliability_(config.reliability) {
   config_.Validate();
   robot_.Validate();
 }
@@ -204,6 +205,8 @@ void Localizer::Restart(const core::Pose2& X_MR) {
   ResetAverages();
   trial_.Stop();
   lost_ = false;
+  reliability_.Reset();
+  unweighed_driven_ = 0.0;
   lost_distance_ = 0.0;
   estimate_ = anchor_ = X_MR;
   estimate_stale_ = false;
@@ -308,8 +311,12 @@ void Localizer::KeptEndPoints(const core::LaserScan& scan, const std::vector<int
   for (std::size_t b = 0; b < tested.size(); ++b) {
     const std::size_t i = static_cast<std::size_t>(tested[b]);
     if (dynamic[b] != 0) {
-      out->beams[i] = BeamUse::kRejected;
-      ++out->beams_rejected;
+      if (classes_[b] == BeamClass::kThroughWall) {
+        out->beams[i] = BeamUse::kThroughWall;
+      } else {
+        out->beams[i] = BeamUse::kRejected;
+        ++out->beams_rejected;
+      }
       continue;
     }
     out->beams[i] = BeamUse::kUsed;
@@ -319,6 +326,19 @@ void Localizer::KeptEndPoints(const core::LaserScan& scan, const std::vector<int
     ys->push_back(r * std::sin(a));
   }
   out->beams_used = static_cast<int>(xs->size());
+}
+
+void Localizer::WeighEvidence(const core::LaserScan& scan, const std::vector<int>& tested,
+                              double driven, LocalizerUpdate* out) {
+  std::vector<double> xs(tested.size()), ys(tested.size());
+  for (std::size_t b = 0; b < tested.size(); ++b) {
+    const std::size_t i = static_cast<std::size_t>(tested[b]);
+    xs[b] = scan.ranges[i] * std::cos(scan.Angle(i));
+    ys[b] = scan.ranges[i] * std::sin(scan.Angle(i));
+  }
+  ClassifyEachBeam(*field_, *caster_, Estimate() * robot_.X_RL, xs, ys, &classes_);
+  out->evidence = CountClasses(classes_);
+  reliability_.Update(out->evidence, driven);
 }
 
 void Localizer::UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out) {
@@ -347,12 +367,21 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
       std::abs(odometry_since_update_.theta) >= core::DegToRad(config_.update_angle_deg);
   if (!moved && !force_update_) return out;
   const std::vector<int> tested = SelectBeams(scan);
-  if (tested.empty()) return out;  // keep the gate open for the next scan
+  // m driven since the reliability was last updated (the gate stays open without a beam).
+  const double since = std::hypot(odometry_since_update_.x, odometry_since_update_.y);
+  const double driven = since - unweighed_driven_;
+  if (tested.empty()) {
+    // No beam, no evidence: the reliability decays with the distance; the gate stays open for
+    // the next scan.
+    reliability_.Update(BeamEvidence{}, driven);
+    unweighed_driven_ = since;
+    return out;
+  }
+  unweighed_driven_ = 0.0;
   out.ran = true;
   out.beams_tested = static_cast<int>(tested.size());
   Estimate();  // as of the prediction, before the weights change: recovery draws around it
   force_update_ = false;
-  const double driven = std::hypot(odometry_since_update_.x, odometry_since_update_.y);
   odometry_since_update_ = core::Pose2::Identity();
 
   const std::size_t n = particles_.size();
@@ -361,6 +390,7 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
 
   // Dynamic scan point rejection (eq. 7-9); the kept beams' end points in L.
   const std::vector<std::uint8_t> dynamic = TestDynamic(scan, tested, X_ML, &out);
+  WeighEvidence(scan, tested, driven, &out);
   std::vector<double> xs, ys;
   KeptEndPoints(scan, tested, dynamic, &out, &xs, &ys);
 
@@ -379,21 +409,25 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
 
   // Lost while the short-term average likelihood is far below the long-term one; recovery.
   UpdateAverages(w_avg, !xs.empty(), &out);
-  lost_distance_ = lost_ ? lost_distance_ + driven : 0.0;
+  lost_distance_ = lost_ ? lost_distance_ + since : 0.0;
   if (config_.augmented.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
   if (trial_.running() && out.trial_updates == 0) {  // also while no beam is kept to weigh it
     out.trial_updates = trial_.updates();
     out.trial_log_bayes_factor = trial_.log_bayes_factor();
   }
 
-  if (!out.reacquired && out.n_eff < config_.resample_ess_ratio * static_cast<double>(n)) {
+  // An update that weighed no beam keeps the spread the motion model gave the belief.
+  if (!out.reacquired && !xs.empty() &&
+      out.n_eff < config_.resample_ess_ratio * static_cast<double>(n)) {
     particles_ = config_.kld.enabled ? ResampleKld(w) : ResampleFixed(w);
     const double wn = 1.0 / static_cast<double>(particles_.size());
     for (Particle& p : particles_) p.weight = wn;
     out.resampled = true;
   }
   FollowCluster(out.reacquired);
-  out.lost = lost_;
+  if (out.reacquired) reliability_.Reset();
+  out.reliability = reliability_.value();
+  out.lost = lost();
   out.particles = static_cast<int>(particles_.size());
   return out;
 }

@@ -24,6 +24,7 @@
 #include "nav/motion_model.hpp"
 #include "nav/particle.hpp"
 #include "nav/recovery_trial.hpp"
+#include "nav/reliability.hpp"
 #include "nav/robot_geometry.hpp"
 
 namespace retrace::nav {
@@ -177,6 +178,7 @@ struct LocalizerConfig {
   DynamicRejectionConfig rejection;
   AugmentedMclConfig augmented;
   KldConfig kld;
+  ReliabilityConfig reliability;
 
   template <class V>
   void Reflect(V& v) {
@@ -190,6 +192,7 @@ struct LocalizerConfig {
     v("rejection", rejection);
     v("augmented", augmented);
     v("kld", kld);
+    v("reliability", reliability);
   }
   /// Throws core::ConfigError naming the key path (e.g. "particles", "rejection.chi").
   void Validate() const;
@@ -200,6 +203,10 @@ enum class BeamUse : std::uint8_t {
   kUnused,    ///< not selected (beam_step), or not a valid finite reading within the limits
   kUsed,      ///< weighted
   kRejected,  ///< classified dynamic (eq. 9) and left out of the weights
+  /// flagged by eq. (9), but it sees through a mapped wall at the estimate: never dynamic (a
+  /// person can only shorten a beam), a contradiction the reliability counts; left out of the
+  /// weights as eq. (9) would have left it (the belief's other particles find it short)
+  kThroughWall,
 };
 
 /// Diagnostics of one Update call (no timings: nav has no clock).
@@ -218,7 +225,11 @@ struct LocalizerUpdate {
   double w_avg = 0.0;  ///< average per-beam likelihood of this update (1/m)
   double w_slow = 0.0;
   double w_fast = 0.0;
-  bool lost = false;      ///< after this update: w_fast < trigger_ratio · w_slow
+  /// The tested beams at the estimate (nav/beam_evidence.hpp), the rejected ones included.
+  BeamEvidence evidence;
+  double reliability = 0.0;  ///< the probability that the estimate is right (nav/reliability.hpp)
+  /// after this update: w_fast < trigger_ratio · w_slow, or the reliability below its threshold
+  bool lost = false;
   int trial_updates = 0;  ///< scans the running recovery trial has explained (0: none runs)
   double trial_log_bayes_factor = 0.0;  ///< its evidence against the belief's (nats)
   bool reacquired = false;              ///< the trial won: it replaced the belief in this update
@@ -279,8 +290,14 @@ class Localizer {
   const RobotGeometry& robot() const { return robot_; }
   /// The current map's likelihood field (requires a map: SetMap).
   const LikelihoodField& likelihood_field() const;
-  /// As of the last update: the belief explains the scans much worse than it used to.
-  bool lost() const { return lost_; }
+  /// As of the last update: the belief explains the scans much worse than it used to, or the
+  /// scans no longer support the estimate (its reliability fell below the threshold).
+  bool lost() const { return lost_ || reliability_.unreliable(); }
+  /// As of the last update: the belief explains the scans much worse than it used to (augmented
+  /// MCL's trigger, which starts a recovery trial).
+  bool misfit() const { return lost_; }
+  /// The probability that the estimate is right, as of the last update.
+  double reliability() const { return reliability_.value(); }
 
  private:
   void ResetAverages();
@@ -289,13 +306,17 @@ class Localizer {
   std::vector<std::uint8_t> TestDynamic(const core::LaserScan& scan, const std::vector<int>& tested,
                                         std::span<const core::Pose2> X_ML,
                                         LocalizerUpdate* out) const;
+  // The tested beams' classes at the estimate (into classes_) and the reliability.
+  void WeighEvidence(const core::LaserScan& scan, const std::vector<int>& tested, double driven,
+                     LocalizerUpdate* out);
   // w_slow, w_fast and the lost state after an update whose average likelihood is w_avg.
   void UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out);
   std::vector<Particle> ResampleFixed(const std::vector<double>& weights);
   std::vector<Particle> ResampleKld(const std::vector<double>& weights);
   std::vector<core::Pose2> RecoveryHypotheses();
   core::Pose2 FreeCellPose();
-  // The end points (L) of the tested beams the rejection kept; marks every beam's use in `out`.
+  // The end points (L) of the tested beams the rejection kept; marks every beam's use in `out`
+  // (a flagged beam that sees through a mapped wall, by classes_, is not dynamic).
   void KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
                      const std::vector<std::uint8_t>& dynamic, LocalizerUpdate* out,
                      std::vector<double>* xs, std::vector<double>* ys) const;
@@ -322,6 +343,9 @@ class Localizer {
   double w_slow_ = 0.0;
   double w_fast_ = 0.0;
   bool lost_ = false;
+  Reliability reliability_;
+  double unweighed_driven_ = 0.0;  // m of odometry already counted by the reliability
+  std::vector<BeamClass> classes_;  // scratch: the tested beams' classes
   // The estimate and the cluster it follows (moved by every prediction); a main cluster seen
   // elsewhere, and for how many updates in a row.
   mutable core::Pose2 estimate_;

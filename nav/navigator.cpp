@@ -88,7 +88,7 @@ NavigatorTick Navigator::OnControlTick(double dt) {
   const MapDecision decision = server_.Decide(tick.follow, position, estimate,
                                               fc.progress_max_distance,
                                               scan_xs_.empty() ? nullptr : &points,
-                                              localizer_.lost());
+                                              localizer_.misfit());
   tick.coverage = decision.coverage;
   off_map_ = decision.step == MapStep::kOffMap;
   if (pending_) pending_->waited += dt;

@@ -13,6 +13,7 @@
 #include "core/config.hpp"
 #include "core/pose2.hpp"
 #include "core/twist.hpp"
+#include "nav/beam_evidence.hpp"
 #include "sim/collision_event.hpp"
 #include "sim/pedestrian_behaviour.hpp"
 
@@ -96,6 +97,8 @@ struct LocalizerSample {
   int beams_used = 0;           ///< beams in the weights
   int trial_updates = 0;        ///< scans the running recovery trial has explained (0: none)
   double trial_log_bayes_factor = 0.0;  ///< its evidence against the belief's (nats)
+  nav::BeamEvidence evidence;  ///< the tested beams at the estimate, by class (LocalizerUpdate)
+  double reliability = 0.0;    ///< the probability that the estimate is right (LocalizerUpdate)
 };
 
 /// A map switch done by the map server.

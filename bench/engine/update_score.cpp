@@ -16,6 +16,8 @@ LocalizerSample ScoreUpdate(const nav::LocalizerUpdate& update, double time, dou
   sample.beams_used = update.beams_used;
   sample.trial_updates = update.trial_updates;
   sample.trial_log_bayes_factor = update.trial_log_bayes_factor;
+  sample.evidence = update.evidence;
+  sample.reliability = update.reliability;
   if (truth.empty()) return sample;
   for (std::size_t i = 0; i < update.beams.size(); ++i) {
     if (update.beams[i] == nav::BeamUse::kUnused) continue;

@@ -39,11 +39,13 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
   io::CsvWriter updates(
       dir / "updates.csv",
       {"time", "beams_tested", "beams_rejected", "spread_m", "rejection_particles", "cpu_ms",
-       "lost", "trial_updates", "trial_log_bayes_factor", "reacquired"});
+       "lost", "trial_updates", "trial_log_bayes_factor", "reacquired", "explained", "shorter",
+       "unknown", "through_wall", "reliability"});
   for (const LocalizerSample& u : run.updates) {
     updates.AddRow({u.time, u.beams_tested, u.beams_rejected, u.spread, u.rejection_particles,
                     u.cpu_s * 1e3, int{u.lost}, u.trial_updates, u.trial_log_bayes_factor,
-                    int{u.reacquired}});
+                    int{u.reacquired}, u.evidence.explained, u.evidence.shorter,
+                    u.evidence.unknown, u.evidence.through_wall, u.reliability});
   }
   updates.Commit();
   std::vector<EventRow> events = SwitchEvents(run.switches);

@@ -1,0 +1,66 @@
+#pragma once
+// The probability that the estimate is right (docs/METHOD.md, "Reliability"), after the idea of
+// Akai's Reliable MCL (J. Field Robotics 40(3), 2023), in a simpler form: a binary Bayes filter
+// over "the estimate lies where the robot is", fed by each update's beam evidence at the
+// estimate (nav/beam_evidence.hpp) and discounted by the distance driven.
+//
+//   prediction   r <- r · exp(-d / hold_distance)   for d metres driven since the last update:
+//                a pose the scans no longer confirm goes wrong with the odometry's drift;
+//   measurement  log-odds(r) += n (f log(p_right / p_wrong) + (1 - f) log((1 - p_right) /
+//                (1 - p_wrong))), where the evidence beams are the explained ones and those
+//                that see through a mapped wall, f the explained share of them and n their
+//                number, at most max_beams (the beams of one scan are far from independent).
+//                Beams that end short of the map's walls or in cells it never observed say
+//                nothing either way.
+//
+// So a belief whose beams are all rejected, or end in space the map never saw, loses confidence
+// over hold_distance · ln(r / threshold) of driving; one that sees through mapped walls loses it
+// within an update or two; and one that the scans support regains it as fast.
+
+#include "core/config.hpp"
+#include "nav/beam_evidence.hpp"
+
+namespace retrace::nav {
+
+struct ReliabilityConfig {
+  bool enabled = true;
+  /// m: the pose stays right over d metres without evidence with probability exp(-d / this)
+  double hold_distance = 5.0;
+  double p_right = 0.9;  ///< an evidence beam is explained when the pose is right
+  double p_wrong = 0.4;  ///< ... and when it is wrong (a corridor explains many poses)
+  int max_beams = 10;    ///< evidence beams counted per update at most
+  double threshold = 0.5;  ///< below it the localizer counts itself lost (unreliable)
+  double initial = 0.9;    ///< after Initialize or a won recovery trial
+
+  template <class V>
+  void Reflect(V& v) {
+    v("enabled", enabled);
+    v("hold_distance", hold_distance);
+    v("p_right", p_right);
+    v("p_wrong", p_wrong);
+    v("max_beams", max_beams);
+    v("threshold", threshold);
+    v("initial", initial);
+  }
+  /// Throws core::ConfigError naming the key: hold_distance > 0, 0 < p_wrong < p_right < 1,
+  /// max_beams >= 1, threshold and initial in (0, 1).
+  void Validate() const;
+};
+
+/// The filter: one value in (0, 1), updated once per measurement update.
+class Reliability {
+ public:
+  explicit Reliability(const ReliabilityConfig& config = {}) : config_(config), r_(config.initial) {}
+  void Reset() { r_ = config_.initial; }
+  /// After `driven` metres since the last update, with `evidence` at the estimate.
+  double Update(const BeamEvidence& evidence, double driven);
+  double value() const { return r_; }
+  /// Below the threshold (never while disabled).
+  bool unreliable() const { return config_.enabled && r_ < config_.threshold; }
+
+ private:
+  ReliabilityConfig config_;
+  double r_;
+};
+
+}  // namespace retrace::nav
