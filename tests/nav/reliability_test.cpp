@@ -43,8 +43,13 @@ TEST(Reliability, WithoutEvidenceItFallsWithinFiveMetres) {
 TEST(Reliability, BeamsThroughMappedWallsMakeItUnreliableAtOnce) {
   Reliability r;
   for (int i = 0; i < 50; ++i) r.Update(Explained(90), 0.2);
-  r.Update(Explained(40, 40), 0.2);  // half of the evidence sees through the map
-  r.Update(Explained(40, 40), 0.2);
+  r.Update(Explained(45, 45), 0.2);  // half of the evidence sees through the map
+  EXPECT_FALSE(r.unreliable());     // one such scan is not enough
+  r.Update(Explained(45, 45), 0.2);
+  r.Update(Explained(45, 45), 0.2);
+  EXPECT_TRUE(r.unreliable());
+  for (int i = 0; i < 50; ++i) r.Update(Explained(90), 0.2);
+  r.Update(Explained(30, 50), 0.2);  // most of it does: at once
   EXPECT_TRUE(r.unreliable());
   // The scans support it again: it recovers as fast.
   r.Update(Explained(95, 1), 0.2);
