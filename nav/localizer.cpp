@@ -341,7 +341,8 @@ void Localizer::WeighEvidence(const core::LaserScan& scan, const std::vector<int
   reliability_.Update(out->evidence, driven);
 }
 
-void Localizer::UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out) {
+void Localizer::UpdateAverages(double w_avg, bool any_beam, double driven,
+                               LocalizerUpdate* out) {
   const AugmentedMclConfig& aug = config_.augmented;
   if (any_beam) {
     if (!averages_started_) {
@@ -356,16 +357,38 @@ void Localizer::UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out
   out->w_slow = w_slow_;
   out->w_fast = w_fast_;
   lost_ = averages_started_ && w_fast_ < aug.trigger_ratio * w_slow_;
+  lost_distance_ = lost_ ? lost_distance_ + driven : 0.0;
+}
+
+bool Localizer::GateOpen() const {
+  return force_update_ ||
+         std::hypot(odometry_since_update_.x, odometry_since_update_.y) >= config_.update_distance ||
+         std::abs(odometry_since_update_.theta) >= core::DegToRad(config_.update_angle_deg);
+}
+
+double Localizer::Weigh(std::span<const core::Pose2> X_ML, const std::vector<double>& xs,
+                        const std::vector<double>& ys, std::vector<double>* w, double* w_avg) {
+  // Weighting in log space (eq. 5-6); weights carry over between updates until resampled.
+  const std::size_t n = particles_.size();
+  std::vector<double> log_w(n);
+  w->assign(n, 0.0);
+  *w_avg = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double ll = field_->SumLogLikelihood(X_ML[j], xs.data(), ys.data(), xs.size());
+    log_w[j] = std::log(particles_[j].weight) + ll;
+    // The belief's expected likelihood: prior weight times the per-beam geometric mean.
+    if (!xs.empty()) *w_avg += particles_[j].weight * std::exp(ll / static_cast<double>(xs.size()));
+  }
+  const double evidence = NormalizeLogWeights(log_w, *w);
+  for (std::size_t j = 0; j < n; ++j) particles_[j].weight = (*w)[j];
+  return evidence;
 }
 
 LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   LocalizerUpdate out;
   out.particles = static_cast<int>(particles_.size());
   if (field_ == nullptr || particles_.empty()) return out;
-  const bool moved =
-      std::hypot(odometry_since_update_.x, odometry_since_update_.y) >= config_.update_distance ||
-      std::abs(odometry_since_update_.theta) >= core::DegToRad(config_.update_angle_deg);
-  if (!moved && !force_update_) return out;
+  if (!GateOpen()) return out;
   const std::vector<int> tested = SelectBeams(scan);
   // m driven since the reliability was last updated (the gate stays open without a beam).
   const double since = std::hypot(odometry_since_update_.x, odometry_since_update_.y);
@@ -394,22 +417,13 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   std::vector<double> xs, ys;
   KeptEndPoints(scan, tested, dynamic, &out, &xs, &ys);
 
-  // Weighting in log space (eq. 5-6); weights carry over between updates until resampled.
-  std::vector<double> log_w(n), w(n);
+  std::vector<double> w;
   double w_avg = 0.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    const double ll = field_->SumLogLikelihood(X_ML[j], xs.data(), ys.data(), xs.size());
-    log_w[j] = std::log(particles_[j].weight) + ll;
-    // The belief's expected likelihood: prior weight times the per-beam geometric mean.
-    if (!xs.empty()) w_avg += particles_[j].weight * std::exp(ll / static_cast<double>(xs.size()));
-  }
-  const double belief_evidence = NormalizeLogWeights(log_w, w);
-  for (std::size_t j = 0; j < n; ++j) particles_[j].weight = w[j];
+  const double belief_evidence = Weigh(X_ML, xs, ys, &w, &w_avg);
   out.n_eff = EffectiveSampleSize(w);
 
   // Lost while the short-term average likelihood is far below the long-term one; recovery.
-  UpdateAverages(w_avg, !xs.empty(), &out);
-  lost_distance_ = lost_ ? lost_distance_ + since : 0.0;
+  UpdateAverages(w_avg, !xs.empty(), since, &out);
   if (config_.augmented.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
   if (trial_.running() && out.trial_updates == 0) {  // also while no beam is kept to weigh it
     out.trial_updates = trial_.updates();
@@ -425,7 +439,6 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
     out.resampled = true;
   }
   FollowCluster(out.reacquired);
-  if (out.reacquired) reliability_.Reset();
   out.reliability = reliability_.value();
   out.lost = lost();
   out.particles = static_cast<int>(particles_.size());
@@ -447,6 +460,7 @@ void Localizer::RunRecovery(std::span<const double> xs, std::span<const double> 
       lost_ = false;
       out->reacquired = true;
       lost_distance_ = 0.0;
+      reliability_.Reset();
     } else if (trial_.weighed() >= aug.max_updates || !lost_) {
       trial_.Stop();
     }

@@ -309,8 +309,16 @@ class Localizer {
   // The tested beams' classes at the estimate (into classes_) and the reliability.
   void WeighEvidence(const core::LaserScan& scan, const std::vector<int>& tested, double driven,
                      LocalizerUpdate* out);
-  // w_slow, w_fast and the lost state after an update whose average likelihood is w_avg.
-  void UpdateAverages(double w_avg, bool any_beam, LocalizerUpdate* out);
+  // update_distance or update_angle_deg of odometry since the last update, or forced.
+  bool GateOpen() const;
+  // Weighs the particles (LiDAR poses X_ML) on the kept end points xs, ys (eq. 5-6): their
+  // normalised weights into w, the belief's average per-beam likelihood into w_avg; returns the
+  // log of the belief's evidence for the scan.
+  double Weigh(std::span<const core::Pose2> X_ML, const std::vector<double>& xs,
+               const std::vector<double>& ys, std::vector<double>* w, double* w_avg);
+  // w_slow, w_fast and the lost state after an update whose average likelihood is w_avg, and
+  // the distance driven while lost (`driven` since the last update).
+  void UpdateAverages(double w_avg, bool any_beam, double driven, LocalizerUpdate* out);
   std::vector<Particle> ResampleFixed(const std::vector<double>& weights);
   std::vector<Particle> ResampleKld(const std::vector<double>& weights);
   std::vector<core::Pose2> RecoveryHypotheses();
