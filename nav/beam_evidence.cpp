@@ -11,6 +11,23 @@ double Share(int n, int total) {
   return total > 0 ? static_cast<double>(n) / static_cast<double>(total) : 0.0;
 }
 
+// m before a wall where its normal is taken, and cos 20°: a ray that meets a wall at less than
+// 20° only grazes it (a corner cell on its way, the estimate a few centimetres off), which says
+// nothing of the pose; one that meets it more squarely passes through it.
+constexpr double kBack = 0.1;
+constexpr double kMinIncidence = 0.34;
+
+// Whether a ray along dir meets the wall ahead of point p (in free space just before it) at
+// more than 20° from the wall's surface: the distance field's gradient at p is the wall's normal.
+bool HeadOn(const LikelihoodField& field, const core::Vec2& p, const core::Vec2& dir) {
+  constexpr double h = 0.05;
+  const core::Vec2 g(field.DistanceAt(p + core::Vec2(h, 0.0)) - field.DistanceAt(p - core::Vec2(h, 0.0)),
+                     field.DistanceAt(p + core::Vec2(0.0, h)) - field.DistanceAt(p - core::Vec2(0.0, h)));
+  const double norm = g.norm();
+  if (!(norm > 1e-9)) return true;  // no gradient (a one-cell wall): count it
+  return std::abs(g.dot(dir)) / norm >= kMinIncidence;
+}
+
 }  // namespace
 
 double BeamEvidence::Coverage() const { return Share(total() - unknown, total()); }
@@ -39,7 +56,8 @@ void ClassifyEachBeam(const LikelihoodField& field, const GridRayCaster& caster,
     // A wall of the map on the ray, short of the end point: the beam saw through it, whatever
     // it ends on.
     const core::Vec2 dir = (end - origin) / range;
-    if (caster.Cast(origin, dir, range) < range - t.contradiction_margin) {
+    const double hit = caster.Cast(origin, dir, range);
+    if (hit < range - t.contradiction_margin && HeadOn(field, origin + (hit - kBack) * dir, dir)) {
       k = BeamClass::kThroughWall;
     } else if (field.DistanceAt(end) <= t.explained_distance) {
       k = BeamClass::kExplained;

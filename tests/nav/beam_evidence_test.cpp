@@ -4,6 +4,8 @@
 
 #include <vector>
 
+#include "core/angle.hpp"
+
 namespace retrace::nav {
 namespace {
 
@@ -37,6 +39,22 @@ TEST(BeamEvidence, SortsBeamsByWhatTheMapSaysOfThem) {
   // Coverage by the grid alone: the end point beyond the wall (6.5 m ahead, x = 7.5) and the
   // one outside the grid were never observed.
   EXPECT_DOUBLE_EQ(GridCoverage(grid, X_ML, xs, ys), 0.5);
+}
+
+TEST(BeamEvidence, ARayThatGrazesAWallDoesNotContradict) {
+  // A beam that meets the wall at x = 5 at 10° from its surface and ends 0.6 m beyond its first
+  // wall cell clips the wall's corner cells (a pose a few centimetres off does that along any
+  // corridor): it says nothing of the pose. The same beam meeting the wall squarely sees through.
+  const core::OccupancyGrid grid = HalfSeen();
+  const LikelihoodField field(grid, LikelihoodFieldConfig{}, 30.0);
+  const GridRayCaster caster(field);
+  const double a = core::DegToRad(10.0);
+  const core::Pose2 grazing(4.8, 1.0, 0.5 * core::kPi - a);  // 10° off the wall's direction
+  const std::vector<double> xs{1.0 / std::sin(a) + 3.5}, ys{0.0};
+  EXPECT_EQ(ClassifyBeams(field, caster, grazing, xs, ys).through_wall, 0);
+  const core::Pose2 square(4.0, 5.0, 0.0);
+  const std::vector<double> through{2.0}, zero{0.0};
+  EXPECT_EQ(ClassifyBeams(field, caster, square, through, zero).through_wall, 1);
 }
 
 }  // namespace
