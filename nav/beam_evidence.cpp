@@ -21,8 +21,9 @@ constexpr double kMinIncidence = 0.34;
 // more than 20° from the wall's surface: the distance field's gradient at p is the wall's normal.
 bool HeadOn(const LikelihoodField& field, const core::Vec2& p, const core::Vec2& dir) {
   constexpr double h = 0.05;
-  const core::Vec2 g(field.DistanceAt(p + core::Vec2(h, 0.0)) - field.DistanceAt(p - core::Vec2(h, 0.0)),
-                     field.DistanceAt(p + core::Vec2(0.0, h)) - field.DistanceAt(p - core::Vec2(0.0, h)));
+  const core::Vec2 dx(h, 0.0), dy(0.0, h);
+  const core::Vec2 g(field.DistanceAt(p + dx) - field.DistanceAt(p - dx),
+                     field.DistanceAt(p + dy) - field.DistanceAt(p - dy));
   const double norm = g.norm();
   if (!(norm > 1e-9)) return true;  // no gradient (a one-cell wall): count it
   return std::abs(g.dot(dir)) / norm >= kMinIncidence;

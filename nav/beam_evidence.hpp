@@ -1,5 +1,5 @@
 #pragma once
-// What a scan says about a pose in a map (docs/METHOD.md, "Evidence"): each tested beam is
+// What a scan says about a pose in a map (docs/METHOD.md, "Reliability"): each tested beam is
 //
 //   explained     its end point lies within explained_distance of a wall of the map;
 //   shorter       it ends in space the map saw free, before the wall the map predicts: something
@@ -7,8 +7,11 @@
 //                 wrong. No evidence for or against the pose;
 //   unknown       it ends in cells the map never observed: no evidence either way;
 //   through wall  it ends more than contradiction_margin beyond a wall of the map that lies on
-//                 its ray (wherever it ends): it sees through the map. A person can only shorten a
-//                 beam, so this contradicts the pose (or the map has changed).
+//                 its ray (wherever it ends), met at more than 20° from the wall's surface: it
+//                 sees through the map. (A ray that meets a wall at less than that only grazes
+//                 a corner cell of it, as a pose a few centimetres off does along any
+//                 corridor.) A person can only shorten a beam, so this contradicts the pose (or
+//                 the map has changed).
 //
 // The map's coverage of the scene is the share of beams that end in observed cells (all but the
 // unknown ones); the scan supports the pose when enough beams are explained and few contradict.

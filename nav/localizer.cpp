@@ -361,9 +361,9 @@ void Localizer::UpdateAverages(double w_avg, bool any_beam, double driven,
 }
 
 bool Localizer::GateOpen() const {
-  return force_update_ ||
-         std::hypot(odometry_since_update_.x, odometry_since_update_.y) >= config_.update_distance ||
-         std::abs(odometry_since_update_.theta) >= core::DegToRad(config_.update_angle_deg);
+  const core::Pose2& d = odometry_since_update_;
+  return force_update_ || std::hypot(d.x, d.y) >= config_.update_distance ||
+         std::abs(d.theta) >= core::DegToRad(config_.update_angle_deg);
 }
 
 double Localizer::Weigh(std::span<const core::Pose2> X_ML, const std::vector<double>& xs,

@@ -121,7 +121,8 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const RoutePosition& pos,
   }
   const bool covered = d.coverage >= config_.min_coverage;
   if (pos.on_path && covered) return d;
-  if (const std::optional<RoutePlace> place = ByPlace(pos, X_MR, max_distance, scan, d.coverage, lost)) {
+  const std::optional<RoutePlace> place = ByPlace(pos, X_MR, max_distance, scan, d.coverage, lost);
+  if (place) {
     d.step = MapStep::kSwitch;
     d.place = *place;
     d.travel = TravelOf(bundle_->maps[place->map].path, place->s, place->X_MR.theta);

@@ -98,7 +98,8 @@ TEST(LocalizerEvidence, ABeliefWithoutEvidenceSaysSoWithinFiveMetres) {
     loc.Initialize(drive.X_WR, 0.05, 0.02);
     for (int tick = 0; tick < 40; ++tick) {  // 1 m in the mapped room first
       loc.Predict(drive.Step());
-      if (tick % 2 == 0) loc.Update(MakeScan(drive.rects, {}, drive.X_WR * TestRobot().X_RL, drive.rng));
+      const Pose2 X_WL = drive.X_WR * TestRobot().X_RL;
+      if (tick % 2 == 0) loc.Update(MakeScan(drive.rects, {}, X_WL, drive.rng));
     }
     ASSERT_FALSE(loc.lost());
     core::OccupancyGrid unseen = drive.map;  // the walls never observed
