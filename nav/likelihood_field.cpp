@@ -111,7 +111,9 @@ LikelihoodField::LikelihoodField(const core::OccupancyGrid& map,
   for (std::size_t i = 0; i < n; ++i) occupied_[i] = static_cast<double>(l[i]) >= occupied_log_odds;
   const double known_log_odds = core::Logit(kKnownProbability);
   known_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) known_[i] = std::abs(static_cast<double>(l[i])) >= known_log_odds;
+  for (std::size_t i = 0; i < n; ++i) {
+    known_[i] = std::abs(static_cast<double>(l[i])) >= known_log_odds;
+  }
 
   distance_ = DistanceTransformCells(occupied_, width_, height_);
   log_likelihood_.resize(n);
@@ -133,9 +135,9 @@ double LikelihoodField::LogLikelihoodOfDistance(double d) const {
   return std::log(config_.z_hit * p_hit + config_.z_rand / range_max_);  // eq. (5-6)
 }
 
-double LikelihoodField::SumLogLikelihood(const core::Pose2& X_ML, const double* xs_L,
-                                         const double* ys_L, std::size_t n) const {
-  if (log_likelihood_.empty()) return static_cast<double>(n) * outside_log_likelihood_;
+template <class Term>
+double LikelihoodField::SumOverEndPoints(const core::Pose2& X_ML, const double* xs_L,
+                                         const double* ys_L, std::size_t n, Term term) const {
   const double c = std::cos(X_ML.theta);
   const double s = std::sin(X_ML.theta);
   const double ox = origin_.x();
@@ -153,9 +155,30 @@ double LikelihoodField::SumLogLikelihood(const core::Pose2& X_ML, const double* 
         inside ? static_cast<std::size_t>(static_cast<int>(gy)) * w +
                      static_cast<std::size_t>(static_cast<int>(gx))
                : 0;
-    sum += static_cast<double>(inside ? table[idx] : outside);
+    sum += term(i, inside ? table[idx] : outside);
   }
   return sum;
+}
+
+double LikelihoodField::SumLogLikelihood(const core::Pose2& X_ML, const double* xs_L,
+                                         const double* ys_L, std::size_t n) const {
+  if (log_likelihood_.empty()) return static_cast<double>(n) * outside_log_likelihood_;
+  return SumOverEndPoints(X_ML, xs_L, ys_L, n,
+                          [](std::size_t, float ll) { return static_cast<double>(ll); });
+}
+
+double LikelihoodField::SumLogMixture(const core::Pose2& X_ML, const double* xs_L,
+                                      const double* ys_L, const double* floor, double scale,
+                                      std::size_t n) const {
+  const auto mixture = [&](std::size_t i, float ll) {
+    return std::log(scale * static_cast<double>(std::exp(ll)) + floor[i]);
+  };
+  if (log_likelihood_.empty()) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) sum += mixture(i, outside_log_likelihood_);
+    return sum;
+  }
+  return SumOverEndPoints(X_ML, xs_L, ys_L, n, mixture);
 }
 
 }  // namespace retrace::nav

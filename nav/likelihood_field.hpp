@@ -96,6 +96,11 @@ class LikelihoodField {
   /// xs_L, ys_L: n end points (m, in L).
   double SumLogLikelihood(const core::Pose2& X_ML, const double* xs_L, const double* ys_L,
                           std::size_t n) const;
+  /// Σ_i log(scale · exp(LogLikelihood(end_i)) + floor_i): the class-conditional mixture
+  /// (nav/measurement_model.hpp) with the same cell arithmetic as SumLogLikelihood. floor: n densities
+  /// (1/m), each >= 0; scale > 0.
+  double SumLogMixture(const core::Pose2& X_ML, const double* xs_L, const double* ys_L,
+                       const double* floor, double scale, std::size_t n) const;
 
   /// Distance (m) from each cell centre to the nearest occupied cell centre, untruncated; +inf
   /// when the map has no occupied cell.
@@ -112,7 +117,8 @@ class LikelihoodField {
     const double gx = (p_M.x() - origin_.x()) * inv_resolution_;
     const double gy = (p_M.y() - origin_.y()) * inv_resolution_;
     if (!(gx >= 0.0 && gy >= 0.0 && gx < width_d_ && gy < height_d_)) return false;
-    return known_[static_cast<std::size_t>(static_cast<int>(gy)) * static_cast<std::size_t>(width_) +
+    const std::size_t row = static_cast<std::size_t>(static_cast<int>(gy));
+    return known_[row * static_cast<std::size_t>(width_) +
                   static_cast<std::size_t>(static_cast<int>(gx))] != 0;
   }
   /// Distance (m) from the cell holding p_M to the nearest occupied cell; +inf outside the map.
@@ -131,6 +137,11 @@ class LikelihoodField {
   }
 
  private:
+  // Σ_i term(i, table value of end point i) for a LiDAR at X_ML (requires a table).
+  template <class Term>
+  double SumOverEndPoints(const core::Pose2& X_ML, const double* xs_L, const double* ys_L,
+                          std::size_t n, Term term) const;
+
   LikelihoodFieldConfig config_;
   double range_max_ = 0.0;
   int width_ = 0;

@@ -150,6 +150,7 @@ void LocalizerConfig::Validate() const {
   ValidateNested("motion", motion);
   ValidateNested("likelihood_field", likelihood_field);
   ValidateNested("rejection", rejection);
+  ValidateNested("class_conditional", class_conditional);
   ValidateNested("augmented", augmented);
   ValidateNested("kld", kld);
   ValidateNested("reliability", reliability);
@@ -304,9 +305,10 @@ std::vector<std::uint8_t> Localizer::TestDynamic(const core::LaserScan& scan,
   return std::move(result.dynamic);
 }
 
-void Localizer::KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
-                              const std::vector<std::uint8_t>& dynamic, LocalizerUpdate* out,
-                              std::vector<double>* xs, std::vector<double>* ys) const {
+WeighedPoints Localizer::KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
+                                    const std::vector<std::uint8_t>& dynamic,
+                                    LocalizerUpdate* out) const {
+  WeighedPoints points;
   out->beams.assign(scan.size(), BeamUse::kUnused);
   for (std::size_t b = 0; b < tested.size(); ++b) {
     const std::size_t i = static_cast<std::size_t>(tested[b]);
@@ -322,10 +324,39 @@ void Localizer::KeptEndPoints(const core::LaserScan& scan, const std::vector<int
     out->beams[i] = BeamUse::kUsed;
     const double r = scan.ranges[i];
     const double a = scan.Angle(i);
-    xs->push_back(r * std::cos(a));
-    ys->push_back(r * std::sin(a));
+    points.Add(r * std::cos(a), r * std::sin(a));
   }
-  out->beams_used = static_cast<int>(xs->size());
+  out->beams_used = static_cast<int>(points.size());
+  return points;
+}
+
+WeighedPoints Localizer::ClassifiedEndPoints(const core::LaserScan& scan,
+                                          const std::vector<int>& tested,
+                                          LocalizerUpdate* out) const {
+  const ClassConditionalConfig& cc = config_.class_conditional;
+  WeighedPoints points;
+  points.mapped_prior = cc.mapped_prior;
+  for (std::size_t b = 0; b < tested.size(); ++b) {
+    const std::size_t i = static_cast<std::size_t>(tested[b]);
+    if (classes_[b] == BeamClass::kUnknown) continue;
+    const double r = scan.ranges[i];
+    const double a = scan.Angle(i);
+    points.Add(r * std::cos(a), r * std::sin(a));
+    // A person can only shorten a beam: one that sees through a mapped wall is not unknown.
+    const bool may_be_unknown = classes_[b] != BeamClass::kThroughWall;
+    points.unknown.push_back(may_be_unknown ? cc.UnknownDensity(r, robot_.range_max) : 0.0);
+  }
+  const std::vector<double> posterior =
+      UnknownPosterior(*field_, Estimate() * robot_.X_RL, points);
+  out->beams.assign(scan.size(), BeamUse::kUnused);
+  for (std::size_t b = 0, k = 0; b < tested.size(); ++b) {
+    if (classes_[b] == BeamClass::kUnknown) continue;
+    const bool dynamic = posterior[k++] > cc.unknown_threshold;
+    out->beams[static_cast<std::size_t>(tested[b])] = dynamic ? BeamUse::kRejected : BeamUse::kUsed;
+    out->beams_rejected += dynamic ? 1 : 0;
+  }
+  out->beams_used = static_cast<int>(points.size());
+  return points;
 }
 
 void Localizer::WeighEvidence(const core::LaserScan& scan, const std::vector<int>& tested,
@@ -339,6 +370,18 @@ void Localizer::WeighEvidence(const core::LaserScan& scan, const std::vector<int
   ClassifyEachBeam(*field_, *caster_, Estimate() * robot_.X_RL, xs, ys, &classes_);
   out->evidence = CountClasses(classes_);
   reliability_.Update(out->evidence, driven);
+}
+
+WeighedPoints Localizer::MeasuredPoints(const core::LaserScan& scan, const std::vector<int>& tested,
+                                     std::span<const core::Pose2> X_ML, double driven,
+                                     LocalizerUpdate* out) {
+  if (config_.measurement == MeasurementModel::kClassConditional) {
+    WeighEvidence(scan, tested, driven, out);
+    return ClassifiedEndPoints(scan, tested, out);
+  }
+  const std::vector<std::uint8_t> dynamic = TestDynamic(scan, tested, X_ML, out);
+  WeighEvidence(scan, tested, driven, out);
+  return KeptEndPoints(scan, tested, dynamic, out);
 }
 
 void Localizer::UpdateAverages(double w_avg, bool any_beam, double driven,
@@ -366,18 +409,20 @@ bool Localizer::GateOpen() const {
          std::abs(d.theta) >= core::DegToRad(config_.update_angle_deg);
 }
 
-double Localizer::Weigh(std::span<const core::Pose2> X_ML, const std::vector<double>& xs,
-                        const std::vector<double>& ys, std::vector<double>* w, double* w_avg) {
+double Localizer::Weigh(std::span<const core::Pose2> X_ML, const WeighedPoints& points,
+                        std::vector<double>* w, double* w_avg) {
   // Weighting in log space (eq. 5-6); weights carry over between updates until resampled.
   const std::size_t n = particles_.size();
   std::vector<double> log_w(n);
   w->assign(n, 0.0);
   *w_avg = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
-    const double ll = field_->SumLogLikelihood(X_ML[j], xs.data(), ys.data(), xs.size());
+    const double ll = ScanLogLikelihood(*field_, X_ML[j], points);
     log_w[j] = std::log(particles_[j].weight) + ll;
     // The belief's expected likelihood: prior weight times the per-beam geometric mean.
-    if (!xs.empty()) *w_avg += particles_[j].weight * std::exp(ll / static_cast<double>(xs.size()));
+    if (!points.empty()) {
+      *w_avg += particles_[j].weight * std::exp(ll / static_cast<double>(points.size()));
+    }
   }
   const double evidence = NormalizeLogWeights(log_w, *w);
   for (std::size_t j = 0; j < n; ++j) particles_[j].weight = (*w)[j];
@@ -411,27 +456,25 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   std::vector<core::Pose2> X_ML(n);
   for (std::size_t j = 0; j < n; ++j) X_ML[j] = particles_[j].X_MR * robot_.X_RL;
 
-  // Dynamic scan point rejection (eq. 7-9); the kept beams' end points in L.
-  const std::vector<std::uint8_t> dynamic = TestDynamic(scan, tested, X_ML, &out);
-  WeighEvidence(scan, tested, driven, &out);
-  std::vector<double> xs, ys;
-  KeptEndPoints(scan, tested, dynamic, &out, &xs, &ys);
+  // The beams' end points in L as the measurement model weighs them: the paper's dynamic scan
+  // point rejection (eq. 7-9) keeps some, the class-conditional model weighs every one.
+  const WeighedPoints points = MeasuredPoints(scan, tested, X_ML, driven, &out);
 
   std::vector<double> w;
   double w_avg = 0.0;
-  const double belief_evidence = Weigh(X_ML, xs, ys, &w, &w_avg);
+  const double belief_evidence = Weigh(X_ML, points, &w, &w_avg);
   out.n_eff = EffectiveSampleSize(w);
 
   // Lost while the short-term average likelihood is far below the long-term one; recovery.
-  UpdateAverages(w_avg, !xs.empty(), since, &out);
-  if (config_.augmented.enabled && !xs.empty()) RunRecovery(xs, ys, belief_evidence, &out);
+  UpdateAverages(w_avg, !points.empty(), since, &out);
+  if (config_.augmented.enabled && !points.empty()) RunRecovery(points, belief_evidence, &out);
   if (trial_.running() && out.trial_updates == 0) {  // also while no beam is kept to weigh it
     out.trial_updates = trial_.updates();
     out.trial_log_bayes_factor = trial_.log_bayes_factor();
   }
 
   // An update that weighed no beam keeps the spread the motion model gave the belief.
-  if (!out.reacquired && !xs.empty() &&
+  if (!out.reacquired && !points.empty() &&
       out.n_eff < config_.resample_ess_ratio * static_cast<double>(n)) {
     particles_ = config_.kld.enabled ? ResampleKld(w) : ResampleFixed(w);
     const double wn = 1.0 / static_cast<double>(particles_.size());
@@ -445,11 +488,11 @@ LocalizerUpdate Localizer::Update(const core::LaserScan& scan) {
   return out;
 }
 
-void Localizer::RunRecovery(std::span<const double> xs, std::span<const double> ys,
-                            double belief_evidence, LocalizerUpdate* out) {
+void Localizer::RunRecovery(const WeighedPoints& points, double belief_evidence,
+                            LocalizerUpdate* out) {
   const AugmentedMclConfig& aug = config_.augmented;
   if (trial_.running()) {
-    trial_.Weigh(*field_, robot_.X_RL, xs, ys, belief_evidence, aug.min_beams, rng_);
+    trial_.Weigh(*field_, robot_.X_RL, points, belief_evidence, aug.min_beams, rng_);
     out->trial_updates = trial_.updates();
     out->trial_log_bayes_factor = trial_.log_bayes_factor();
     if (lost_ && trial_.updates() >= aug.confirm_updates && TrialWins()) {

@@ -4,7 +4,8 @@
 // space, motion-gated updates, low-variance resampling when the effective sample size drops,
 // recovery trials driven by w_slow / w_fast whose hypotheses lie where a repeating robot can be,
 // an estimate that follows one cluster with hysteresis, optional KLD-sampling, and dynamic scan
-// point rejection (eq. 7-9) that leaves beams hitting unmapped objects out of the weights.
+// point rejection (eq. 7-9) that leaves beams hitting unmapped objects out of the weights (or,
+// as an alternative, the class-conditional measurement model: nav/measurement_model.hpp).
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -26,6 +27,7 @@
 #include "nav/recovery_trial.hpp"
 #include "nav/reliability.hpp"
 #include "nav/robot_geometry.hpp"
+#include "nav/measurement_model.hpp"
 
 namespace retrace::nav {
 
@@ -173,9 +175,13 @@ struct LocalizerConfig {
   double update_distance = 0.2;     ///< m of motion before a measurement update
   double update_angle_deg = 2.0;    ///< or this much rotation
   double resample_ess_ratio = 0.5;  ///< resample when n_eff < ratio · N
+  /// paper: eq. (7-9) rejection, then eq. (5-6) on the kept beams; class_conditional: every beam
+  /// weighed as a mapped or an unknown obstacle (nav/measurement_model.hpp), `rejection` unused
+  MeasurementModel measurement = MeasurementModel::kPaper;
   MotionModelConfig motion;
   LikelihoodFieldConfig likelihood_field;
   DynamicRejectionConfig rejection;
+  ClassConditionalConfig class_conditional;
   AugmentedMclConfig augmented;
   KldConfig kld;
   ReliabilityConfig reliability;
@@ -187,9 +193,11 @@ struct LocalizerConfig {
     v("update_distance", update_distance);
     v("update_angle_deg", update_angle_deg);
     v("resample_ess_ratio", resample_ess_ratio);
+    v("measurement", measurement);
     v("motion", motion);
     v("likelihood_field", likelihood_field);
     v("rejection", rejection);
+    v("class_conditional", class_conditional);
     v("augmented", augmented);
     v("kld", kld);
     v("reliability", reliability);
@@ -202,10 +210,13 @@ struct LocalizerConfig {
 enum class BeamUse : std::uint8_t {
   kUnused,    ///< not selected (beam_step), or not a valid finite reading within the limits
   kUsed,      ///< weighted
-  kRejected,  ///< classified dynamic (eq. 9) and left out of the weights
+  /// classified dynamic: by eq. (9), and left out of the weights (paper); or more likely an
+  /// unknown obstacle than a mapped one at the estimate, and weighed as either (class_conditional)
+  kRejected,
   /// flagged by eq. (9), but it sees through a mapped wall at the estimate: never dynamic (a
   /// person can only shorten a beam), a contradiction the reliability counts; left out of the
-  /// weights as eq. (9) would have left it (the belief's other particles find it short)
+  /// weights as eq. (9) would have left it (the belief's other particles find it short). The
+  /// class-conditional model weighs such a beam as mapped only (kUsed).
   kThroughWall,
 };
 
@@ -311,11 +322,11 @@ class Localizer {
                      LocalizerUpdate* out);
   // update_distance or update_angle_deg of odometry since the last update, or forced.
   bool GateOpen() const;
-  // Weighs the particles (LiDAR poses X_ML) on the kept end points xs, ys (eq. 5-6): their
-  // normalised weights into w, the belief's average per-beam likelihood into w_avg; returns the
-  // log of the belief's evidence for the scan.
-  double Weigh(std::span<const core::Pose2> X_ML, const std::vector<double>& xs,
-               const std::vector<double>& ys, std::vector<double>* w, double* w_avg);
+  // Weighs the particles (LiDAR poses X_ML) on the points: their normalised weights into w, the
+  // belief's average per-beam likelihood into w_avg; returns the log of the belief's evidence
+  // for the scan.
+  double Weigh(std::span<const core::Pose2> X_ML, const WeighedPoints& points,
+               std::vector<double>* w, double* w_avg);
   // w_slow, w_fast and the lost state after an update whose average likelihood is w_avg, and
   // the distance driven while lost (`driven` since the last update).
   void UpdateAverages(double w_avg, bool any_beam, double driven, LocalizerUpdate* out);
@@ -323,13 +334,21 @@ class Localizer {
   std::vector<Particle> ResampleKld(const std::vector<double>& weights);
   std::vector<core::Pose2> RecoveryHypotheses();
   core::Pose2 FreeCellPose();
-  // The end points (L) of the tested beams the rejection kept; marks every beam's use in `out`
-  // (a flagged beam that sees through a mapped wall, by classes_, is not dynamic).
-  void KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
-                     const std::vector<std::uint8_t>& dynamic, LocalizerUpdate* out,
-                     std::vector<double>* xs, std::vector<double>* ys) const;
-  void RunRecovery(std::span<const double> xs, std::span<const double> ys, double belief_evidence,
-                   LocalizerUpdate* out);
+  // The paper's model: the end points (L) of the tested beams the rejection kept; marks every
+  // beam's use in `out` (a flagged beam that sees through a mapped wall, by classes_, is not
+  // dynamic).
+  WeighedPoints KeptEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
+                           const std::vector<std::uint8_t>& dynamic, LocalizerUpdate* out) const;
+  // The class-conditional model: every tested beam's end point (L) with its unknown-class
+  // density (0 where it sees through a mapped wall, by classes_); marks as dynamic the beams
+  // more likely unknown than mapped at the estimate.
+  WeighedPoints ClassifiedEndPoints(const core::LaserScan& scan, const std::vector<int>& tested,
+                                 LocalizerUpdate* out) const;
+  // The tested beams' end points as the measurement model weighs them, with the beams' uses and
+  // evidence in `out` (`driven`: m since the reliability was last updated).
+  WeighedPoints MeasuredPoints(const core::LaserScan& scan, const std::vector<int>& tested,
+                            std::span<const core::Pose2> X_ML, double driven, LocalizerUpdate* out);
+  void RunRecovery(const WeighedPoints& points, double belief_evidence, LocalizerUpdate* out);
   // The running trial has the evidence to replace the belief (AugmentedMclConfig).
   bool TrialWins() const;
   void FollowCluster(bool jump);

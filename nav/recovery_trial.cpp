@@ -37,19 +37,18 @@ void RecoveryTrial::Predict(const core::OdometryDelta& delta, const MotionNoise&
 }
 
 void RecoveryTrial::Weigh(const LikelihoodField& field, const core::Pose2& X_RL,
-                          std::span<const double> xs, std::span<const double> ys,
-                          double belief_evidence, int min_points, core::Rng& rng) {
-  RETRACE_CHECK(running() && xs.size() == ys.size());
+                          const WeighedPoints& points, double belief_evidence, int min_points,
+                          core::Rng& rng) {
+  RETRACE_CHECK(running());
   const std::size_t n = hypotheses_.size();
   std::vector<double> log_w(n), w(n);
   for (std::size_t j = 0; j < n; ++j) {
-    log_w[j] = std::log(weights_[j]) +
-               field.SumLogLikelihood(hypotheses_[j] * X_RL, xs.data(), ys.data(), xs.size());
+    log_w[j] = std::log(weights_[j]) + ScanLogLikelihood(field, hypotheses_[j] * X_RL, points);
   }
   const double evidence = NormalizeLogWeights(log_w, w);
   log_bayes_factor_ += evidence - belief_evidence;
   ++weighed_;
-  if (static_cast<int>(xs.size()) >= min_points) ++updates_;
+  if (static_cast<int>(points.size()) >= min_points) ++updates_;
   weights_ = std::move(w);
   if (EffectiveSampleSize(weights_) < 0.5 * static_cast<double>(n)) {
     const std::vector<std::size_t> idx = LowVarianceResample(weights_, n, rng);

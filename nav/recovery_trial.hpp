@@ -22,6 +22,7 @@
 #include "nav/likelihood_field.hpp"
 #include "nav/motion_model.hpp"
 #include "nav/particle.hpp"
+#include "nav/measurement_model.hpp"
 
 namespace retrace::nav {
 
@@ -35,14 +36,13 @@ class RecoveryTrial {
 
   /// Moves every hypothesis by one odometry increment with the sample motion model.
   void Predict(const core::OdometryDelta& delta, const MotionNoise& noise, core::Rng& rng);
-  /// Weighs the hypotheses with the update's beam end points (L frame, as the belief's), adds
+  /// Weighs the hypotheses with the update's points (L frame, as the belief's: same model), adds
   /// this scan's evidence minus the belief's `belief_evidence` to the log Bayes factor, and
   /// resamples the hypotheses (low variance) when their effective sample size falls below half.
   /// The scan counts as explained (updates()) only with at least `min_points` end points: a few
   /// beams fit many places.
-  void Weigh(const LikelihoodField& field, const core::Pose2& X_RL, std::span<const double> xs,
-             std::span<const double> ys, double belief_evidence, int min_points,
-             core::Rng& rng);
+  void Weigh(const LikelihoodField& field, const core::Pose2& X_RL, const WeighedPoints& points,
+             double belief_evidence, int min_points, core::Rng& rng);
 
   /// Scans explained since Start (weighed with at least min_points end points).
   int updates() const { return updates_; }

@@ -34,12 +34,17 @@ bool Crosses(const core::LaserScan& scan, std::size_t i, const Pose2& X_WL) {
   return x < kX0 - 0.4 || x > kX1 + 0.4 || y < kY0 - 0.4 || y > kY1 + 0.4;
 }
 
-TEST(LocalizerEvidence, ABeamThroughAMappedWallIsNeverDynamic) {
+class ThroughWall : public ::testing::TestWithParam<MeasurementModel> {};
+
+TEST_P(ThroughWall, ABeamThroughAMappedWallIsNeverDynamic) {
   // Most beams see through the phantom box. Those beams are contradictions, never dynamic
-  // points, whatever eq. (9) finds of them over a belief spread 1 m; and a localizer that sees
-  // through its map's walls does not count itself found.
+  // points, whatever eq. (9) (paper) or the unknown class (class_conditional) finds of them over
+  // a belief spread 1 m; and a localizer that sees through its map's walls does not count itself
+  // found.
   Drive drive(11);
-  Localizer loc(TestConfig(), TestRobot(), core::Rng(11));
+  LocalizerConfig config = TestConfig();
+  config.measurement = GetParam();
+  Localizer loc(config, TestRobot(), core::Rng(11));
   loc.SetMap(Rasterise(WithPhantomBox(drive.rects)));
   loc.Initialize(drive.X_WR, 1.0, 0.2);
   int crossing = 0, updates = 0, through_wall = 0, contradicted = 0, unreliable = 0;
@@ -68,6 +73,14 @@ TEST(LocalizerEvidence, ABeamThroughAMappedWallIsNeverDynamic) {
   EXPECT_GT(contradicted, 10);
   EXPECT_GE(unreliable, 0.8 * contradicted);
 }
+
+INSTANTIATE_TEST_SUITE_P(BothModels, ThroughWall,
+                         ::testing::Values(MeasurementModel::kPaper,
+                                         MeasurementModel::kClassConditional),
+                         [](const ::testing::TestParamInfo<MeasurementModel>& p) {
+                           return p.param == MeasurementModel::kPaper ? "Paper"
+                                                                         : "ClassConditional";
+                         });
 
 TEST(LocalizerEvidence, AMapThatExplainsTheScansHoldsItsReliability) {
   Drive drive(12);
