@@ -5,11 +5,13 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string_view>
 
 #include "core/config.hpp"
 #include "core/errors.hpp"
 #include "logs/carmen_reader.hpp"
+#include "logs/internal/nominal_clock.hpp"
 #include "logs/ros1_messages.hpp"
 #include "logs/stream_messages.hpp"
 
@@ -23,6 +25,11 @@ constexpr std::string_view kCarmenLasers[] = {"FLASER",    "ROBOTLASER1", "RAWLA
                                               "RAWLASER3", "RAWLASER4"};
 
 bool IsCarmen(const RawMessage& m) { return m.encoding == "carmen"; }
+
+// A laser scan of any topic (NominalClock counts them).
+bool IsScanMessage(const RawMessage& m) {
+  return IsCarmen(m) ? IsCarmenLaser(m.type) : StreamKindOf(m) == StreamKind::kScan;
+}
 
 // A used stream may have at most this share of its messages stamped before the one before them.
 constexpr double kMaxBackwardsFraction = 0.01;
@@ -106,6 +113,10 @@ struct Gathered {
   };
   std::map<std::string, LogTimes, std::less<>> log_times;
   std::string place;  // where the message being gathered is
+  // The message's nominal stamp (s) when the log's own are not used (StreamChoice::scan_rate_hz).
+  std::optional<double> nominal;
+  // The stamp to use for a message whose own stamp is `own`.
+  double Stamp(double own) const { return nominal.value_or(own); }
   // Messages stamped before the one before them in their stream (a scan topic's geometry or a
   // pose stream): how many were dropped, and the first as an error. A few are dropped (the
   // Intel Research Lab log's laser lines step back 4 times in 910); a stream that does it often
@@ -504,7 +515,8 @@ void GatherRos(const RawMessage& m, std::uint64_t number, const StreamChoice& ch
   const std::string topic(m.topic);
   switch (kind) {
     case StreamKind::kScan: {
-      const ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeStreamScan(m); });
+      ScanMessage scan = Decoded(log, number, m.topic, [&] { return DecodeStreamScan(m); });
+      scan.scan.stamp = g.Stamp(scan.scan.stamp);
       ScanGeometry& geometry = g.scans[topic];
       if (geometry.scans == 0) g.scan_frame[topic] = scan.frame_id;
       AddScan(geometry, scan, m.log_time_ns, log, number, m.topic, g);
@@ -513,7 +525,7 @@ void GatherRos(const RawMessage& m, std::uint64_t number, const StreamChoice& ch
     case StreamKind::kOdometry: {
       const OdometryMessage odom =
           Decoded(log, number, m.topic, [&] { return DecodeStreamOdometry(m); });
-      AddPose(g.odometry[topic], odom.stamp, odom.pose, log, number, m.topic, g);
+      AddPose(g.odometry[topic], g.Stamp(odom.stamp), odom.pose, log, number, m.topic, g);
       g.odometry_child.try_emplace(topic, odom.child_frame_id);
       break;
     }
@@ -524,7 +536,7 @@ void GatherRos(const RawMessage& m, std::uint64_t number, const StreamChoice& ch
         if (is_static) {
           g.tf_static[t.child] = t;
         } else if (t.parent == choice.odom_frame) {
-          AddPose(g.tf_odometry[t.child], t.stamp, t.X_PC, log, number, m.topic, g);
+          AddPose(g.tf_odometry[t.child], g.Stamp(t.stamp), t.X_PC, log, number, m.topic, g);
         }
       }
       break;
@@ -532,7 +544,7 @@ void GatherRos(const RawMessage& m, std::uint64_t number, const StreamChoice& ch
     case StreamKind::kPose: {
       const PoseStampedMessage pose =
           Decoded(log, number, m.topic, [&] { return DecodeStreamPose(m); });
-      AddPose(g.poses[topic], pose.stamp, pose.pose, log, number, m.topic, g);
+      AddPose(g.poses[topic], g.Stamp(pose.stamp), pose.pose, log, number, m.topic, g);
       break;
     }
     case StreamKind::kNone:
@@ -547,8 +559,9 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     if (m.type == "PARAM") {
       Decoded(log, number, m.topic, [&] { return ApplyCarmenParamLine(line, g.carmen_defaults); });
     } else if (IsCarmenLaser(m.type)) {
-      const CarmenLaser laser =
+      CarmenLaser laser =
           Decoded(log, number, m.topic, [&] { return ParseCarmenLaser(line, g.carmen_defaults); });
+      laser.scan.scan.stamp = g.Stamp(laser.scan.scan.stamp);
       g.scan_frame.try_emplace(std::string(m.topic), laser.scan.frame_id);
       AddScan(g.scans[std::string(m.topic)], laser.scan, m.log_time_ns, log, number, m.topic, g,
               IpcStampText(line));
@@ -561,11 +574,11 @@ void Gather(const RawMessage& m, std::uint64_t number, const StreamChoice& choic
     } else if (m.type == "ODOM") {
       const OdometryMessage odom =
           Decoded(log, number, m.topic, [&] { return ParseCarmenOdometry(line); });
-      AddPose(g.odometry["ODOM"], odom.stamp, odom.pose, log, number, m.topic, g);
+      AddPose(g.odometry["ODOM"], g.Stamp(odom.stamp), odom.pose, log, number, m.topic, g);
     } else if (m.type == "TRUEPOS") {
       const PoseStampedMessage truth =
           Decoded(log, number, m.topic, [&] { return ParseCarmenTruePose(line); });
-      AddPose(g.poses["TRUEPOS"], truth.stamp, truth.pose, log, number, m.topic, g);
+      AddPose(g.poses["TRUEPOS"], g.Stamp(truth.stamp), truth.pose, log, number, m.topic, g);
     }
     return;
   }
@@ -583,13 +596,20 @@ void RequireDistinctScanStamps(Gathered& g, const LogIndex& index) {
     return;
   }
   const Gathered::ScanQuirks& q = g.scan_quirks[index.scan_topic];
+  if (scan.repeated_stamps + 1 == scan.scans && scan.first_stamp == 0.0) {  // a log without time
+    throw core::IoError(index.name + ": the scans on " + Quote(index.scan_topic) +
+                        " carry no time stamps: all " + std::to_string(scan.scans) +
+                        " are stamped " + q.repeat_stamp + " s (" + q.repeat_first + " to " +
+                        q.repeat_last + "); give them nominal stamps with --scan-rate HZ");
+  }
   throw core::IoError(
       index.name + ": " + std::to_string(scan.repeated_stamps) + " of " +
       std::to_string(scan.scans) + " scans on " + Quote(index.scan_topic) +
       " carry the same stamp as the scan before them (" + q.repeat_first + " to " + q.repeat_last +
       ", e.g. " + q.repeat_stamp +
       " s): the stamps were written with too few digits to order the scans and place them on "
-      "the odometry; write the log with full-precision stamps (e.g. %.6f)");
+      "the odometry; write the log with full-precision stamps (e.g. %.6f), or give the scans "
+      "nominal stamps with --scan-rate HZ");
 }
 
 std::string StampSpan(const std::vector<StampedPose>& poses) {
@@ -685,12 +705,17 @@ void GatherLog(const std::filesystem::path& path, const StreamChoice& choice, Ga
                LogIndex& index) {
   const std::unique_ptr<MessageSource> source = OpenLog(path);
   const auto* carmen = dynamic_cast<const CarmenReader*>(source.get());
+  NominalClock clock(choice.scan_rate_hz);
   RawMessage m;
   std::uint64_t number = 0;
   while (source->Next(m)) {
     ++number;
     g.place = carmen != nullptr ? "line " + std::to_string(carmen->line())
                                 : "message " + std::to_string(number);
+    if (clock.on()) {
+      g.nominal = clock.Next(IsScanMessage(m));
+      m.log_time_ns = NominalClock::Nanoseconds(*g.nominal);
+    }
     if (number == 1) index.start_ns = m.log_time_ns;
     index.end_ns = std::max(index.end_ns, m.log_time_ns);
     CountMessage(m, g, index);
@@ -715,6 +740,11 @@ void ListScanStreams(Gathered& g, LogIndex& index) {
 void ChooseStreams(const StreamChoice& choice, Gathered& g, LogIndex& index) {
   try {
     std::string ambiguous;
+    if (choice.scan_rate_hz > 0.0 && index.scan_streams.size() > 1) {
+      throw core::IoError(index.name + ": --scan-rate stamps the scans by their order, which " +
+                          "needs one scan topic; the log has " +
+                          std::to_string(index.scan_streams.size()));
+    }
     if (index.format == LogFormat::kCarmen) {
       ChooseCarmen(choice, g, index);
     } else {
@@ -799,6 +829,13 @@ LogIndex IndexLog(const std::filesystem::path& path, const StreamChoice& choice)
   GatherLog(path, choice, g, index);
   ListScanStreams(g, index);
   ChooseStreams(choice, g, index);
+  if (choice.scan_rate_hz > 0.0) {
+    index.nominal_scan_rate_hz = choice.scan_rate_hz;
+    index.notes.push_back("nominal stamps (--scan-rate " + core::FormatNumber(choice.scan_rate_hz) +
+                          " Hz): scan k at k / " + core::FormatNumber(choice.scan_rate_hz) +
+                          " s, every other message at the last scan's; the log's own stamps are "
+                          "not used");
+  }
 
   // Log times for people count from the first scan (of the chosen stream, else of any).
   const std::optional<ScanLogTimes> scans = FindScanLogTimes(index);
@@ -820,11 +857,14 @@ void ReadScans(const LogIndex& index, double from_s, double to_s,
                const std::function<void(const ScanMessage&, double)>& on_scan) {
   const std::unique_ptr<MessageSource> source = OpenLog(index.name);
   CarmenLaserDefaults carmen_defaults;
+  NominalClock clock(index.nominal_scan_rate_hz);  // as IndexLog counted
   RawMessage m;
   std::uint64_t number = 0;
   std::optional<double> last_stamp;
   while (source->Next(m)) {
     ++number;
+    const double nominal = clock.on() ? clock.Next(IsScanMessage(m)) : 0.0;
+    if (clock.on()) m.log_time_ns = NominalClock::Nanoseconds(nominal);
     if (IsCarmen(m) && m.type == "PARAM") {
       ApplyCarmenParamLine(Text(m), carmen_defaults);
       continue;
@@ -833,10 +873,11 @@ void ReadScans(const LogIndex& index, double from_s, double to_s,
     const double t = index.Since(m.log_time_ns);
     if (t < from_s) continue;
     if (t > to_s) break;
-    const ScanMessage scan =
+    ScanMessage scan =
         IsCarmen(m) ? Decoded(index.name, number, m.topic,
                               [&] { return ParseCarmenLaser(Text(m), carmen_defaults).scan; })
                     : Decoded(index.name, number, m.topic, [&] { return DecodeStreamScan(m); });
+    if (clock.on()) scan.scan.stamp = nominal;
     // As in IndexLog: a scan stamped before the one before it is not used.
     if (last_stamp && scan.scan.stamp < *last_stamp) continue;
     last_stamp = scan.scan.stamp;

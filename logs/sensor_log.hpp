@@ -23,8 +23,8 @@
 // A message stamped before the one before it in its stream is dropped; a used stream in which
 // more than 1 % of the messages do that has a broken clock and is refused (IndexLog's problem).
 // So is a scan stream whose scans mostly repeat the stamp before them (stamps printed with too
-// few digits: no clock to interpolate the odometry at), and odometry that does not overlap the
-// scans in time. Messages whose log times lie far (over kOtherClock) outside the scans' are
+// few digits, or none at all: no clock to interpolate the odometry at; StreamChoice::scan_rate_hz
+// gives such a log nominal stamps), and odometry that does not overlap the scans in time. Messages whose log times lie far (over kOtherClock) outside the scans' are
 // named in a note, as are scans whose angle_max is a little off (ros_messages.hpp).
 //
 // A log is read in two passes, so that a long one is streamed, never held whole: IndexLog reads
@@ -53,6 +53,10 @@ struct StreamChoice {
   std::string reference_topic;
   std::string odom_frame = "odom";  ///< tf odometry: the parent frame
   std::string base_frame;           ///< tf odometry: the robot's frame (empty: found)
+  /// > 0: the log's stamps are not used (a log written without time): the k-th scan is stamped
+  /// k / scan_rate_hz s, every other message with the stamp of the last scan before it. Needs a
+  /// log with one scan topic.
+  double scan_rate_hz = 0.0;
 };
 
 /// Messages of one topic.
@@ -124,6 +128,8 @@ struct LogIndex {
   std::string mount_source;        ///< what X_RL came from
   std::vector<std::string> notes;  ///< things the user should know (an assumed mount, ...)
   std::string problem;             ///< why the log cannot be used as it is (empty: it can)
+  /// > 0: the stamps are nominal, at this scan rate (StreamChoice::scan_rate_hz)
+  double nominal_scan_rate_hz = 0.0;
   /// The problem is only that a stream has several topics and none was chosen: the log is
   /// described whole (log-info), only commands that use the streams need the choice.
   bool needs_choice = false;

@@ -43,6 +43,11 @@ void AddStreamOptions(CLI::App* cmd, logs::StreamChoice* choice) {
       ->default_str("odom");
   cmd->add_option("--base-frame", choice->base_frame,
                   "The robot's frame in tf (default: the only frame tf moves in the odom frame)");
+  cmd->add_option("--scan-rate", choice->scan_rate_hz,
+                  "For a log without time stamps: stamp scan k at k / HZ s and every other "
+                  "message at the last scan's (the log's own stamps are not used)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("HZ");
 }
 
 }  // namespace retrace::bench

@@ -159,6 +159,10 @@ LogManifestInfo LocalizeManifest(const LogLocalizeRequest& options, const std::s
       {"teach", options.teach_dir.string()},
       {"mode", std::string(core::EnumName(teach.mode))},
       {"scan_topic", index.scan_topic},
+      {"stamps", index.nominal_scan_rate_hz > 0.0
+                     ? "nominal, --scan-rate " + core::FormatNumber(index.nominal_scan_rate_hz) +
+                           " Hz"
+                     : "the log's"},
       {"odometry", streams.odometry_source},
       {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
       {"lidar_mount", index.mount_source},

@@ -12,9 +12,11 @@ void RequireWindow(const LogWindow& window) {
   if (!(window.from_s >= 0.0) || !std::isfinite(window.from_s))
     throw core::ConfigError("--from",
                             "must be a time >= 0 s, got " + core::FormatNumber(window.from_s));
-  if (!(window.to_s > window.from_s))
-    throw core::ConfigError(
-        "--to", "must be later than --from (" + core::FormatNumber(window.from_s) + " s)");
+  if (!(window.to_s > window.from_s)) {
+    throw core::ConfigError("--to", "must be later than --from: got --to " +
+                                        core::FormatNumber(window.to_s) + " s, --from " +
+                                        core::FormatNumber(window.from_s) + " s");
+  }
 }
 
 LogConfig LoadLogRunConfig(const LogRunOptions& options, const std::vector<std::string>& extra) {

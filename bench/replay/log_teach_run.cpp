@@ -51,6 +51,10 @@ LogManifestInfo TeachManifest(const LogTeaching& taught, MapMode mode,
       {"log_format", std::string(logs::LogFormatName(index.format))},
       {"mode", std::string(core::EnumName(mode))},
       {"scan_topic", index.scan_topic},
+      {"stamps", index.nominal_scan_rate_hz > 0.0
+                     ? "nominal, --scan-rate " + core::FormatNumber(index.nominal_scan_rate_hz) +
+                           " Hz"
+                     : "the log's"},
       {"odometry", streams.odometry_source},
       {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
       {"lidar_mount", index.mount_source},

@@ -98,6 +98,16 @@ expect_bad switch-order "must be strictly increasing" log-teach "$mcap" --switch
 expect_bad switch-word "route.switch_points" log-teach "$mcap" --switch-points sometimes
 expect_bad from-negative "--from: must be a time >= 0 s" log-teach "$mcap" --from -1
 expect_bad to-before-from "--to: must be later than --from" log-teach "$mcap" --from 50 --to 10
+# The drive's CARMEN log written without time (every stamp 0): refused naming the way out, which
+# then teaches, saying so in manifest.yaml.
+zcat "$carmen" | awk '$1 != "PARAM" && $1 !~ /^#/ { $(NF-2) = 0; $NF = 0 } { print }' \
+  >"$tmp/timeless.log"
+expect_bad timeless "carry no time stamps" log-teach "$tmp/timeless.log" --mode partial
+expect_bad scan-rate-zero "--scan-rate" log-teach "$tmp/timeless.log" --scan-rate 0
+run timeless_rate log-teach "$tmp/timeless.log" --scan-rate 10 --mode partial --switch-points 6 \
+  --out "$tmp/timeless"
+check timeless-manifest grep -q "^stamps: nominal, --scan-rate 10 Hz" \
+  "$tmp/timeless/partial/manifest.yaml"
 expect_bad empty-window "no scan with odometry" log-localize "$mcap" --teach "$teach" --from 5000
 expect_bad teach-missing "no such teach folder" log-localize "$mcap" --teach "$tmp/nothing"
 expect_bad initial-pose "--initial-pose: must be x,y,yaw_deg" log-localize "$mcap" --teach "$teach" --initial-pose 1,2

@@ -424,6 +424,46 @@ TEST(SensorLog, StampsWithTooFewDigitsAreRefusedNamingTheLines) {
       << error;
 }
 
+// A corrected log written without time: every stamp 0. Refused in one line that names the way
+// out; with --scan-rate (StreamChoice::scan_rate_hz) the scans are stamped by their order, the
+// odometry of the laser lines with them and ODOM lines at the last scan's stamp, in both passes.
+TEST(SensorLog, ALogWithoutTimeIsRefusedOrGivenNominalStamps) {
+  testing::TempDir tmp;
+  std::string text = "ODOM 0 0 0 0 0 0 0 nohost 0\n";
+  for (int k = 0; k < 20; ++k) {
+    const std::string x = std::to_string(0.1 * k);
+    text += "FLASER 3 1.0 2.0 3.0 " + x + " 0 0 " + x + " 0 0 0 nohost 0\n";
+    text += "ODOM " + x + " 0 0 0 0 0 0 nohost 0\n";
+  }
+  const fs::path log = tmp.Write("t.log", text);
+  EXPECT_EQ(IndexError(log), log.string() +
+                                 ": the scans on 'FLASER' carry no time stamps: all 20 are "
+                                 "stamped 0 s (line 4 to line 40); give them nominal stamps "
+                                 "with --scan-rate HZ");
+  StreamChoice choice;
+  choice.scan_rate_hz = 4.0;
+  const LogIndex index = IndexLog(log, choice);
+  ASSERT_EQ(index.problem, "");
+  EXPECT_EQ(index.nominal_scan_rate_hz, 4.0);
+  EXPECT_EQ(index.scan.scans, 20U);
+  EXPECT_DOUBLE_EQ(index.scan.last_stamp, 19 * 0.25);
+  ASSERT_EQ(index.odometry.size(), 20U);  // the laser lines' robot poses
+  EXPECT_DOUBLE_EQ(index.odometry[8].t, 2.0);
+  EXPECT_NEAR(index.odometry[8].pose.x, 0.8, 1e-9);
+  int k = 0;
+  ReadScans(index, 1.0, 2.0, [&](const ScanMessage& m, double t) {
+    EXPECT_DOUBLE_EQ(m.scan.stamp, t);
+    EXPECT_DOUBLE_EQ(t, 1.0 + 0.25 * k++);
+  });
+  EXPECT_EQ(k, 5);
+  choice.odometry_topic = "ODOM";
+  const LogIndex odom = IndexLog(log, choice);
+  ASSERT_EQ(odom.problem, "");
+  ASSERT_GE(odom.odometry.size(), 20U);  // the first two both at 0 s
+  EXPECT_DOUBLE_EQ(odom.odometry.back().t, 19 * 0.25);
+  EXPECT_NEAR(odom.odometry.back().pose.x, 1.9, 1e-9);
+}
+
 // ODOM lines stamped since the epoch beside laser lines stamped since the logger started.
 TEST(SensorLog, OdometryOnAnotherClockThanTheScansIsRefusedNamingBoth) {
   testing::TempDir tmp;
