@@ -38,6 +38,8 @@ for lib in sim nav viz logs; do
   check "$lib" '*.hpp' 'box2d|opencv2|yaml-cpp|io/config_yaml|sqlite3|zstd|lz4|zlib|bzlib' \
     "third-party types stay out of $lib's public headers" '/internal/'
 done
+check bench/stack '*' 'io/|sim/|nav/|logs/|viz/|bench/(engine|metrics|output|suite|sweep|compare|replay|calibration|run|cli|worldgen|crowd)/|yaml-cpp|box2d|opencv2|nlohmann|CLI/' \
+  "the stack interface speaks core types only"
 check bench/engine '*' "$above_engine|viz/|logs/|CLI/" \
   "the episode engine sees core, io, sim and nav only"
 check bench/metrics '*' 'bench/(output|suite|sweep|compare|replay|calibration|run|cli|worldgen|crowd)/|viz/|logs/|CLI/' \

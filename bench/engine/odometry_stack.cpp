@@ -1,6 +1,7 @@
 #include "bench/engine/odometry_stack.hpp"
 
 #include "core/errors.hpp"
+#include "nav/map_server.hpp"
 
 namespace retrace::bench {
 
@@ -16,9 +17,8 @@ void OdometryStack::OnOdometry(double /*t*/, const core::OdometryDelta& delta) {
   X_MR_ = core::IntegrateOdometry(X_MR_, delta);
 }
 
-const nav::LocalizerUpdate* OdometryStack::OnScan(const core::LaserScan& scan) {
+void OdometryStack::OnScan(const core::LaserScan& scan) {
   latest_scan_ = scan;  // for avoidance only
-  return nullptr;
 }
 
 StackOutput OdometryStack::OnControlTick(double /*t*/, double dt) {
@@ -27,7 +27,7 @@ StackOutput OdometryStack::OnControlTick(double /*t*/, double dt) {
   const bool at_end = follow.goal_reached ||
                       (follow.remaining <= nav::MapServer::kPathEndTolerance && !follow.off_path);
   if (at_end && map_ + 1 < bundle_.maps.size()) {
-    nav::MapSwitch sw;
+    MapChange sw;
     sw.from = map_;
     sw.to = map_ + 1;
     sw.X_MkR = X_MR_;
@@ -36,16 +36,17 @@ StackOutput OdometryStack::OnControlTick(double /*t*/, double dt) {
     map_ = sw.to;
     follower_.SetPathAt(bundle_.maps[map_].path, 0.0);
     follow = follower_.Compute(X_MR_, dt);
-    out.map_switch = sw;
+    out.map_change = sw;
   } else if (at_end) {
     out.route_done = true;
   }
   out.drive = {.command = follow.command};
-  if (latest_scan_) out.drive = avoidance_.Filter(follow.command, *latest_scan_);
+  if (latest_scan_) {
+    const nav::AvoidanceOutput a = avoidance_.Filter(follow.command, *latest_scan_);
+    out.drive = {a.command, a.modified, a.blocked, a.emergency_stop};
+  }
   out.X_MR = X_MR_;
   out.map = map_;
-  out.last_map = map_ + 1 == bundle_.maps.size();
-  out.remaining = follow.remaining;
   return out;
 }
 

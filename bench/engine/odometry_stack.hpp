@@ -7,8 +7,9 @@
 
 #include <optional>
 
-#include "bench/engine/navigation_stack.hpp"
+#include "bench/stack/navigation_stack.hpp"
 #include "bench/engine/scenario.hpp"
+#include "nav/obstacle_avoidance.hpp"
 #include "nav/path_follower.hpp"
 #include "nav/teach_bundle.hpp"
 
@@ -21,7 +22,7 @@ class OdometryStack final : public NavigationStack {
   OdometryStack(const Scenario& scenario, const nav::TeachBundle& bundle);
 
   void OnOdometry(double t, const core::OdometryDelta& delta) override;
-  const nav::LocalizerUpdate* OnScan(const core::LaserScan& scan) override;
+  void OnScan(const core::LaserScan& scan) override;
   StackOutput OnControlTick(double t, double dt) override;
 
  private:

@@ -28,7 +28,7 @@ RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,
                      const TeachTrace& teach, int run, double timeout_s, const ProgressFn& progress,
                      PlaybackObserver* observer, SensorTap* tap) {
   const std::unique_ptr<NavigationStack> stack = MakeStack(scenario, bundle, run);
-  PlaybackEpisode episode(scenario, teach, run, timeout_s, *stack, progress, observer, tap);
+  PlaybackEpisode episode(scenario, bundle, teach, run, timeout_s, *stack, progress, observer, tap);
   do {
     episode.Sense();
   } while (!episode.Act());

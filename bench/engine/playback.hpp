@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "bench/engine/navigation_stack.hpp"
+#include "bench/stack/navigation_stack.hpp"
 #include "bench/engine/playback_observer.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/sensor_tap.hpp"

@@ -9,6 +9,8 @@
 #include "bench/engine/playback.hpp"
 #include "bench/engine/run_recorder.hpp"
 #include "bench/engine/scripted_events.hpp"
+#include "bench/engine/stack_insight.hpp"
+#include "bench/engine/stack_progress.hpp"
 #include "bench/engine/stepper.hpp"
 #include "bench/engine/thread_cpu_time.hpp"
 #include "core/angle.hpp"
@@ -35,11 +37,11 @@ core::Pose2 StartPose(const Scenario& scenario, core::Rng rng) {
 namespace playback_parts {
 
 // What an observer (the video) sees besides the loop's own state: the latest scan and update.
-// Only retrace's own navigator can be watched.
+// Only a stack that lets the harness look inside (StackInsight) can be watched.
 class ObserverFeed {
  public:
   ObserverFeed(PlaybackObserver* observer, const NavigationStack& stack)
-      : observer_(stack.navigator() != nullptr ? observer : nullptr), nav_(stack.navigator()) {}
+      : observer_(stack.insight() != nullptr ? observer : nullptr), insight_(stack.insight()) {}
   void OnScan(const sim::LidarReading& lidar, const nav::LocalizerUpdate* update) {
     if (!observer_) return;
     lidar_ = lidar;
@@ -50,7 +52,7 @@ class ObserverFeed {
               const sim::Simulator& simulator) {
     if (!observer_) return;
     const std::vector<sim::DynamicCircle> pedestrians = simulator.PedestrianCircles();
-    observer_->OnTick({t, nav_->localizer(), nav_->server(), X_WR, X_MR_truth, speed,
+    observer_->OnTick({t, insight_->localizer(), insight_->server(), X_WR, X_MR_truth, speed,
                        t - last_switch_, lidar_ ? &*lidar_ : nullptr, update_ ? &*update_ : nullptr,
                        pedestrians});
   }
@@ -60,7 +62,7 @@ class ObserverFeed {
 
  private:
   PlaybackObserver* observer_;
-  const nav::Navigator* nav_;
+  const StackInsight* insight_;
   std::optional<sim::LidarReading> lidar_;
   std::optional<nav::LocalizerUpdate> update_;
   double last_switch_ = -std::numeric_limits<double>::infinity();
@@ -85,8 +87,8 @@ class OperatorTakeover {
 
   // While driving: the operator's command into out->drive (nothing of the stack's is applied);
   // returns the stack's switch when the robot is handed back into another map.
-  std::optional<nav::MapSwitch> Drive(const core::Pose2& X_WR, double dt, NavigationStack& stack,
-                                      StackOutput* out) {
+  std::optional<MapChange> Drive(const core::Pose2& X_WR, double dt, NavigationStack& stack,
+                                 StackOutput* out) {
     if (!driver_) return std::nullopt;
     out->drive = {.command = driver_->Command(X_WR, dt)};
     if (!driver_->Done()) return std::nullopt;
@@ -103,9 +105,9 @@ class OperatorTakeover {
 }  // namespace playback_parts
 
 struct PlaybackEpisode::State {
-  State(const Scenario& scenario, const TeachTrace& teach, int run, double timeout_s,
-        NavigationStack& nav_stack, const ProgressFn& progress, PlaybackObserver* observer,
-        SensorTap* sensor_tap)
+  State(const Scenario& scenario, const nav::TeachBundle& bundle, const TeachTrace& teach,
+        int run, double timeout_s, NavigationStack& nav_stack, const ProgressFn& progress,
+        PlaybackObserver* observer, SensorTap* sensor_tap)
       : cpu_start(ThreadCpuSeconds()),
         config(scenario.config),
         rng(PlaybackRng(config, run)),
@@ -115,6 +117,7 @@ struct PlaybackEpisode::State {
         events(config.events, EventPhase::kPlayback),
         route_progress(scenario.route),
         stack(nav_stack),
+        stack_progress(bundle),
         recorder(run, rng.seed(), teach, config.metrics, scenario.robot.radius),
         end(config.limits, timeout_s),
         feed(observer, nav_stack),
@@ -132,6 +135,7 @@ struct PlaybackEpisode::State {
   ScriptedEvents events;
   RouteProgress route_progress;
   NavigationStack& stack;
+  StackProgress stack_progress;
   RunRecorder recorder;
   EndConditions end;
   playback_parts::ObserverFeed feed;
@@ -145,12 +149,12 @@ struct PlaybackEpisode::State {
   std::optional<Outcome> outcome;
 };
 
-PlaybackEpisode::PlaybackEpisode(const Scenario& scenario, const TeachTrace& teach, int run,
-                                 double timeout_s, NavigationStack& stack,
-                                 const ProgressFn& progress, PlaybackObserver* observer,
-                                 SensorTap* tap)
-    : state_(std::make_unique<State>(scenario, teach, run, timeout_s, stack, progress, observer,
-                                     tap)) {}
+PlaybackEpisode::PlaybackEpisode(const Scenario& scenario, const nav::TeachBundle& bundle,
+                                 const TeachTrace& teach, int run, double timeout_s,
+                                 NavigationStack& stack, const ProgressFn& progress,
+                                 PlaybackObserver* observer, SensorTap* tap)
+    : state_(std::make_unique<State>(scenario, bundle, teach, run, timeout_s, stack, progress,
+                                     observer, tap)) {}
 
 PlaybackEpisode::~PlaybackEpisode() = default;
 
@@ -168,11 +172,12 @@ void PlaybackEpisode::Sense() {
     if (step.odometry) s.stack.OnOdometry(step.time, *step.odometry);
     if (!step.lidar) continue;
     const double cpu0 = ThreadCpuSeconds();
-    const nav::LocalizerUpdate* update = s.stack.OnScan(step.lidar->scan);
-    if (update != nullptr && update->ran && s.stack.navigator() != nullptr) {
-      s.recorder.OnUpdate(s.stack.navigator()->localizer(), *update, *step.lidar, step.time,
-                          ThreadCpuSeconds() - cpu0, s.stack.navigator()->server().index(),
-                          s.simulator);
+    s.stack.OnScan(step.lidar->scan);
+    const StackInsight* insight = s.stack.insight();
+    const nav::LocalizerUpdate* update = insight ? insight->last_update() : nullptr;
+    if (update != nullptr && update->ran) {
+      s.recorder.OnUpdate(insight->localizer(), *update, *step.lidar, step.time,
+                          ThreadCpuSeconds() - cpu0, insight->server().index(), s.simulator);
     }
     s.feed.OnScan(*step.lidar, update);
   } while (!s.stepper.ControlDue());
@@ -188,11 +193,11 @@ bool PlaybackEpisode::Act() {
   const core::Pose2 X_WR = s.simulator.RobotPose();
   // 3. The stack's answer: follow the taught path, switch maps, avoid.
   StackOutput out = s.stack.OnControlTick(t, dt);
-  const auto record_switch = [&](const nav::MapSwitch& sw) {
+  const auto record_switch = [&](const MapChange& sw) {
     s.recorder.OnSwitch(t, sw, X_WR);
     s.feed.OnSwitch(t);
   };
-  if (out.map_switch) record_switch(*out.map_switch);
+  if (out.map_change) record_switch(*out.map_change);
   // 4. Command the robot (an operator who took it over drives it).
   if (const auto sw = s.takeover.Drive(X_WR, dt, s.stack, &out)) record_switch(*sw);
   s.command = out.drive.command;
@@ -207,10 +212,13 @@ bool PlaybackEpisode::Act() {
   if (std::vector<core::Vec2> drive = s.events.TakeOver(); !drive.empty()) {
     s.takeover.Begin(std::move(drive), X_WR.translation());
   }
-  s.outcome = s.end.Check({t, out.route_done && !s.takeover.driving(), out.last_map,
-                           !s.stepper.collisions().empty(), Compare(out.X_MR, X_MR_truth).distance,
+  // The stack's progress along its map's taught path, as the harness sees it.
+  const double remaining = s.stack_progress.Remaining(out.map, out.X_MR);
+  s.outcome = s.end.Check({t, out.route_done && !s.takeover.driving(),
+                           s.stack_progress.IsLast(out.map), !s.stepper.collisions().empty(),
+                           Compare(out.X_MR, X_MR_truth).distance,
                            s.goal ? (X_WR.translation() - *s.goal).norm() : 0.0, out.map,
-                           out.remaining, s.takeover.driving()});
+                           remaining, s.takeover.driving()});
   return s.outcome.has_value();
 }
 

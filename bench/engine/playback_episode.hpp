@@ -10,24 +10,26 @@
 #include <memory>
 #include <optional>
 
-#include "bench/engine/navigation_stack.hpp"
 #include "bench/engine/playback_observer.hpp"
 #include "bench/engine/progress.hpp"
 #include "bench/engine/scenario.hpp"
 #include "bench/engine/sensor_tap.hpp"
 #include "bench/engine/trace.hpp"
+#include "bench/stack/navigation_stack.hpp"
+#include "nav/teach_bundle.hpp"
 
 namespace retrace::bench {
 
 class PlaybackEpisode {
  public:
-  /// Playback run `run` of `scenario` on `stack` (which must outlive the episode), measured
-  /// against `teach` (the teaching drive's ground truth and per-map references, which must
-  /// outlive it too). `timeout_s` ends a run that has not reached the end of the route. Throws
-  /// core::WorldError when the world refuses the start pose.
-  PlaybackEpisode(const Scenario& scenario, const TeachTrace& teach, int run, double timeout_s,
-                  NavigationStack& stack, const ProgressFn& progress = {},
-                  PlaybackObserver* observer = nullptr, SensorTap* tap = nullptr);
+  /// Playback run `run` of `scenario` on `stack` (which must outlive the episode) along
+  /// `bundle`'s taught paths, measured against `teach` (the teaching drive's ground truth and
+  /// per-map references); both must outlive it too. `timeout_s` ends a run that has not reached
+  /// the end of the route. Throws core::WorldError when the world refuses the start pose.
+  PlaybackEpisode(const Scenario& scenario, const nav::TeachBundle& bundle,
+                  const TeachTrace& teach, int run, double timeout_s, NavigationStack& stack,
+                  const ProgressFn& progress = {}, PlaybackObserver* observer = nullptr,
+                  SensorTap* tap = nullptr);
   ~PlaybackEpisode();
   PlaybackEpisode(const PlaybackEpisode&) = delete;
   PlaybackEpisode& operator=(const PlaybackEpisode&) = delete;

@@ -5,6 +5,11 @@
 namespace retrace::bench {
 namespace {
 
+std::optional<MapChange> ChangeOf(const std::optional<nav::MapSwitch>& sw) {
+  if (!sw) return std::nullopt;
+  return MapChange{sw->from, sw->to, sw->X_MkR, sw->X_MnR};
+}
+
 nav::Navigator StartNavigator(const Scenario& scenario, const nav::TeachBundle& bundle,
                               const core::Rng& rng) {
   const ScenarioConfig& config = scenario.config;
@@ -27,28 +32,29 @@ void RetraceStack::OnOdometry(double /*t*/, const core::OdometryDelta& delta) {
   nav_.OnOdometry(delta);
 }
 
-const nav::LocalizerUpdate* RetraceStack::OnScan(const core::LaserScan& scan) {
+void RetraceStack::OnScan(const core::LaserScan& scan) {
   update_ = nav_.OnScan(scan);
   latest_scan_ = scan;
-  return &update_;
 }
 
 StackOutput RetraceStack::OnControlTick(double /*t*/, double dt) {
   const nav::NavigatorTick tick = nav_.OnControlTick(dt);
   StackOutput out;
   out.drive = {.command = tick.follow.command};
-  if (latest_scan_) out.drive = avoidance_.Filter(tick.follow.command, *latest_scan_);
+  if (latest_scan_) {
+    const nav::AvoidanceOutput a = avoidance_.Filter(tick.follow.command, *latest_scan_);
+    out.drive = {a.command, a.modified, a.blocked, a.emergency_stop};
+  }
   Report(&out);
   out.route_done = tick.route_done;
-  out.remaining = tick.follow.remaining;
-  out.map_switch = tick.map_switch;
+  out.map_change = ChangeOf(tick.map_switch);
   return out;
 }
 
-std::optional<nav::MapSwitch> RetraceStack::Resume(StackOutput* out) {
-  std::optional<nav::MapSwitch> sw = nav_.Resume();
+std::optional<MapChange> RetraceStack::Resume(StackOutput* out) {
+  const std::optional<nav::MapSwitch> sw = nav_.Resume();
   Report(out);
-  return sw;
+  return ChangeOf(sw);
 }
 
 void RetraceStack::Report(StackOutput* out) const {
@@ -56,7 +62,6 @@ void RetraceStack::Report(StackOutput* out) const {
   out->map = nav_.server().index();
   out->lost = nav_.localizer().lost();
   out->off_map = nav_.off_map();
-  out->last_map = nav_.server().IsLast();
 }
 
 }  // namespace retrace::bench

@@ -70,7 +70,7 @@ void RunRecorder::OnUpdate(const nav::Localizer& localizer, const nav::Localizer
   }
 }
 
-void RunRecorder::OnSwitch(double t, const nav::MapSwitch& map_switch, const core::Pose2& X_WR) {
+void RunRecorder::OnSwitch(double t, const MapChange& map_switch, const core::Pose2& X_WR) {
   trace_.switches.push_back({t, static_cast<int>(map_switch.from), static_cast<int>(map_switch.to),
                              X_WR, map_switch.X_MnR});
   local_truth_.Enter(map_switch.to);
@@ -78,7 +78,7 @@ void RunRecorder::OnSwitch(double t, const nav::MapSwitch& map_switch, const cor
 
 core::Pose2 RunRecorder::OnControlTick(double t, std::size_t map_index, const core::Pose2& X_WR,
                                        const core::Pose2& X_MR, bool lost, bool off_map,
-                                       const nav::AvoidanceOutput& command,
+                                       const DriveCommand& command,
                                        const sim::Simulator& simulator) {
   PlaybackSample sample;
   sample.time = t;

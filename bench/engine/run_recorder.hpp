@@ -14,10 +14,10 @@
 #include "bench/engine/local_truth.hpp"
 #include "bench/engine/metrics_config.hpp"
 #include "bench/engine/trace.hpp"
+#include "bench/stack/navigation_stack.hpp"
 #include "core/pose2.hpp"
 #include "nav/localizer.hpp"
 #include "nav/map_server.hpp"
-#include "nav/obstacle_avoidance.hpp"
 #include "sim/lidar.hpp"
 #include "sim/simulator.hpp"
 
@@ -34,13 +34,13 @@ class RunRecorder {
                 const sim::LidarReading& lidar, double t, double cpu_s, std::size_t map_index,
                 const sim::Simulator& simulator);
   /// A map switch at time t, the robot at X_WR; the local truth moves into the new map.
-  void OnSwitch(double t, const nav::MapSwitch& map_switch, const core::Pose2& X_WR);
+  void OnSwitch(double t, const MapChange& map_change, const core::Pose2& X_WR);
   /// A control tick: the robot at X_WR, the estimate X_MR in map `map_index`, whether the
   /// localizer deems itself lost, the command sent. Returns the local truth of the robot in that
   /// map.
   core::Pose2 OnControlTick(double t, std::size_t map_index, const core::Pose2& X_WR,
                             const core::Pose2& X_MR, bool lost, bool off_map,
-                            const nav::AvoidanceOutput& command, const sim::Simulator& simulator);
+                            const DriveCommand& command, const sim::Simulator& simulator);
   /// Scripted events that fired at time t.
   void OnEvents(double t, const std::vector<std::string>& names);
 

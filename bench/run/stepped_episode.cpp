@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "bench/engine/mode_list.hpp"
-#include "bench/engine/navigation_stack.hpp"
+#include "bench/stack/navigation_stack.hpp"
 #include "bench/engine/playback.hpp"
 #include "bench/engine/playback_episode.hpp"
 #include "bench/engine/sensor_tap.hpp"
@@ -46,14 +46,8 @@ void RequireFinite(const core::Pose2& p, const char* what) {
 // with retrace's own stack (builtin) or with the caller's answer.
 class ObservingStack final : public NavigationStack {
  public:
-  ObservingStack(std::unique_ptr<NavigationStack> builtin, const nav::TeachBundle& bundle)
-      : builtin_(std::move(builtin)), bundle_(bundle) {
-    for (const nav::PartialMap& map : bundle.maps) {
-      PathLine& line = lines_.emplace_back();
-      for (const core::Pose2& p : map.path.poses()) line.points.push_back(p.translation());
-      line.arc = core::CumulativeArcLength(line.points);
-    }
-  }
+  explicit ObservingStack(std::unique_ptr<NavigationStack> builtin)
+      : builtin_(std::move(builtin)) {}
 
   Observation observation;
   std::optional<StackAnswer> answer;
@@ -63,9 +57,9 @@ class ObservingStack final : public NavigationStack {
     observation.odometry.push_back({t, X_OR_});
     if (builtin_) builtin_->OnOdometry(t, delta);
   }
-  const nav::LocalizerUpdate* OnScan(const core::LaserScan& scan) override {
+  void OnScan(const core::LaserScan& scan) override {
     observation.scans.push_back(scan);
-    return builtin_ ? builtin_->OnScan(scan) : nullptr;
+    if (builtin_) builtin_->OnScan(scan);
   }
   StackOutput OnControlTick(double t, double dt) override {
     if (builtin_) return builtin_->OnControlTick(t, dt);
@@ -76,50 +70,24 @@ class ObservingStack final : public NavigationStack {
     out.map = a.map;
     out.lost = a.lost;
     out.route_done = a.route_done;
-    out.last_map = a.map + 1 == bundle_.maps.size();
-    if (a.map != map_) out.map_switch = nav::MapSwitch{map_, a.map, X_MR_, a.X_MR, 0.0};
-    // Progress (for the stall check) by the caller's own estimate along its map's taught path:
-    // from where it enters the map (the nearest point of the path), then forward only and within
-    // reach of the last, so that a path that passes a place twice does not count the second pass
-    // at the first.
-    const PathLine& line = lines_[a.map];
-    if (a.map != map_ || !entered_) {
-      progress_ = {};
-      const double inf = std::numeric_limits<double>::infinity();
-      progress_.MoveTo(
-          core::ProjectOntoPath(line.points, line.arc, a.X_MR.translation(), 0.0, inf).s);
-      entered_ = true;
-    }
-    const double s = progress_.Advance(line.points, line.arc, a.X_MR.translation(),
-                                       progress_.value() + kProgressReach);
-    out.remaining = line.arc.empty() ? 0.0 : line.arc.back() - s;
+    if (a.map != map_) out.map_change = MapChange{map_, a.map, X_MR_, a.X_MR};
     map_ = a.map;
     X_MR_ = a.X_MR;
     return out;
   }
-  std::optional<nav::MapSwitch> Resume(StackOutput* out) override {
+  std::optional<MapChange> Resume(StackOutput* out) override {
     return builtin_ ? builtin_->Resume(out) : std::nullopt;
   }
-  const nav::Navigator* navigator() const override {
-    return builtin_ ? builtin_->navigator() : nullptr;
+  const StackInsight* insight() const override {
+    return builtin_ ? builtin_->insight() : nullptr;
   }
   bool builtin() const { return builtin_ != nullptr; }
 
  private:
-  static constexpr double kProgressReach = 2.0;  // m ahead of the last progress
-  struct PathLine {
-    std::vector<core::Vec2> points;
-    std::vector<double> arc;
-  };
-
   std::unique_ptr<NavigationStack> builtin_;
-  const nav::TeachBundle& bundle_;
-  std::vector<PathLine> lines_;
   core::Pose2 X_OR_;
   std::size_t map_ = 0;
   core::Pose2 X_MR_;
-  core::ForwardProgress progress_;
-  bool entered_ = false;
 };
 
 std::shared_ptr<const SteppedTeaching> TeachForStepping(const TeachingRequest& request,
@@ -170,9 +138,10 @@ SteppedEpisode::SteppedEpisode(std::shared_ptr<const SteppedTeaching> teaching, 
   const SteppedTeaching& t = *s.teaching;
   std::unique_ptr<NavigationStack> stack;
   if (builtin) stack = MakeStack(t.scenario, t.teach.bundle, run);
-  s.stack = std::make_unique<ObservingStack>(std::move(stack), t.teach.bundle);
+  s.stack = std::make_unique<ObservingStack>(std::move(stack));
   s.episode = std::make_unique<PlaybackEpisode>(
-      t.scenario, t.teach.trace, run, PlaybackTimeout(t.scenario, t.duration_s), *s.stack);
+      t.scenario, t.teach.bundle, t.teach.trace, run, PlaybackTimeout(t.scenario, t.duration_s),
+      *s.stack);
 }
 
 SteppedEpisode::~SteppedEpisode() = default;

@@ -33,10 +33,9 @@ class OpaqueStack final : public NavigationStack {
  public:
   explicit OpaqueStack(NavigationStack& inner) : inner_(inner) {}
   void OnOdometry(double t, const core::OdometryDelta& d) override { inner_.OnOdometry(t, d); }
-  const nav::LocalizerUpdate* OnScan(const core::LaserScan& scan) override {
+  void OnScan(const core::LaserScan& scan) override {
     ++scans;
     inner_.OnScan(scan);
-    return nullptr;
   }
   StackOutput OnControlTick(double t, double dt) override {
     ++ticks;
@@ -56,7 +55,7 @@ TEST(NavigationStack, AStackSeenOnlyThroughTheInterfaceDrivesRunPlaybacksRun) {
 
   RetraceStack inner(scenario, teach.bundle, PlaybackRng(scenario.config, 0));
   OpaqueStack stack(inner);
-  PlaybackEpisode episode(scenario, teach.trace, 0, 300.0, stack);
+  PlaybackEpisode episode(scenario, teach.bundle, teach.trace, 0, 300.0, stack);
   do {
     episode.Sense();
   } while (!episode.Act());
