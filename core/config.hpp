@@ -13,7 +13,8 @@
 //
 // Supported field types: bool, integers, double, std::string, named enums (EnumTraits below),
 // core::Vec2 ([x, y]), core::Pose2 ([x, y, theta]), std::array<double, N>, std::vector<T>,
-// std::optional<T> and nested reflectable structs.
+// std::optional<T>, std::map<std::string, std::string> (a mapping of scalars, each kept as its
+// text) and nested reflectable structs.
 
 #include <algorithm>
 #include <array>

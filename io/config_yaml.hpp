@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -103,6 +104,10 @@ template <class T>
 struct IsOptional : std::false_type {};
 template <class T>
 struct IsOptional<std::optional<T>> : std::true_type {};
+template <class T>
+struct IsStringMap : std::false_type {};
+template <class C, class A>
+struct IsStringMap<std::map<std::string, std::string, C, A>> : std::true_type {};
 template <class T>
 struct IsDoubleArray : std::false_type {};
 template <std::size_t N>
@@ -199,6 +204,22 @@ void ReadContainer(const YAML::Node& node, T& out, const ReadContext& ctx) {
   }
 }
 
+/// Reads a mapping of names to scalars (each kept as its text: the reader of the map checks its
+/// keys and values, e.g. a stack's options).
+template <class T>
+void ReadStringMap(const YAML::Node& node, T& out, const ReadContext& ctx) {
+  if (node.IsNull()) {
+    out.clear();
+    return;
+  }
+  if (!node.IsMap()) Fail(node, ctx, "expected a mapping");
+  out.clear();
+  for (const auto& item : node) {
+    const std::string key = item.first.Scalar();
+    out[key] = ReadString(item.second, ctx.Child(key));
+  }
+}
+
 /// Reads a reflectable struct from a mapping: unknown keys refused, the fields given read, then
 /// the struct validated (its errors located in the node).
 template <class T>
@@ -232,6 +253,8 @@ void Read(const YAML::Node& node, T& out, const ReadContext& ctx) {
     ReadWordOr(node, out, ctx);
   } else if constexpr (IsOptional<T>::value || IsVector<T>::value) {
     ReadContainer(node, out, ctx);
+  } else if constexpr (IsStringMap<T>::value) {
+    ReadStringMap(node, out, ctx);
   } else if constexpr (core::Reflectable<T>) {
     ReadStruct(node, out, ctx);
   } else {
@@ -297,6 +320,10 @@ void Write(YAML::Emitter& out, const T& value) {
     out << YAML::BeginSeq;
     for (const auto& v : value) Write(out, v);
     out << YAML::EndSeq;
+  } else if constexpr (IsStringMap<T>::value) {
+    out << YAML::BeginMap;
+    for (const auto& [k, v] : value) out << YAML::Key << k << YAML::Value << v;
+    out << YAML::EndMap;
   } else if constexpr (core::Reflectable<T>) {
     out << YAML::BeginMap;
     FieldWriter writer{&out};

@@ -2,26 +2,14 @@
 
 #include <memory>
 
-#include "bench/engine/odometry_stack.hpp"
 #include "bench/engine/playback_episode.hpp"
-#include "bench/engine/retrace_stack.hpp"
+#include "bench/engine/stack_registry.hpp"
 #include "core/rng.hpp"
 
 namespace retrace::bench {
 
 core::Rng PlaybackRng(const ScenarioConfig& config, int run) {
   return core::Rng(config.seed).Split("playback").Split(static_cast<std::uint64_t>(run));
-}
-
-std::unique_ptr<NavigationStack> MakeStack(const Scenario& scenario, const nav::TeachBundle& bundle,
-                                           int run) {
-  switch (scenario.config.playback.stack) {
-    case StackKind::kOdometry:
-      return std::make_unique<OdometryStack>(scenario, bundle);
-    case StackKind::kRetrace:
-      break;
-  }
-  return std::make_unique<RetraceStack>(scenario, bundle, PlaybackRng(scenario.config, run));
 }
 
 RunTrace RunPlayback(const Scenario& scenario, const nav::TeachBundle& bundle,

@@ -20,11 +20,6 @@ namespace retrace::bench {
 /// paired (same start offset, same pedestrians, same sensor noise draws).
 core::Rng PlaybackRng(const ScenarioConfig& config, int run);
 
-/// The stack playback run `run` drives with (playback.stack): retrace's navigator on `bundle`,
-/// seeded for the run, or the odometry baseline.
-std::unique_ptr<NavigationStack> MakeStack(const Scenario& scenario, const nav::TeachBundle& bundle,
-                                           int run);
-
 /// Runs playback run `run` on the maps and paths of `bundle`, measuring against `teach` (the
 /// teaching drive's ground truth and the bundle's references). `timeout_s` ends a run that has
 /// not reached the end of the last path. Returns everything the metrics need; expected outcomes

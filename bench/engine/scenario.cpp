@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "bench/engine/stack_registry.hpp"
 #include "bench/engine/switch_points.hpp"
 #include "bench/engine/switch_visibility.hpp"
 #include "core/angle.hpp"
@@ -141,6 +142,7 @@ void PlaybackConfig::Validate() const {
   core::RequireNonNegative("start_offset_yaw_deg", start_offset_yaw_deg);
   core::RequirePositive("initial_sigma_xy", initial_sigma_xy);
   core::RequirePositive("initial_sigma_yaw_deg", initial_sigma_yaw_deg);
+  ValidateStackChoice(stack, stack_options);
 }
 
 void LimitsConfig::Validate() const {

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,22 +48,6 @@ struct retrace::core::EnumTraits<retrace::bench::SwitchPlanning> {
   static constexpr std::array<std::pair<retrace::bench::SwitchPlanning, std::string_view>, 2>
       kNames{{{retrace::bench::SwitchPlanning::kAuto, "auto"},
               {retrace::bench::SwitchPlanning::kOnline, "online"}}};
-};
-
-namespace retrace::bench {
-
-/// The navigation stack a playback run drives with (bench/engine/navigation_stack.hpp): retrace's
-/// navigator (localization in the taught maps, map switching, path following, avoidance), or
-/// the baseline that replays the taught path on odometry alone (no localization).
-enum class StackKind : std::uint8_t { kRetrace, kOdometry };
-
-}  // namespace retrace::bench
-
-template <>
-struct retrace::core::EnumTraits<retrace::bench::StackKind> {
-  static constexpr std::array<std::pair<retrace::bench::StackKind, std::string_view>, 2> kNames{
-      {{retrace::bench::StackKind::kRetrace, "retrace"},
-       {retrace::bench::StackKind::kOdometry, "odometry"}}};
 };
 
 namespace retrace::bench {
@@ -227,12 +212,17 @@ struct PlaybackConfig {
   double start_offset_yaw_deg = 2.0;  ///< std of the start's heading offset
   double initial_sigma_xy = 0.2;      ///< m, the localizer's initial spread at map 0's origin
   double initial_sigma_yaw_deg = 3.0;
-  StackKind stack = StackKind::kRetrace;  ///< the navigation stack the runs drive with
+  /// The navigation stack the runs drive with, by its registered name
+  /// (bench/engine/stack_registry.hpp): retrace, odometry, or one a program registered
+  std::string stack = "retrace";
+  /// The stack's options, by the names it declares (unknown keys are refused)
+  std::map<std::string, std::string> stack_options;
 
   template <class V>
   void Reflect(V& v) {
     v("repeats", repeats);
     v("stack", stack);
+    v("stack_options", stack_options);
     v("start_offset_xy", start_offset_xy);
     v("start_offset_yaw_deg", start_offset_yaw_deg);
     v("initial_sigma_xy", initial_sigma_xy);

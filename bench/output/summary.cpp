@@ -31,8 +31,8 @@ std::string ScenarioLine(const Scenario& scenario) {
       text += (i ? ", " : " ") + Cell(switch_points[i], "%.1f");
     text += switch_points.empty() ? " none needed)" : " m)";
   }
-  if (scenario.config.playback.stack != StackKind::kRetrace) {
-    text += "; playback stack: " + std::string(core::EnumName(scenario.config.playback.stack));
+  if (scenario.config.playback.stack != "retrace") {
+    text += "; playback stack: " + scenario.config.playback.stack;
   }
   text += "\n";
   return text;

@@ -8,6 +8,7 @@
 
 #include "bench/engine/mode_list.hpp"
 #include "bench/engine/scenario.hpp"
+#include "bench/engine/stack_registry.hpp"
 #include "bench/engine/teach_drive.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "bench/metrics/metrics.hpp"
@@ -36,13 +37,13 @@ std::vector<MapMode> ResolveModes(const std::vector<std::string>& names,
 // One staged folder per mode: a video is written into it while its run drives.
 using ModeFolders = std::map<MapMode, std::unique_ptr<StagedFolder>>;
 
-// --video-run names a run that is played back, by retrace's navigator (the video shows its
-// particles and maps).
-void RequireVideoRunPlayed(const ScenarioRunRequest& request, int repeats, StackKind stack) {
-  if (request.video && stack != StackKind::kRetrace) {
-    throw core::ConfigError("--video",
-                            "the video shows retrace's navigator, and playback.stack is " +
-                                std::string(core::EnumName(stack)));
+// --video-run names a run that is played back, by a stack the video can look into (it shows its
+// particles and maps: StackInsight).
+void RequireVideoRunPlayed(const ScenarioRunRequest& request, int repeats,
+                           const std::string& stack) {
+  if (request.video && !FindStack(stack).insight) {
+    throw core::ConfigError("--video", "the video shows the localizer's particles and maps, and "
+                                       "playback.stack " + stack + " has none to show");
   }
   if (request.video && request.video_run >= repeats) {
     throw core::ConfigError("--video-run", "run " + std::to_string(request.video_run) +

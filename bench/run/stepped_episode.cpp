@@ -8,6 +8,7 @@
 #include "bench/stack/navigation_stack.hpp"
 #include "bench/engine/playback.hpp"
 #include "bench/engine/playback_episode.hpp"
+#include "bench/engine/stack_registry.hpp"
 #include "bench/engine/sensor_tap.hpp"
 #include "bench/metrics/experiment.hpp"
 #include "core/check.hpp"

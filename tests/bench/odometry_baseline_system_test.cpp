@@ -25,7 +25,7 @@ TEST(NavigationStack, TheOdometryBaselineDriftsWhereLocalizationHolds) {
   const TeachResult teach = RunTeachDrive(scenario, {MapMode::kPartial});
   const ModeTeach& partial = teach.modes.front();
   Scenario baseline = scenario;
-  baseline.config.playback.stack = StackKind::kOdometry;
+  baseline.config.playback.stack = "odometry";
   double loc[2] = {0.0, 0.0}, track[2] = {0.0, 0.0};
   for (int run = 0; run < 4; ++run) {
     const RunTrace localized = RunPlayback(scenario, partial.bundle, partial.trace, run, 300.0);
