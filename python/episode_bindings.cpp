@@ -176,6 +176,20 @@ class Episode {
     return episode_->Act(answer);
   }
 
+  // The last control tick as the harness saw it (None before the first act()).
+  py::object Tick() {
+    const bench::PlaybackSample* s = episode_->LastSample();
+    if (s == nullptr) return py::none();
+    py::dict d;
+    d["time"] = s->time;
+    d["map"] = s->map_index;
+    d["gt"] = PoseVector(s->X_WR);
+    d["clearance"] = s->clearance;
+    d["pedestrian_gap"] = s->pedestrian_gap;
+    d["collisions"] = episode_->Collisions();
+    return d;
+  }
+
   py::dict Samples() {
     const bench::RunTrace& trace = episode_->trace();
     std::vector<double> time;
@@ -293,6 +307,12 @@ void BindEpisodeTypes(py::module_& m) {
       .def(
           "metrics", [](Episode& e) { return JsonToPython(bench::ToJson(e.stepped().Metrics())); },
           "The run's metrics once done, as an entry of <mode>/metrics.json's runs.")
+      .def_property_readonly(
+          "tick", &Episode::Tick,
+          "The last control tick as the harness recorded it, for a learning agent's reward "
+          "(ground truth: never for a stack's estimate): {'time', 'map', 'gt' (3,) X_WR, "
+          "'clearance' (m to the nearest static surface), 'pedestrian_gap' (m to the nearest "
+          "person, inf: none), 'collisions' (so far)}; None before the first act().")
       .def("samples", &Episode::Samples,
            "The run's control ticks once done: {'time' (N,), 'map' (N,), 'est', 'gt', 'odom' "
            "(N, 3) [x, y, yaw], 'command' (N, 2) [v, omega]}.")

@@ -222,6 +222,13 @@ bool PlaybackEpisode::Act() {
   return s.outcome.has_value();
 }
 
+const PlaybackSample* PlaybackEpisode::last_sample() const {
+  const std::vector<PlaybackSample>& samples = state_->recorder.trace().samples;
+  return samples.empty() ? nullptr : &samples.back();
+}
+
+std::size_t PlaybackEpisode::collisions() const { return state_->stepper.collisions().size(); }
+
 RunTrace PlaybackEpisode::Finish() {
   State& s = *state_;
   RETRACE_CHECK(s.outcome);

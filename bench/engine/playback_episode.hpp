@@ -45,6 +45,10 @@ class PlaybackEpisode {
   double time() const;
   /// The run's trace, once done(); the episode is spent afterwards.
   RunTrace Finish();
+  /// The last control tick's sample (nullptr before the first Act, and after Finish).
+  const PlaybackSample* last_sample() const;
+  /// The collisions so far.
+  std::size_t collisions() const;
 
  private:
   struct State;

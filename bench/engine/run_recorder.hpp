@@ -45,6 +45,8 @@ class RunRecorder {
   void OnEvents(double t, const std::vector<std::string>& names);
 
   /// The trace of the run that ended with `outcome`.
+  /// The run so far (its samples up to the last control tick).
+  const RunTrace& trace() const { return trace_; }
   RunTrace Finish(Outcome outcome, const std::vector<sim::CollisionEvent>& collisions,
                   double sim_time_s, double cpu_time_s);
 

@@ -190,6 +190,17 @@ const RunTrace& SteppedEpisode::trace() {
   return *s.trace;
 }
 
+const PlaybackSample* SteppedEpisode::LastSample() const {
+  const State& s = *state_;
+  if (s.trace) return s.trace->samples.empty() ? nullptr : &s.trace->samples.back();
+  return s.episode->last_sample();
+}
+
+std::size_t SteppedEpisode::Collisions() const {
+  const State& s = *state_;
+  return s.trace ? s.trace->collisions.size() : s.episode->collisions();
+}
+
 RunMetrics SteppedEpisode::Metrics() {
   const SteppedTeaching& t = *state_->teaching;
   return ComputeRunMetrics(t.teach.trace, trace(), t.scenario.config.metrics);

@@ -113,6 +113,11 @@ class SteppedEpisode {
   /// core::ConfigError("step") before.
   const RunTrace& trace();
   RunMetrics Metrics();
+  /// The last control tick as the harness recorded it (ground truth included: for a learning
+  /// agent's reward, never for a stack), and the collisions so far; nullptr before the first
+  /// Act and once the trace was taken.
+  const PlaybackSample* LastSample() const;
+  std::size_t Collisions() const;
 
  private:
   struct State;
