@@ -141,6 +141,7 @@ struct Observation {
   double time = 0.0;
   py::array_t<double> odometry;
   py::list scans;
+  bool handed_back = false;
 };
 
 /// retrace.Episode: one playback run of a Teaching.
@@ -153,27 +154,54 @@ class Episode {
   bench::SteppedEpisode& stepped() { return *episode_; }
   bool builtin() const { return builtin_; }
 
+  // A step out of order is a RuntimeError (core::Error), with what to do instead.
   Observation Observe() {
+    if (episode_->done()) {
+      throw core::Error("observe: the run is done (episode.done); metrics() has its results");
+    }
+    if (observed_) {
+      throw core::Error(
+          "observe: the last observation is not answered yet: act(v, omega, estimate=(x, y, yaw), "
+          "map=k) first");
+    }
     const bench::Observation& o = episode_->Observe();
-    return {o.time, OdometryArray(o.odometry), ScanList(o.scans)};
+    observed_ = true;
+    return {o.time, OdometryArray(o.odometry), ScanList(o.scans), o.handed_back};
   }
 
-  bool Act(double v, double omega, const py::object& estimate, int map, bool lost,
-           bool route_done) {
+  bool Act(const py::object& v, const py::object& omega, const py::object& estimate, int map,
+           bool lost, bool route_done) {
+    if (!observed_) throw core::Error("act: nothing to answer yet: observe() first");
     if (builtin_) {
-      if (!estimate.is_none() || v != 0.0 || omega != 0.0) {
+      if (!estimate.is_none() || !v.is_none() || !omega.is_none()) {
         throw core::ConfigError("answer", "the built-in stack answers this episode: act()");
       }
-      return episode_->Act(std::nullopt);
+      const bool done = episode_->Act(std::nullopt);
+      observed_ = false;
+      return done;
+    }
+    if (v.is_none() || omega.is_none()) {
+      throw core::ConfigError("command",
+                              "missing: act(v, omega, estimate=(x, y, yaw), map=k) needs the "
+                              "command, v in m/s and omega in rad/s");
     }
     if (map < 0) throw core::ConfigError("map", "must be >= 0");
     bench::StackAnswer answer;
-    answer.command = {v, omega};
+    answer.command = {Number(v, "v"), Number(omega, "omega")};
     answer.X_MR = EstimateArgument(estimate);
     answer.map = static_cast<std::size_t>(map);
     answer.lost = lost;
     answer.route_done = route_done;
-    return episode_->Act(answer);
+    const bool done = episode_->Act(answer);
+    observed_ = false;
+    return done;
+  }
+
+  py::object Metrics() {
+    if (!episode_->done()) {
+      throw core::Error("metrics: the run is not done yet: observe() and act() until done");
+    }
+    return JsonToPython(bench::ToJson(episode_->Metrics()));
   }
 
   // The last control tick as the harness saw it (None before the first act()).
@@ -219,9 +247,20 @@ class Episode {
 
  private:
   // (x, y, yaw): a sequence of three finite numbers.
+  static double Number(const py::object& value, const char* name) {
+    try {
+      return value.cast<double>();
+    } catch (const py::cast_error&) {
+      throw py::type_error(std::string(name) + ": a number");
+    }
+  }
+
   static core::Pose2 EstimateArgument(const py::object& estimate) {
     if (estimate.is_none()) {
-      throw core::ConfigError("estimate", "an estimate (x, y, yaw) in map `map`'s frame");
+      throw core::ConfigError(
+          "estimate",
+          "missing: act() needs the stack's estimate (x, y, yaw) in map `map`'s frame, which the "
+          "run is scored on (a stack that does not localize passes its dead-reckoned pose)");
     }
     std::vector<double> values;
     try {
@@ -238,6 +277,7 @@ class Episode {
 
   std::unique_ptr<bench::SteppedEpisode> episode_;
   bool builtin_;
+  bool observed_ = false;  // an observation waits for its answer
 };
 
 std::string TeachingRepr(const Teaching& t) {
@@ -284,7 +324,10 @@ void BindEpisodeTypes(py::module_& m) {
       .def_readonly("odometry", &Observation::odometry,
                     "(K, 4) [t, x, y, yaw]: each odometry reading X_OR since the last step, in "
                     "this run's odometry frame (the identity where the run started)")
-      .def_readonly("scans", &Observation::scans, "[Scan] since the last step (often one or none)");
+      .def_readonly("scans", &Observation::scans, "[Scan] since the last step (often one or none)")
+      .def_readonly("handed_back", &Observation::handed_back,
+                    "an operator drove the robot (a scripted takeover: the answers were ignored "
+                    "meanwhile) and handed it back at the last tick: find the place again");
   py::class_<Episode>(m, "Episode", "One playback run, stepped: observe(), act(), until done.")
       .def_property_readonly(
           "run", [](Episode& e) { return e.stepped().run(); }, "the run's index (its seed)")
@@ -294,9 +337,10 @@ void BindEpisodeTypes(py::module_& m) {
           "done", [](Episode& e) { return e.stepped().done(); }, "the run has ended")
       .def("observe", &Episode::Observe,
            "Steps the world to the next control tick (1 / nav.control_rate_hz s); returns the "
-           "Observation on the way. Raises ValueError when the run is done or the last "
+           "Observation on the way. Raises RuntimeError when the run is done or the last "
            "observation was not answered.")
-      .def("act", &Episode::Act, py::arg("v") = 0.0, py::arg("omega") = 0.0, py::kw_only(),
+      .def("act", &Episode::Act, py::arg("v") = py::none(), py::arg("omega") = py::none(),
+           py::kw_only(),
            py::arg("estimate") = py::none(), py::arg("map") = 0, py::arg("lost") = false,
            py::arg("route_done") = false,
            "Answers the last observation: the command (v m/s, omega rad/s), the estimate (x, y, "
@@ -304,9 +348,8 @@ void BindEpisodeTypes(py::module_& m) {
            "itself lost, and whether it believes it reached the route's end (on the last map: "
            "the run ends, a success when the robot is within limits.lost_distance of the end). "
            "A built-in episode takes act() with no arguments. Returns done.")
-      .def(
-          "metrics", [](Episode& e) { return JsonToPython(bench::ToJson(e.stepped().Metrics())); },
-          "The run's metrics once done, as an entry of <mode>/metrics.json's runs.")
+      .def("metrics", &Episode::Metrics,
+           "The run's metrics once done, as an entry of <mode>/metrics.json's runs.")
       .def_property_readonly(
           "tick", &Episode::Tick,
           "The last control tick as the harness recorded it, for a learning agent's reward "

@@ -77,8 +77,12 @@ class ObservingStack final : public NavigationStack {
     return out;
   }
   std::optional<MapChange> Resume(StackOutput* out) override {
-    return builtin_ ? builtin_->Resume(out) : std::nullopt;
+    if (builtin_) return builtin_->Resume(out);
+    handed_back_ = true;  // told with the next observation
+    return std::nullopt;
   }
+  // Whether the robot was handed back since the last call.
+  bool TakeHandedBack() { return std::exchange(handed_back_, false); }
   const StackInsight* insight() const override {
     return builtin_ ? builtin_->insight() : nullptr;
   }
@@ -89,6 +93,7 @@ class ObservingStack final : public NavigationStack {
   core::Pose2 X_OR_;
   std::size_t map_ = 0;
   core::Pose2 X_MR_;
+  bool handed_back_ = false;
 };
 
 std::shared_ptr<const SteppedTeaching> TeachForStepping(const TeachingRequest& request,
@@ -157,6 +162,7 @@ const Observation& SteppedEpisode::Observe() {
   if (s.episode->done()) throw core::ConfigError("step", "the run is done");
   if (s.observed) throw core::ConfigError("step", "answer the last observation first (act)");
   s.stack->observation = {};
+  s.stack->observation.handed_back = s.stack->TakeHandedBack();
   s.episode->Sense();
   s.stack->observation.time = s.episode->time();
   s.observed = true;

@@ -73,6 +73,9 @@ struct Observation {
   double time = 0.0;  ///< s since the run started: the control tick's
   std::vector<OdometryReading> odometry;
   std::vector<core::LaserScan> scans;
+  /// An operator drove the robot (a scripted takeover, ignoring the answers meanwhile) and
+  /// handed it back at the last tick: where the stack is on the route is its to find again.
+  bool handed_back = false;
 };
 
 /// The caller's answer at a control tick.

@@ -90,16 +90,43 @@ def test_a_stack_on_odometry_alone_is_scored_against_the_truth():
     assert samples["est"].shape == samples["gt"].shape == (metrics["samples"], 3)
 
 
+def test_a_python_stack_is_told_when_an_operator_hands_the_robot_back():
+    """A scripted takeover drives the robot from 3 m along the route to (8.5, 1); the observation
+    after the operator hands it back says so, once (C++ stacks get NavigationStack::Resume)."""
+    takeover = "events=[{action: takeover, at_route_s: 3, drive: [[6, 1], [8.5, 1]]}]"
+    teaching = retrace.Teaching(SMALL, mode="single", set=[takeover], progress=False)
+    path = teaching.maps[0].path
+    episode = teaching.episode(0)
+    pose, i, handed_back = np.zeros(3), 0, []
+    while not episode.done:
+        observation = episode.observe()
+        handed_back.append(observation.handed_back)
+        if len(observation.odometry):
+            pose = observation.odometry[-1, 1:]
+        i = min(i + int(np.argmin(np.hypot(*(path[i:i + 30, :2] - pose[:2]).T))), len(path) - 1)
+        goal = path[min(i + 8, len(path) - 1)]
+        bearing = math.atan2(goal[1] - pose[1], goal[0] - pose[0]) - pose[2]
+        bearing = math.atan2(math.sin(bearing), math.cos(bearing))
+        episode.act(0.5, max(-1.0, min(1.0, 2.0 * bearing)), estimate=pose)
+    assert sum(handed_back) == 1 and handed_back.index(True) > 10
+
+
 def test_misuse_of_the_stepping_raises_one_error():
     teaching = retrace.Teaching(SMALL, mode="partial", progress=False)
     episode = teaching.episode(0)
-    with pytest.raises(ValueError, match="observe before acting"):
+    # Steps out of order are RuntimeErrors; a missing or bad answer a ValueError naming it.
+    with pytest.raises(RuntimeError, match="act: nothing to answer yet: observe\\(\\) first"):
         episode.act(0.1, 0.0, estimate=(0, 0, 0))
     episode.observe()
-    with pytest.raises(ValueError, match="answer the last observation"):
+    with pytest.raises(RuntimeError, match="the last observation is not answered yet"):
         episode.observe()
-    with pytest.raises(ValueError, match="estimate"):
+    with pytest.raises(ValueError, match="estimate: missing: act\\(\\) needs the stack's estimate"):
         episode.act(0.1, 0.0)
+    with pytest.raises(ValueError, match="command: missing") as error:
+        episode.act(estimate=(0, 0, 0))
+    assert error.value.key == "command"
+    with pytest.raises(TypeError, match="v: a number"):
+        episode.act("fast", 0.0, estimate=(0, 0, 0))
     with pytest.raises(TypeError, match="estimate"):
         episode.act(0.1, 0.0, estimate="here")
     with pytest.raises(ValueError, match="must be \\(x, y, yaw\\)"):
@@ -108,7 +135,7 @@ def test_misuse_of_the_stepping_raises_one_error():
         episode.act(0.1, 0.0, estimate=(math.nan, 0, 0))
     with pytest.raises(ValueError, match="map 2 is not a map of the route"):
         episode.act(0.1, 0.0, estimate=(0, 0, 0), map=2)
-    with pytest.raises(ValueError, match="not done"):
+    with pytest.raises(RuntimeError, match="metrics: the run is not done yet"):
         episode.metrics()
     assert episode.act(0.1, 0.0, estimate=(0, 0, 0)) is False  # the errors left it answerable
     builtin = teaching.episode(1, builtin=True)
