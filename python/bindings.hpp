@@ -22,6 +22,8 @@ void BindLogs(pybind11::module_& m);
 void BindLogInfo(pybind11::module_& m);
 /// Teaching, Episode and their parts: runs stepped from Python.
 void BindEpisodes(pybind11::module_& m);
+/// register_stack, registered_stacks: Python stacks in every command.
+void BindStacks(pybind11::module_& m);
 /// The readers of results files (read_json, read_tum, read_csv, read_map, read_path), render and
 /// report.
 void BindResults(pybind11::module_& m);

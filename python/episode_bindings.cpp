@@ -28,6 +28,7 @@
 #include "python/numpy_arrays.hpp"
 #include "python/pose_arrays.hpp"
 #include "python/scan_objects.hpp"
+#include "python/taught_maps.hpp"
 
 namespace retrace::python {
 namespace py = pybind11;
@@ -114,11 +115,7 @@ class Teaching {
 
   const py::list& maps() {
     if (!maps_) {
-      maps_.emplace();
-      const auto& bundle = taught_->teach.bundle;
-      for (std::size_t k = 0; k < bundle.maps.size(); ++k) {
-        maps_->append(ToTaughtMap(static_cast<int>(k), bundle.maps[k]));
-      }
+      maps_.emplace(TaughtMapList(taught_->teach.bundle));
     }
     return *maps_;
   }
@@ -428,6 +425,14 @@ void BindTeaching(py::module_& m) {
 }
 
 }  // namespace
+
+py::list TaughtMapList(const nav::TeachBundle& bundle) {
+  py::list maps;
+  for (std::size_t k = 0; k < bundle.maps.size(); ++k) {
+    maps.append(ToTaughtMap(static_cast<int>(k), bundle.maps[k]));
+  }
+  return maps;
+}
 
 void BindEpisodes(py::module_& m) {
   BindScan(m);

@@ -19,5 +19,6 @@ PYBIND11_MODULE(_retrace, m) {
   retrace::python::BindLogs(m);
   retrace::python::BindLogInfo(m);
   retrace::python::BindEpisodes(m);
+  retrace::python::BindStacks(m);
   retrace::python::BindResults(m);
 }

@@ -34,6 +34,8 @@ from ._retrace import (  # noqa: F401  (the extension: docs/PYTHON.md)
     read_map,
     read_path,
     read_tum,
+    register_stack,
+    registered_stacks,
     render,
     report,
     run,
@@ -55,7 +57,7 @@ from .results import (  # noqa: F401
 __all__ = [
     "run", "teach", "playback", "sweep", "compare",
     "log_info", "log_teach", "log_localize", "log_simulate",
-    "load_results", "render", "report",
+    "load_results", "render", "report", "register_stack", "registered_stacks",
     "read_json", "read_tum", "read_path", "read_csv", "read_map",
     "RunResult", "ModeResult", "SweepResult", "ComparisonResult", "LogResult", "LogInfo",
     "Progress", "RetraceWarning",

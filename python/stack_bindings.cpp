@@ -1,0 +1,190 @@
+// Python stacks in every command (docs/PYTHON.md, "A Python stack in every command"):
+// retrace.register_stack(name, factory, options=, summary=) registers a stack by name
+// (bench/engine/stack_registry.hpp) whose runs call a Python object through the C++ stack
+// interface (bench/stack/navigation_stack.hpp), so that retrace.run, compare and sweep, and the
+// command line's scenarios run in this interpreter, drive it and score it as any C++ stack.
+//
+// The runs execute on the library's worker threads without the GIL; each call into Python takes
+// it (a Python stack therefore runs one call at a time, whatever --jobs says). A Python
+// exception inside the stack ends the run with a RuntimeError naming the stack and the method.
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bench/engine/stack_registry.hpp"
+#include "core/errors.hpp"
+#include "python/bindings.hpp"
+#include "python/scan_objects.hpp"
+#include "python/taught_maps.hpp"
+
+namespace retrace::python {
+namespace py = pybind11;
+namespace {
+
+// A Python object kept alive from threads that may not hold the GIL: copied and destroyed only
+// through the shared pointer, whose deleter takes the GIL.
+using SharedObject = std::shared_ptr<py::object>;
+
+SharedObject Share(py::object object) {
+  return SharedObject(new py::object(std::move(object)), [](py::object* p) {
+    const py::gil_scoped_acquire gil;
+    delete p;
+  });
+}
+
+// (x, y, yaw) from a Python sequence, or a ConfigError naming what was given.
+core::Pose2 PoseOf(const py::handle& value, const std::string& name) {
+  std::vector<double> v;
+  try {
+    v = value.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw core::ConfigError("estimate", name + " returned an estimate that is not (x, y, yaw)");
+  }
+  if (v.size() != 3) {
+    throw core::ConfigError("estimate", name + " returned an estimate of " +
+                                            std::to_string(v.size()) + " numbers, not (x, y, yaw)");
+  }
+  return {v[0], v[1], v[2]};
+}
+
+class PythonStack final : public bench::NavigationStack {
+ public:
+  PythonStack(std::string name, SharedObject stack)
+      : name_(std::move(name)), stack_(std::move(stack)) {}
+
+  void OnOdometry(double t, const core::OdometryDelta& d) override {
+    Call("on_odometry", [&] { stack_->attr("on_odometry")(t, d.distance, d.dtheta); });
+  }
+  void OnScan(const core::LaserScan& scan) override {
+    Call("on_scan", [&] { stack_->attr("on_scan")(ScanList({scan})[0]); });
+  }
+  bench::StackOutput OnControlTick(double t, double dt) override {
+    bench::StackOutput out;
+    Call("on_control_tick", [&] { out = Output(stack_->attr("on_control_tick")(t, dt)); });
+    return out;
+  }
+  std::optional<bench::MapChange> Resume(bench::StackOutput* out) override {
+    bool has = false;
+    Call("resume", [&] {
+      if (!py::hasattr(*stack_, "resume")) return;
+      has = true;
+      const bench::DriveCommand drive = out->drive;
+      *out = Output(stack_->attr("resume")());
+      out->drive = drive;  // the operator's command this tick
+    });
+    if (!has) return std::nullopt;
+    return std::exchange(out->map_change, std::nullopt);
+  }
+
+ private:
+  // Calls into Python with the GIL; a Python exception becomes one core::Error.
+  template <class F>
+  void Call(const char* method, F&& f) {
+    const py::gil_scoped_acquire gil;
+    try {
+      f();
+    } catch (py::error_already_set& e) {
+      throw core::Error("stack '" + name_ + "', " + method + ": " + e.what());
+    } catch (const py::cast_error& e) {
+      throw core::ConfigError("answer", "stack '" + name_ + "', " + method +
+                                            ": a value of the wrong type (" + e.what() + ")");
+    }
+  }
+
+  // The answer of on_control_tick or resume: a dict with v, omega and estimate (required), map,
+  // lost, off_map, route_done (optional); a change of map is recorded as a map change.
+  bench::StackOutput Output(const py::object& answer) {
+    const std::string what = "stack '" + name_ + "'";
+    if (!py::isinstance<py::dict>(answer)) {
+      throw core::ConfigError("answer", what + " must answer with a dict {v, omega, estimate, "
+                                               "map, lost, route_done}");
+    }
+    const py::dict d = answer;
+    for (const char* key : {"v", "omega", "estimate"}) {
+      if (!d.contains(key)) {
+        throw core::ConfigError("answer", what + " answered without '" + key +
+                                              "': {v, omega, estimate} are required");
+      }
+    }
+    bench::StackOutput out;
+    out.drive.command = {d["v"].cast<double>(), d["omega"].cast<double>()};
+    out.X_MR = PoseOf(d["estimate"], what);
+    out.map = d.contains("map") ? d["map"].cast<std::size_t>() : 0;
+    out.lost = d.contains("lost") && d["lost"].cast<bool>();
+    out.off_map = d.contains("off_map") && d["off_map"].cast<bool>();
+    out.route_done = d.contains("route_done") && d["route_done"].cast<bool>();
+    if (out.map != map_) out.map_change = bench::MapChange{map_, out.map, X_MR_, out.X_MR};
+    map_ = out.map;
+    X_MR_ = out.X_MR;
+    return out;
+  }
+
+  std::string name_;
+  SharedObject stack_;
+  std::size_t map_ = 0;
+  core::Pose2 X_MR_;
+};
+
+// What the factory is given: the taught maps, the robot, the run and the options.
+py::dict ContextOf(const bench::StackContext& c) {
+  py::dict d;
+  d["maps"] = TaughtMapList(c.bundle);
+  d["robot_radius"] = c.scenario.robot.radius;
+  const core::Pose2& X_RL = c.scenario.robot.X_RL;
+  d["lidar_mount"] = py::make_tuple(X_RL.x, X_RL.y, X_RL.theta);
+  d["control_rate_hz"] = c.scenario.config.nav.control_rate_hz;
+  d["run"] = c.run;
+  d["seed"] = c.rng.seed();
+  py::dict options;
+  for (const auto& [k, v] : c.options) options[py::str(k)] = v;
+  d["options"] = options;
+  return d;
+}
+
+void RegisterPythonStack(const std::string& name, const py::object& factory,
+                         const std::map<std::string, std::string>& options,
+                         const std::string& summary) {
+  if (!PyCallable_Check(factory.ptr())) {
+    throw py::type_error("factory: a callable that takes the context and returns the stack");
+  }
+  bench::StackDescription d;
+  d.name = name;
+  d.summary = summary.empty() ? "a stack written in Python" : summary;
+  for (const auto& [k, v] : options) d.options.push_back({k, v, ""});
+  const SharedObject shared = Share(factory);
+  d.make = [name, shared](const bench::StackContext& c) -> std::unique_ptr<bench::NavigationStack> {
+    const py::gil_scoped_acquire gil;
+    try {
+      return std::make_unique<PythonStack>(name, Share((*shared)(ContextOf(c))));
+    } catch (py::error_already_set& e) {
+      throw core::Error("stack '" + name + "', factory: " + e.what());
+    }
+  };
+  bench::RegisterStack(std::move(d));
+}
+
+}  // namespace
+
+void BindStacks(py::module_& m) {
+  m.def("register_stack", &RegisterPythonStack, py::arg("name"), py::arg("factory"),
+        py::kw_only(), py::arg("options") = std::map<std::string, std::string>{},
+        py::arg("summary") = "",
+        "Registers a navigation stack written in Python under `name`, for playback.stack in "
+        "any scenario this interpreter runs (retrace.run, compare, sweep). factory(context) "
+        "returns the stack for one run; context: {'maps' [TaughtMap], 'robot_radius', "
+        "'lidar_mount', 'control_rate_hz', 'run', 'seed', 'options'}. The stack has "
+        "on_odometry(t, distance, dtheta), on_scan(scan), on_control_tick(t, dt) -> {'v', "
+        "'omega', 'estimate' (x, y, yaw) in map 'map''s frame, 'map', 'lost', 'route_done'} and "
+        "optionally resume() -> the same, when an operator hands the robot back. options: "
+        "{name: default} of playback.stack_options it takes.");
+  m.def("registered_stacks", &bench::RegisteredStacks, "The names playback.stack may take.");
+}
+
+}  // namespace retrace::python

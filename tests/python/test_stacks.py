@@ -1,0 +1,87 @@
+"""A navigation stack written in Python inside retrace.run (python/stack_bindings.cpp): registered
+by name, given its options, driven and scored by the loop `retrace run` drives; its errors end the
+call with one exception naming the stack."""
+
+import math
+
+import pytest
+
+import retrace
+from conftest import SMALL, read_json
+
+
+class DeadReckoning:
+    """Replays map 0's taught path on dead reckoning (one map: the single mode), pure pursuit."""
+
+    def __init__(self, context):
+        self.path = context["maps"][0].path
+        self.speed = float(context["options"]["speed"])
+        self.pose = [0.0, 0.0, 0.0]
+        self.i = 0
+        self.scans = 0
+
+    def on_odometry(self, t, distance, dtheta):
+        x, y, yaw = self.pose
+        # core::IntegrateOdometry: along the arc, at the midpoint heading.
+        chord = distance if dtheta == 0.0 else distance * math.sin(dtheta / 2) / (dtheta / 2)
+        self.pose = [x + chord * math.cos(yaw + dtheta / 2), y + chord * math.sin(yaw + dtheta / 2),
+                     yaw + dtheta]
+
+    def on_scan(self, scan):
+        self.scans += 1
+
+    def on_control_tick(self, t, dt):
+        x, y, yaw = self.pose
+        n = len(self.path)
+        ahead = range(self.i, min(self.i + 30, n))
+        self.i = min(ahead, key=lambda j: math.hypot(self.path[j, 0] - x, self.path[j, 1] - y))
+        goal = self.path[min(self.i + 8, n - 1)]
+        bearing = math.atan2(goal[1] - y, goal[0] - x) - yaw
+        bearing = math.atan2(math.sin(bearing), math.cos(bearing))
+        done = self.i == n - 1 and math.hypot(self.path[-1, 0] - x, self.path[-1, 1] - y) < 0.3
+        return {"v": 0.0 if done else self.speed, "omega": max(-1.0, min(1.0, 2.0 * bearing)),
+                "estimate": (x, y, yaw), "map": 0, "route_done": done}
+
+
+def register_once(name, factory, **kwargs):
+    if name not in retrace.registered_stacks():
+        retrace.register_stack(name, factory, **kwargs)
+
+
+def test_a_python_stack_runs_inside_retrace_run_and_is_scored(tmp_path):
+    register_once("py_dead_reckoning", DeadReckoning, options={"speed": "0.5"})
+    assert "py_dead_reckoning" in retrace.registered_stacks()
+    result = retrace.run(SMALL, modes="single", repeats=1, out=tmp_path / "py", progress=False,
+                         set=["playback.stack=py_dead_reckoning",
+                              "playback.stack_options.speed=0.6"],
+                         figures=False, report=False)
+    metrics = read_json(tmp_path / "py" / "single" / "metrics.json")
+    run = metrics["runs"][0]
+    assert run["outcome"] in ("success", "timeout", "lost", "collision")
+    assert run["progress_m"] > 5.0  # it drove along the route
+    assert 0.0 < run["localization_error_m"]["rms"] < 2.0  # scored against the truth
+    assert "playback stack: py_dead_reckoning" in result.summary
+
+
+def test_a_python_stacks_mistakes_end_the_call_with_one_exception(tmp_path):
+    class Broken(DeadReckoning):
+        def on_control_tick(self, t, dt):
+            raise KeyError("no such thing")
+
+    class Mute(DeadReckoning):
+        def on_control_tick(self, t, dt):
+            return {"v": 0.1, "omega": 0.0}
+
+    register_once("py_broken", Broken, options={"speed": "0.5"})
+    register_once("py_mute", Mute, options={"speed": "0.5"})
+    with pytest.raises(RuntimeError, match="stack 'py_broken', on_control_tick: KeyError"):
+        retrace.run(SMALL, modes="single", repeats=1, out=tmp_path / "b", progress=False,
+                    set="playback.stack=py_broken", figures=False, report=False)
+    with pytest.raises(ValueError, match="stack 'py_mute' answered without 'estimate'"):
+        retrace.run(SMALL, modes="single", repeats=1, out=tmp_path / "m", progress=False,
+                    set="playback.stack=py_mute", figures=False, report=False)
+    with pytest.raises(ValueError, match="a stack named 'py_mute' is registered already"):
+        retrace.register_stack("py_mute", Mute)
+    with pytest.raises(ValueError, match="stack 'py_mute' takes no option 'sped'"):
+        retrace.run(SMALL, modes="single", repeats=1, out=tmp_path / "o", progress=False,
+                    set=["playback.stack=py_mute", "playback.stack_options.sped=1"])
