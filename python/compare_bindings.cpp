@@ -30,12 +30,14 @@ struct ComparisonResult {
 };
 
 bench::ComparisonRequest CompareRequest(const Path& scenario, const py::object& modes,
-                                        const std::string& reference, const py::object& seeds,
-                                        const py::object& repeats, const py::object& jobs,
-                                        const std::optional<Path>& out, const py::object& set) {
+                                        const py::object& stacks, const std::string& reference,
+                                        const py::object& seeds, const py::object& repeats,
+                                        const py::object& jobs, const std::optional<Path>& out,
+                                        const py::object& set) {
   bench::ComparisonRequest request;
   request.scenario = scenario;
   if (!modes.is_none()) request.modes = NameList(modes, "modes");
+  if (!stacks.is_none()) request.stacks = NameList(stacks, "stacks");
   request.reference = reference;
   request.seeds = BoundedInt(seeds, "seeds", 1).value_or(5);
   request.repeats = BoundedInt(repeats, "repeats", 1);
@@ -45,15 +47,16 @@ bench::ComparisonRequest CompareRequest(const Path& scenario, const py::object& 
   return request;
 }
 
-ComparisonResult Compare(const Path& scenario, const py::object& modes,
+ComparisonResult Compare(const Path& scenario, const py::object& modes, const py::object& stacks,
                          const std::string& reference, const py::object& seeds,
                          const py::object& repeats, const py::object& jobs,
                          const std::optional<Path>& out, const py::object& set, bool report,
                          const py::object& progress_arg) {
   const bench::ComparisonRequest request =
-      CompareRequest(scenario, modes, reference, seeds, repeats, jobs, out, set);
+      CompareRequest(scenario, modes, stacks, reference, seeds, repeats, jobs, out, set);
   CallText call("compare");
-  call.Positional(scenario).Keyword("modes", modes).Keyword("reference", py::str(reference));
+  call.Positional(scenario).Keyword("modes", modes).Keyword("stacks", stacks);
+  call.Keyword("reference", py::str(reference));
   call.Keyword("seeds", seeds).Keyword("repeats", repeats).Keyword("jobs", jobs);
   call.Keyword("out", request.out).Keyword("set", set);
   PythonProgress progress(progress_arg);
@@ -85,13 +88,14 @@ void BindCompare(py::module_& m) {
         return "ComparisonResult(out='" + r.out.string() + "')";
       });
   m.def("compare", &Compare, py::arg("scenario"), py::kw_only(), py::arg("modes") = py::none(),
-        py::arg("reference") = "consistent", py::arg("seeds") = 5, py::arg("repeats") = py::none(),
+        py::arg("stacks") = py::none(), py::arg("reference") = "consistent", py::arg("seeds") = 5, py::arg("repeats") = py::none(),
         py::arg("jobs") = 0, py::arg("out") = py::none(), py::arg("set") = py::none(),
         py::arg("report") = true, py::arg("progress") = py::none(),
         "`retrace compare`: the map modes over `seeds` scenario seeds (seed, seed + 1, ...; at "
         "least 2), paired, with 95 % confidence intervals, written to `out` (default "
         "results/compare/<scenario name>). modes: None or 'all' (every mode), a str or a list. "
-        "Returns a ComparisonResult.");
+        "stacks: playback.stack names to put side by side in every mode (a str or a list; "
+        "None: the scenario's). Returns a ComparisonResult.");
 }
 
 }  // namespace retrace::python

@@ -18,6 +18,12 @@ void AddCompareOptions(CLI::App* command, CompareOptions* options) {
       ->default_str("all");
   command->add_option("--reference", request.reference, "The mode the others are compared against")
       ->default_str("consistent");
+  command
+      ->add_option("--stacks", request.stacks,
+                   "Navigation stacks to put side by side (playback.stack names), each in every "
+                   "mode on the same seeds; the reference is the first stack's (default: the "
+                   "scenario's stack)")
+      ->delimiter(',');
   command->add_option("--seeds", request.seeds, "Scenario seeds (seed, seed + 1, ...), at least 2")
       ->default_str("5");
   command

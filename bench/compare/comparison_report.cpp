@@ -19,6 +19,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string ModeName(MapMode mode) { return std::string(core::EnumName(mode)); }
 
+// The reference column's name.
+std::string ReferenceName(const Comparison& c) { return c.input.Label(c.reference_index); }
+
 nlohmann::json IntervalJson(const MeanInterval& m) {
   return {{"n", m.n},
           {"mean", io::JsonNumber(m.mean)},
@@ -147,6 +150,10 @@ double ComparedValue(const ComparedMetric& metric, MapMode mode,
   return value->second / divisor->second;
 }
 
+std::string ComparisonInput::Label(std::size_t m) const {
+  return m < labels.size() ? labels[m] : ModeName(modes[m]);
+}
+
 Comparison Compare(ComparisonInput input) {
   const std::size_t n_modes = input.modes.size();
   const std::size_t n_seeds = input.seeds.size();
@@ -209,7 +216,7 @@ nlohmann::json ComparisonJson(const Comparison& c) {
   j["seeds"] = in.seeds;
   j["repeats"] = in.repeats;
   j["confidence"] = kComparisonConfidence;
-  j["reference"] = ModeName(in.reference);
+  j["reference"] = ReferenceName(c);
   j["metrics"] = nlohmann::json::array();
   for (const MetricComparison& row : c.metrics) {
     j["metrics"].push_back({{"key", row.metric.key},
@@ -237,7 +244,7 @@ nlohmann::json ComparisonJson(const Comparison& c) {
       }
       mode[row.metric.key] = std::move(value);
     }
-    j["modes"][ModeName(in.modes[m])] = std::move(mode);
+    j["modes"][in.Label(m)] = std::move(mode);
   }
   return j;
 }
@@ -247,7 +254,7 @@ namespace {
 // What was run and how to read the table: seeds, runs, the intervals, the differences.
 void WriteMarkdownIntro(std::ostringstream& md, const Comparison& c) {
   const ComparisonInput& in = c.input;
-  const std::string ref = ModeName(in.reference);
+  const std::string ref = ReferenceName(c);
   const std::size_t n_seeds = in.seeds.size();
   md << "## Map modes compared: " << in.scenario_name << "\n\n";
   md << n_seeds << " seeds × " << in.repeats << " playback run" << (in.repeats == 1 ? "" : "s")
@@ -273,12 +280,12 @@ void WriteMarkdownIntro(std::ostringstream& md, const Comparison& c) {
 // reference and ratio to it.
 void WriteMarkdownTable(std::ostringstream& md, const Comparison& c) {
   const ComparisonInput& in = c.input;
-  const std::string ref = ModeName(in.reference);
+  const std::string ref = ReferenceName(c);
   md << "| metric | unit |";
-  for (MapMode mode : in.modes) md << " " << ModeName(mode) << " |";
+  for (std::size_t m = 0; m < in.modes.size(); ++m) md << " " << in.Label(m) << " |";
   for (std::size_t m = 0; m < in.modes.size(); ++m) {
     if (m == c.reference_index) continue;
-    md << " " << ModeName(in.modes[m]) << " − " << ref << " | " << ModeName(in.modes[m]) << " / "
+    md << " " << in.Label(m) << " − " << ref << " | " << in.Label(m) << " / "
        << ref << " |";
   }
   md << "\n|---|---|";
@@ -307,11 +314,11 @@ void WriteMarkdownTable(std::ostringstream& md, const Comparison& c) {
 // reference.
 void WriteMarkdownFindings(std::ostringstream& md, const Comparison& c) {
   const ComparisonInput& in = c.input;
-  const std::string ref = ModeName(in.reference);
+  const std::string ref = ReferenceName(c);
   md << "\nRun outcomes (" << in.seeds.size() * static_cast<std::size_t>(in.repeats)
      << " runs per mode):";
   for (std::size_t m = 0; m < in.modes.size(); ++m) {
-    md << (m ? ";" : "") << " " << ModeName(in.modes[m]) << " " << OutcomeText(c.outcomes[m]);
+    md << (m ? ";" : "") << " " << in.Label(m) << " " << OutcomeText(c.outcomes[m]);
   }
   md << ".\n\n";
   for (std::size_t m = 0; m < in.modes.size(); ++m) {
@@ -323,7 +330,7 @@ void WriteMarkdownFindings(std::ostringstream& md, const Comparison& c) {
                      Format(row.vs_reference[m]->difference.mean, true) + " " + row.metric.unit +
                      ")";
     }
-    md << "Significant differences, " << ModeName(in.modes[m]) << " − " << ref << ": "
+    md << "Significant differences, " << in.Label(m) << " − " << ref << ": "
        << (significant.empty() ? "none" : significant) << ".\n";
   }
 }
@@ -362,7 +369,7 @@ viz::ComparisonFigureData ComparisonFigure(const Comparison& c) {
                   " per mode; mean and 95% CI over seeds)";
   for (std::size_t m = 0; m < c.input.modes.size(); ++m) {
     viz::ModeMetrics mode;
-    mode.mode = ModeName(c.input.modes[m]);
+    mode.mode = c.input.Label(m);
     for (const MetricComparison& row : c.metrics) {
       const MeanInterval& s = row.summary[m];
       mode.metrics.push_back(

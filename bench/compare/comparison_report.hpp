@@ -52,8 +52,17 @@ struct ComparisonInput {
   double wall_time_s = 0.0;
   std::vector<std::uint64_t> seeds;  ///< scenario seed of each teaching drive
   int repeats = 0;                   ///< playback runs per mode and seed
+  /// The compared columns' map modes (a mode repeats when several stacks are compared).
   std::vector<MapMode> modes;
-  MapMode reference = MapMode::kConsistent;  ///< must be one of `modes`
+  /// Per column its name: "mode", or "mode/stack" when several stacks are compared; empty: the
+  /// modes' names.
+  std::vector<std::string> labels;
+  /// must be one of `modes`; the reference column is its first (with several stacks, the
+  /// first stack's)
+  MapMode reference = MapMode::kConsistent;
+
+  /// Column m's name.
+  std::string Label(std::size_t m) const;
   /// flat[m][s]: FlatMetrics of the aggregate of modes[m] on seeds[s].
   std::vector<std::vector<std::map<std::string, double>>> flat;
 };

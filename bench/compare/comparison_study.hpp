@@ -17,6 +17,9 @@ namespace retrace::bench {
 struct ComparisonRequest {
   std::filesystem::path scenario;
   std::vector<std::string> modes = {"all"};  ///< mode names, or {"all"}
+  /// Stacks to put side by side (playback.stack names), each in every mode, on the same seeds;
+  /// empty: the scenario's own. The reference is the reference mode with the first stack.
+  std::vector<std::string> stacks;
   std::string reference = "consistent";
   int seeds = 5;                       ///< scenario seeds seed, seed + 1, ...; >= 2
   std::optional<int> repeats;          ///< playback runs per mode and seed; none: the scenario's

@@ -11,7 +11,9 @@ bad_command=(compare)
 bad_suffix=(--out "$tmp/study")
 
 expect_bad unknown-mode "--modes: unknown mode 'perfect'" "$small" --modes partial,perfect --seeds 2
-expect_bad one-mode "--modes: a comparison needs at least two modes" "$small" --modes partial --reference partial
+expect_bad one-mode "--modes: a comparison needs at least two modes (or two --stacks)" "$small" --modes partial --reference partial
+expect_bad unknown-stack "--stacks: unknown stack 'nope'; registered: odometry, retrace" "$small" --stacks retrace,nope --seeds 2
+expect_bad stack-twice "--stacks: 'retrace' is named twice" "$small" --stacks retrace,retrace --seeds 2
 expect_bad twice "--modes: mode 'partial' is given twice" "$small" --modes partial,partial,consistent
 expect_bad all-in-a-list "--modes: all means every mode; give it alone" "$small" --modes partial,all --seeds 2
 expect_bad reference-missing "--reference: mode 'consistent' is not among the compared modes" "$small" --modes partial,single

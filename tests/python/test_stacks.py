@@ -85,3 +85,16 @@ def test_a_python_stacks_mistakes_end_the_call_with_one_exception(tmp_path):
     with pytest.raises(ValueError, match="stack 'py_mute' takes no option 'sped'"):
         retrace.run(SMALL, modes="single", repeats=1, out=tmp_path / "o", progress=False,
                     set=["playback.stack=py_mute", "playback.stack_options.sped=1"])
+
+
+def test_compare_puts_a_python_stack_beside_retraces_on_the_same_seeds(tmp_path):
+    register_once("py_dead_reckoning", DeadReckoning, options={"speed": "0.5"})
+    result = retrace.compare(SMALL, modes="single", stacks=["retrace", "py_dead_reckoning"],
+                             reference="single", seeds=2, repeats=1, out=tmp_path / "c",
+                             progress=False, report=False)
+    assert sorted(result.data["modes"]) == ["single/py_dead_reckoning", "single/retrace"]
+    assert result.data["reference"] == "single/retrace"
+    assert "single/py_dead_reckoning − single/retrace" in result.markdown
+    with pytest.raises(ValueError, match="--stacks: 'retrace' is named twice"):
+        retrace.compare(SMALL, modes="single", stacks=["retrace", "retrace"], seeds=2,
+                        reference="single", out=tmp_path / "d", progress=False)
