@@ -1,5 +1,6 @@
 #include "bench/engine/stack_progress.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "core/check.hpp"
@@ -14,13 +15,22 @@ StackProgress::StackProgress(const nav::TeachBundle& bundle) {
   }
 }
 
+double StackProgress::EntryArc(const PathLine& line, const core::Vec2& p) {
+  if (line.points.empty()) return 0.0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const core::Vec2& q : line.points) nearest = std::min(nearest, (q - p).norm());
+  for (std::size_t i = 0; i < line.points.size(); ++i) {
+    if ((line.points[i] - p).norm() <= nearest + kEntryTolerance) return line.arc[i];
+  }
+  return 0.0;
+}
+
 double StackProgress::Remaining(std::size_t map, const core::Pose2& X_MR) {
   RETRACE_CHECK(map < lines_.size());
   const PathLine& line = lines_[map];
   if (map != map_ || !entered_) {
     progress_ = {};
-    const double inf = std::numeric_limits<double>::infinity();
-    progress_.MoveTo(core::ProjectOntoPath(line.points, line.arc, X_MR.translation(), 0.0, inf).s);
+    progress_.MoveTo(EntryArc(line, X_MR.translation()));
     entered_ = true;
     map_ = map;
   }
