@@ -90,7 +90,8 @@ const StackDescription& FindStack(const std::string& name) {
 
 void ValidateStackChoice(const std::string& name, const StackOptions& options) {
   const StackDescription& d = FindStack(name);
-  for (const auto& [key, value] : options) {
+  for (const auto& option : options) {
+    const std::string& key = option.first;
     const bool declared = std::any_of(d.options.begin(), d.options.end(),
                                       [&](const StackOption& o) { return o.name == key; });
     if (declared) continue;
