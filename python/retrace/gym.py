@@ -135,7 +135,7 @@ class TeachRepeatEnv(_Env):
                  personal_zone=1.2):
         if path_points < 1 or not path_spacing > 0 or not max_speed > 0 or not max_yaw_rate > 0:
             raise ValueError("path_points >= 1, path_spacing, max_speed and max_yaw_rate > 0")
-        unknown = set_of(reward or {}) - DEFAULT_REWARD.keys()
+        unknown = (reward or {}).keys() - DEFAULT_REWARD.keys()
         if unknown:
             raise ValueError(f"reward: unknown terms {sorted(unknown)}; "
                              f"expected some of {sorted(DEFAULT_REWARD)}")
@@ -265,7 +265,3 @@ class TeachRepeatEnv(_Env):
 
     def close(self):
         self._episode = None
-
-
-def set_of(mapping):
-    return set(mapping.keys())

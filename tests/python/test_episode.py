@@ -65,15 +65,15 @@ def test_teaching_hands_out_the_recording_and_the_taught_maps():
     assert teaching.lidar_mount.shape == (3,) and teaching.robot_radius > 0
 
 
-def test_a_stack_on_odometry_alone_is_scored_against_the_truth():
-    """Driving the taught path of each map on dead reckoning: the estimate is the odometry, its
-    error the drift, and the run is scored like any other."""
-    teaching = retrace.Teaching(SMALL, mode="single", progress=False)
+def drive_on_odometry(teaching, episode, on_observation=None):
+    """Drives map 0's taught path to its end on dead reckoning (the estimate is the odometry);
+    `on_observation` sees each observation first."""
     path = teaching.maps[0].path
-    episode = teaching.episode(0)
     pose, i = np.zeros(3), 0
     while not episode.done:
         observation = episode.observe()
+        if on_observation is not None:
+            on_observation(observation)
         if len(observation.odometry):
             pose = observation.odometry[-1, 1:]
         i = min(i + int(np.argmin(np.hypot(*(path[i:i + 30, :2] - pose[:2]).T))), len(path) - 1)
@@ -83,7 +83,15 @@ def test_a_stack_on_odometry_alone_is_scored_against_the_truth():
         at_end = i == len(path) - 1 and math.dist(pose[:2], path[-1, :2]) < 0.3
         episode.act(0.0 if at_end else 0.5, max(-1.0, min(1.0, 2.0 * bearing)), estimate=pose,
                     route_done=at_end)
-    metrics = episode.metrics()
+    return episode.metrics()
+
+
+def test_a_stack_on_odometry_alone_is_scored_against_the_truth():
+    """Driving the taught path of each map on dead reckoning: the estimate is the odometry, its
+    error the drift, and the run is scored like any other."""
+    teaching = retrace.Teaching(SMALL, mode="single", progress=False)
+    episode = teaching.episode(0)
+    metrics = drive_on_odometry(teaching, episode)
     assert metrics["outcome"] == "success"
     assert 0.0 < metrics["localization_error_m"]["rms"] < 1.0
     samples = episode.samples()
@@ -95,19 +103,9 @@ def test_a_python_stack_is_told_when_an_operator_hands_the_robot_back():
     after the operator hands it back says so, once (C++ stacks get NavigationStack::Resume)."""
     takeover = "events=[{action: takeover, at_route_s: 3, drive: [[6, 1], [8.5, 1]]}]"
     teaching = retrace.Teaching(SMALL, mode="single", set=[takeover], progress=False)
-    path = teaching.maps[0].path
-    episode = teaching.episode(0)
-    pose, i, handed_back = np.zeros(3), 0, []
-    while not episode.done:
-        observation = episode.observe()
-        handed_back.append(observation.handed_back)
-        if len(observation.odometry):
-            pose = observation.odometry[-1, 1:]
-        i = min(i + int(np.argmin(np.hypot(*(path[i:i + 30, :2] - pose[:2]).T))), len(path) - 1)
-        goal = path[min(i + 8, len(path) - 1)]
-        bearing = math.atan2(goal[1] - pose[1], goal[0] - pose[0]) - pose[2]
-        bearing = math.atan2(math.sin(bearing), math.cos(bearing))
-        episode.act(0.5, max(-1.0, min(1.0, 2.0 * bearing)), estimate=pose)
+    handed_back = []
+    drive_on_odometry(teaching, teaching.episode(0),
+                      lambda observation: handed_back.append(observation.handed_back))
     assert sum(handed_back) == 1 and handed_back.index(True) > 10
 
 
