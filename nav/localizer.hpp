@@ -38,7 +38,7 @@ namespace retrace::nav {
 /// quantiles (k + 1/2) / K of the cumulative weights (no random numbers), each distinct particle
 /// weighted by how often it was drawn: the ray casts, most of an update's cost, then no longer
 /// grow with the particle count. Off by default: on the campus, 100 made the localizer get lost
-/// more often, even when used only while the belief was concentrated (docs/METHOD.md).
+/// more often, even when used only while the belief was concentrated (docs/HISTORY.md).
 struct DynamicRejectionConfig {
   bool enabled = true;
   double chi = 0.9;   ///< a beam is dynamic when its short-reading ratio exceeds chi
@@ -95,7 +95,7 @@ struct AugmentedMclConfig {
   /// rad, around the taught heading, or its reverse where the estimate faces back (a drive that
   /// follows the route backwards)
   double path_sigma_theta = 0.3;
-  /// m: only the taught poses this close to the estimate (the whole path when none is)
+  /// m: only the taught poses this close to the estimate (or as close as the nearest, when farther)
   double path_reach = 10.0;
   double reach_per_metre = 0.1;    ///< m of reach more per metre driven while lost
   int confirm_updates = 5;         ///< scans a trial must explain before it may win

@@ -1,6 +1,6 @@
 #pragma once
-// The end points of one scan as a measurement update weighs them (docs/METHOD.md, "Measurement
-// models"). Two models share this form:
+// The end points of one scan as a measurement update weighs them (docs/METHOD.md, "The
+// class-conditional measurement model"). Two models share this form:
 //
 //   paper               the beams eq. (9) kept, each weighed by the likelihood field (eq. 5-6):
 //                       log p_i = log p_lf(end_i)

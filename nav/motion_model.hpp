@@ -27,8 +27,9 @@ namespace retrace::nav {
 /// 1e-5, 1e-3, 1e-4) so that the particles also cover its systematic errors the filter does not
 /// model (1 % scale, 2.5e-4 wheel mismatch): per 0.2 m between updates, a distance std of
 /// 2.4 cm (the scale error: 2 mm) and a heading std of 0.21° (the mismatch: 0.006°). They are
-/// 0.7 times the earlier ones, from a sweep on real scans (docs/RESULTS.md, issue 40): a wider
-/// cloud drifts farther where most beams are rejected and locks onto the wrong place after.
+/// 0.7 times the earlier ones, from a sweep on real scans (docs/HISTORY.md, "Motion model
+/// (eq. 2)"): a wider cloud drifts farther where most beams are rejected and locks onto the wrong
+/// place after.
 struct MotionModelConfig {
   double alpha1 = 1.4e-3;       ///< rad²/rad: heading noise from rotation
   double alpha2 = 7e-5;         ///< rad²/m: heading noise from translation

@@ -3,8 +3,8 @@
 // scans much worse than it used to (w_fast < trigger_ratio · w_slow), the localizer does not
 // throw random particles into its belief, where one lucky fit over a single update can carry the
 // estimate tens of metres away. It starts a *trial*: a second, small particle filter whose
-// hypotheses lie where a repeating robot can be (near the estimate, and along the taught path of
-// the current map and the start of the next), moved by the same motion model and weighted by the
+// hypotheses lie where a repeating robot can be (near the estimate, and at the taught poses of the
+// maps the route graph reaches within max_sigma of it: RouteGraph::PosesInReach), moved by the same motion model and weighted by the
 // same beams. The two filters are compared by their evidence, the log of the belief-weighted
 // likelihood of each scan, summed over the updates since the trial began (a log Bayes factor).
 // Only when the trial has explained at least `confirm_updates` scans and beats the belief by

@@ -17,7 +17,7 @@
 // So a belief whose beams are all rejected, or end in space the map never saw, loses confidence
 // within hold_distance of driving; one that sees through mapped walls loses it within an update
 // or two; and one that the scans support regains it as fast. The defaults fit Intel's first lap
-// (docs/METHOD.md, "Reliability"): at poses within 0.3 m of the truth the explained share's
+// (docs/HISTORY.md, "Reliability"): at poses within 0.3 m of the truth the explained share's
 // median is 0.89 and its 5 % quantile 0.64; at poses more than 1 m off, its median is 0.4.
 
 #include "core/config.hpp"

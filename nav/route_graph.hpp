@@ -94,7 +94,8 @@ struct RouteLinkConfig {
   MapRegistrationConfig registration;
 };
 
-/// Searches the bundle's maps for revisits — every `spacing` m along each path, the places where
+/// Searches the bundle's maps for revisits — at most one every `spacing` m along each path (the
+/// next place tried `spacing`/2 on when one does not register), the places where
 /// it comes within revisit_radius (widened by the drift between the two visits) of an earlier
 /// map's path — and registers the maps at each; the accepted ones become bundle.revisits, and
 /// bundle.linked is set.

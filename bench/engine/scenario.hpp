@@ -77,12 +77,12 @@ struct RouteConfig {
   /// drift being online_drift times the distance driven since the map began, so a map is at
   /// most online_drift_budget / online_drift m of travel long (400 m by default). Must allow
   /// maps longer than switch_window; 0: no budget (maps end only before revisits).
-  /// docs/METHOD.md (online map switching) gives the sweep behind the default.
+  /// docs/HISTORY.md (online map switching) gives the sweep behind the default.
   double online_drift_budget = 12.0;
   /// `online`: m of expected drift over a loop (online_drift × the distance driven between two
   /// visits of a place) up to which a revisit is consistent and does not close the map; a
   /// revisit map is then at least revisit_tolerance / online_drift m long. 0: every revisit
-  /// closes the map. docs/METHOD.md (online map switching) gives the sweep behind the default.
+  /// closes the map. docs/HISTORY.md (online map switching) gives the sweep behind the default.
   double revisit_tolerance = 0.5;
   /// How well a scan at a switch point must constrain the pose (≈ end points constraining the
   /// weakest direction); below it the scenario gets a warning naming a better place nearby.

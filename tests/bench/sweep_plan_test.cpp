@@ -18,7 +18,8 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 using retrace::testing::kSource;
-const std::filesystem::path kFixture = kSource / "tests/data/sweep_small.yaml";
+const std::filesystem::path kFixture =
+    std::filesystem::path(RETRACE_SOURCE_DIR) / "tests/data/sweep_small.yaml";
 
 using SweepPlanTest = retrace::testing::TempDirTest;
 

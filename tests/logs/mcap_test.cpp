@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 using Buffer = std::vector<std::uint8_t>;
 using internal::ByteReader;
 
-const fs::path kBags = testing::kSource / "tests/data/rosbag2";
+const fs::path kBags = fs::path(RETRACE_SOURCE_DIR) / "tests/data/rosbag2";
 
 // A message as read, with copies of the views.
 struct Message {

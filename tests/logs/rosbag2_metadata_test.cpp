@@ -15,7 +15,7 @@ namespace rosbag2_metadata_test {
 
 namespace fs = std::filesystem;
 
-const fs::path kBags = retrace::testing::kSource / "tests" / "data" / "rosbag2";
+const fs::path kBags = fs::path(RETRACE_SOURCE_DIR) / "tests" / "data" / "rosbag2";
 
 TEST(Rosbag2Metadata, ReadsTheTalkerBags) {
   for (const char* storage : {"sqlite3", "mcap"}) {

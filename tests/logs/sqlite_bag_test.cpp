@@ -24,7 +24,7 @@ namespace sqlite_bag_test {
 
 namespace fs = std::filesystem;
 
-const fs::path kBags = retrace::testing::kSource / "tests" / "data" / "rosbag2";
+const fs::path kBags = fs::path(RETRACE_SOURCE_DIR) / "tests" / "data" / "rosbag2";
 
 struct Message {
   std::string topic;
