@@ -1,7 +1,10 @@
 #include "bench/engine/stack_registry.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -18,6 +21,23 @@ struct Registry {
   std::map<std::string, StackDescription> stacks;
 };
 
+// `text` read as a finite number (all of it), or nothing.
+std::optional<double> NumberOf(const std::string& text) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+// An option's text as a finite number, or core::ConfigError naming `key`.
+double ReadNumber(const std::string& key, const std::string& text) {
+  const std::optional<double> value = NumberOf(text);
+  if (!value) throw core::ConfigError(key, "'" + text + "' is not a number");
+  return *value;
+}
+
 void Add(Registry& r, StackDescription d) {
   if (d.name.empty()) throw core::ConfigError("stack", "a stack needs a name");
   if (!d.make) throw core::ConfigError("stack", "stack '" + d.name + "' has no factory");
@@ -26,6 +46,11 @@ void Add(Registry& r, StackDescription d) {
     if (!names.insert(o.name).second) {
       throw core::ConfigError("stack", "stack '" + d.name + "' declares option '" + o.name +
                                            "' twice");
+    }
+    if (o.kind == StackOption::Kind::kNumber && !NumberOf(o.default_value)) {
+      throw core::ConfigError("stack", "stack '" + d.name + "' gives option '" + o.name +
+                                           "' the default '" + o.default_value +
+                                           "', which is not a number");
     }
   }
   const std::string name = d.name;
@@ -64,6 +89,14 @@ std::string NameList(const Registry& r) {
 
 }  // namespace
 
+double StackContext::Number(const std::string& name) const {
+  const auto it = options.find(name);
+  if (it == options.end()) {
+    throw core::ConfigError("playback.stack_options." + name, "the stack declares no such option");
+  }
+  return ReadNumber("playback.stack_options." + name, it->second);
+}
+
 void RegisterStack(StackDescription description) {
   Registry& r = TheRegistry();
   const std::lock_guard lock(r.mutex);
@@ -100,6 +133,12 @@ void ValidateStackChoice(const std::string& name, const StackOptions& options) {
     throw core::ConfigError("stack_options." + key,
                             "stack '" + name + "' takes no option '" + key + "' (" +
                                 (known.empty() ? "it takes none" : "its options: " + known) + ")");
+  }
+  for (const StackOption& o : d.options) {
+    const auto given = options.find(o.name);
+    if (o.kind == StackOption::Kind::kNumber && given != options.end()) {
+      ReadNumber("stack_options." + o.name, given->second);
+    }
   }
 }
 

@@ -24,9 +24,13 @@ using StackOptions = std::map<std::string, std::string>;
 
 /// One option a stack takes.
 struct StackOption {
+  /// kNumber: its text must read as a finite number (StackContext::Number), checked with the
+  /// scenario, before anything runs.
+  enum class Kind { kText, kNumber };
   std::string name;
   std::string default_value;
   std::string help;
+  Kind kind = Kind::kText;
 };
 
 /// What a stack is built from for one playback run.
@@ -38,6 +42,10 @@ struct StackContext {
   int run = 0;
   core::Rng rng;        ///< the run's own randomness (PlaybackRng), for a stochastic stack
   StackOptions options;  ///< every declared option, given or default
+
+  /// Option `name` read as a finite number. Throws core::ConfigError naming
+  /// "playback.stack_options.<name>" when its text is not one (or the option is not declared).
+  double Number(const std::string& name) const;
 };
 
 using StackFactory = std::function<std::unique_ptr<NavigationStack>(const StackContext&)>;

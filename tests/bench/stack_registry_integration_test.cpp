@@ -38,7 +38,8 @@ class WrappedStack final : public NavigationStack {
 void RegisterWrappedStack() {
   static const bool done = [] {
     RegisterStack({"wrapped", "retrace's navigator behind a wrapper",
-                   {{"gain", "1.0", "unused"}, {"label", "none", "unused"}},
+                   {{"gain", "1.0", "unused", StackOption::Kind::kNumber},
+                    {"label", "none", "unused"}},
                    [](const StackContext& c) {
                      WrappedStack::seen = c.options;
                      return std::make_unique<WrappedStack>(c);
@@ -91,6 +92,39 @@ TEST(StackRegistry, WrongNamesAndOptionsAreRefusedNamingTheKey) {
                 .find("stack 'retrace' takes no option 'gain' (it takes none)"),
             std::string::npos);
   EXPECT_THROW(RegisterStack({"retrace", "again", {}, [](const StackContext&) {
+                                return std::unique_ptr<NavigationStack>();
+                              }}),
+               core::ConfigError);
+}
+
+TEST(StackRegistry, ANumberOptionIsCheckedWithTheScenarioAndReadByTheStack) {
+  RegisterWrappedStack();
+  const auto error_of = [](const std::vector<std::string>& overrides) {
+    try {
+      RegistryScenario(overrides);
+    } catch (const core::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (const std::string bad : {"fast", "2.5x", "nan", "inf"}) {
+    EXPECT_NE(error_of({"playback.stack=wrapped", "playback.stack_options.gain=" + bad})
+                  .find("playback.stack_options.gain: '" + bad + "' is not a number"),
+              std::string::npos)
+        << bad;
+  }
+  EXPECT_EQ(error_of({"playback.stack=wrapped", "playback.stack_options.gain=-2e-1",
+                      "playback.stack_options.label=x"}),
+            "");
+  const Scenario scenario = RegistryScenario({"playback.stack=wrapped"});
+  const nav::TeachBundle bundle;
+  StackContext context{scenario, bundle, 0, core::Rng(1), {{"gain", "-2e-1"}, {"label", "x"}}};
+  EXPECT_EQ(context.Number("gain"), -0.2);
+  EXPECT_THROW(context.Number("label"), core::ConfigError);
+  EXPECT_THROW(context.Number("nope"), core::ConfigError);
+  // A stack whose own default is not a number is refused when it registers.
+  EXPECT_THROW(RegisterStack({"bad_default", "", {{"k", "one", "", StackOption::Kind::kNumber}},
+                              [](const StackContext&) {
                                 return std::unique_ptr<NavigationStack>();
                               }}),
                core::ConfigError);
