@@ -38,6 +38,8 @@ py::list ScanList(const std::vector<core::LaserScan>& scans) {
   return list;
 }
 
+const core::LaserScan& LaserScanOf(const py::handle& scan) { return scan.cast<const Scan&>().scan; }
+
 void BindScan(py::module_& m) {
   py::class_<Scan>(m, "Scan", "One LiDAR scan, in the LiDAR frame L.")
       .def_property_readonly(

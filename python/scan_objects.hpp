@@ -13,6 +13,9 @@ namespace retrace::python {
 /// The scans as a list of retrace.Scan (each one copied once, into its Scan).
 pybind11::list ScanList(const std::vector<core::LaserScan>& scans);
 
+/// The scan a retrace.Scan holds; pybind11::cast_error (TypeError) for anything else.
+const core::LaserScan& LaserScanOf(const pybind11::handle& scan);
+
 /// Binds retrace.Scan.
 void BindScan(pybind11::module_& m);
 

@@ -21,6 +21,7 @@
 #include "bench/engine/stack_registry.hpp"
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/native_stacks.hpp"
 #include "python/scan_objects.hpp"
 #include "python/taught_maps.hpp"
 
@@ -54,10 +55,32 @@ core::Pose2 PoseOf(const py::handle& value, const std::string& name) {
   return {v[0], v[1], v[2]};
 }
 
+// (from, to, X_MkR, X_MnR) from a Python answer's map_change, or a ConfigError.
+bench::MapChange MapChangeOf(const py::handle& value, const std::string& what) {
+  py::tuple t;
+  try {
+    t = value.cast<py::tuple>();
+  } catch (const py::cast_error&) {
+  }
+  if (t.size() != 4) {
+    throw core::ConfigError("answer", what + " answered a map_change that is not (from, to, "
+                                             "X_MkR, X_MnR)");
+  }
+  return {t[0].cast<std::size_t>(), t[1].cast<std::size_t>(), PoseOf(t[2], what),
+          PoseOf(t[3], what)};
+}
+
 class PythonStack final : public bench::NavigationStack {
  public:
-  PythonStack(std::string name, SharedObject stack)
-      : name_(std::move(name)), stack_(std::move(stack)) {}
+  // With the GIL: looks for a native stack to look inside (python/native_stacks.hpp).
+  PythonStack(std::string name, SharedObject stack, std::shared_ptr<bool> alive)
+      : name_(std::move(name)),
+        stack_(std::move(stack)),
+        alive_(std::move(alive)),
+        insight_(NativeInsight(*stack_)) {}
+  ~PythonStack() override { *alive_ = false; }  // its native stacks refuse further calls
+  PythonStack(const PythonStack&) = delete;
+  PythonStack& operator=(const PythonStack&) = delete;
 
   void OnOdometry(double t, const core::OdometryDelta& d) override {
     Call("on_odometry", [&] { stack_->attr("on_odometry")(t, d.distance, d.dtheta); });
@@ -82,6 +105,7 @@ class PythonStack final : public bench::NavigationStack {
     if (!has) return std::nullopt;
     return std::exchange(out->map_change, std::nullopt);
   }
+  const bench::StackInsight* insight() const override { return insight_; }
 
  private:
   // Calls into Python with the GIL; a Python exception becomes one core::Error.
@@ -99,7 +123,8 @@ class PythonStack final : public bench::NavigationStack {
   }
 
   // The answer of on_control_tick or resume: a dict with v, omega and estimate (required), map,
-  // lost, off_map, route_done (optional); a change of map is recorded as a map change.
+  // lost, off_map, route_done, modified, blocked, emergency_stop and map_change (optional); a
+  // change of map without map_change is recorded as a change from the last estimate.
   bench::StackOutput Output(const py::object& answer) {
     const std::string what = "stack '" + name_ + "'";
     if (!py::isinstance<py::dict>(answer)) {
@@ -120,7 +145,19 @@ class PythonStack final : public bench::NavigationStack {
     out.lost = d.contains("lost") && d["lost"].cast<bool>();
     out.off_map = d.contains("off_map") && d["off_map"].cast<bool>();
     out.route_done = d.contains("route_done") && d["route_done"].cast<bool>();
-    if (out.map != map_) out.map_change = bench::MapChange{map_, out.map, X_MR_, out.X_MR};
+    out.drive.modified = d.contains("modified") && d["modified"].cast<bool>();
+    out.drive.blocked = d.contains("blocked") && d["blocked"].cast<bool>();
+    out.drive.emergency_stop = d.contains("emergency_stop") && d["emergency_stop"].cast<bool>();
+    if (d.contains("map_change")) {
+      out.map_change = MapChangeOf(d["map_change"], what);
+      if (out.map_change->to != out.map) {
+        throw core::ConfigError("answer", what + " answered a map_change into map " +
+                                              std::to_string(out.map_change->to) + " in map " +
+                                              std::to_string(out.map));
+      }
+    } else if (out.map != map_) {
+      out.map_change = bench::MapChange{map_, out.map, X_MR_, out.X_MR};
+    }
     map_ = out.map;
     X_MR_ = out.X_MR;
     return out;
@@ -128,13 +165,17 @@ class PythonStack final : public bench::NavigationStack {
 
   std::string name_;
   SharedObject stack_;
+  std::shared_ptr<bool> alive_;
+  const bench::StackInsight* insight_;
   std::size_t map_ = 0;
   core::Pose2 X_MR_;
 };
 
-// What the factory is given: the taught maps, the robot, the run and the options.
-py::dict ContextOf(const bench::StackContext& c) {
+// What the factory is given: the taught maps, the robot, the run, the options and the maker of
+// native stacks for this run.
+py::dict ContextOf(const bench::StackContext& c, std::shared_ptr<const bool> alive) {
   py::dict d;
+  d["native"] = NativeStackMaker(c, std::move(alive));
   d["maps"] = TaughtMapList(c.bundle);
   d["robot_radius"] = c.scenario.robot.radius;
   const core::Pose2& X_RL = c.scenario.robot.X_RL;
@@ -161,8 +202,9 @@ void RegisterPythonStack(const std::string& name, const py::object& factory,
   const SharedObject shared = Share(factory);
   d.make = [name, shared](const bench::StackContext& c) -> std::unique_ptr<bench::NavigationStack> {
     const py::gil_scoped_acquire gil;
+    auto alive = std::make_shared<bool>(true);
     try {
-      return std::make_unique<PythonStack>(name, Share((*shared)(ContextOf(c))));
+      return std::make_unique<PythonStack>(name, Share((*shared)(ContextOf(c, alive))), alive);
     } catch (py::error_already_set& e) {
       throw core::Error("stack '" + name + "', factory: " + e.what());
     }
@@ -179,11 +221,15 @@ void BindStacks(py::module_& m) {
         "Registers a navigation stack written in Python under `name`, for playback.stack in "
         "any scenario this interpreter runs (retrace.run, compare, sweep). factory(context) "
         "returns the stack for one run; context: {'maps' [TaughtMap], 'robot_radius', "
-        "'lidar_mount', 'control_rate_hz', 'run', 'seed', 'options'}. The stack has "
+        "'lidar_mount', 'control_rate_hz', 'run', 'seed', 'options', 'native'}. The stack has "
         "on_odometry(t, distance, dtheta), on_scan(scan), on_control_tick(t, dt) -> {'v', "
-        "'omega', 'estimate' (x, y, yaw) in map 'map''s frame, 'map', 'lost', 'route_done'} and "
-        "optionally resume() -> the same, when an operator hands the robot back. options: "
-        "{name: default} of playback.stack_options it takes.");
+        "'omega', 'estimate' (x, y, yaw) in map 'map''s frame, 'map', 'lost', 'off_map', "
+        "'route_done', 'modified', 'blocked', 'emergency_stop', 'map_change'} (v, omega and "
+        "estimate required) and optionally resume() -> the same, when an operator hands the "
+        "robot back. context['native'](name) makes a registered C++ stack for the same run "
+        "(NativeStack); kept as the stack's attribute 'native', the harness scores inside it. "
+        "options: {name: default} of playback.stack_options it takes.");
+  BindNativeStack(m);
   m.def("registered_stacks", &bench::RegisteredStacks, "The names playback.stack may take.");
 }
 

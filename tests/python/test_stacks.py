@@ -98,3 +98,55 @@ def test_compare_puts_a_python_stack_beside_retraces_on_the_same_seeds(tmp_path)
     with pytest.raises(ValueError, match="--stacks: 'retrace' is named twice"):
         retrace.compare(SMALL, modes="single", stacks=["retrace", "retrace"], seeds=2,
                         reference="single", out=tmp_path / "d", progress=False)
+
+
+class WrappedBuiltin:
+    """retrace's own navigator driven from Python: every call passed on, every answer passed
+    back, the native stack kept as `native` (so the harness scores inside it as well)."""
+
+    made = []
+
+    def __init__(self, context):
+        self.native = context["native"]("retrace")
+        WrappedBuiltin.made.append(self.native)
+
+    def on_odometry(self, t, distance, dtheta):
+        self.native.on_odometry(t, distance, dtheta)
+
+    def on_scan(self, scan):
+        self.native.on_scan(scan)
+
+    def on_control_tick(self, t, dt):
+        return self.native.on_control_tick(t, dt)
+
+    def resume(self):
+        return self.native.resume()
+
+
+def without_timings(metrics):
+    """metrics.json without what the clock measured (the CPU block of the aggregate and runs)."""
+    if isinstance(metrics, dict):
+        return {k: without_timings(v) for k, v in metrics.items() if k != "cpu"}
+    if isinstance(metrics, list):
+        return [without_timings(v) for v in metrics]
+    return metrics
+
+
+def test_the_builtin_stack_wrapped_in_python_runs_as_retrace_run_to_the_bit(tmp_path):
+    register_once("py_wrapped_retrace", WrappedBuiltin)
+    for stack in ("retrace", "py_wrapped_retrace"):
+        retrace.run(SMALL, modes="all", seed=3, out=tmp_path / stack, progress=False,
+                    set=f"playback.stack={stack}", figures=False, report=False)
+    native, wrapped = tmp_path / "retrace", tmp_path / "py_wrapped_retrace"
+    runs = sorted(p.relative_to(native) for p in native.glob("*/runs/*/*") if p.is_file())
+    assert len(runs) >= 4 * 2 * 5  # four modes, their runs, each run's trajectories and events
+    for name in runs:
+        assert (native / name).read_bytes() == (wrapped / name).read_bytes(), name
+    for mode in ("single", "partial", "scan_matched", "consistent"):
+        ours = read_json(native / mode / "metrics.json")
+        assert "dynamic_points" in ours["aggregate"]  # scored inside the native stack too
+        assert without_timings(read_json(wrapped / mode / "metrics.json")) == without_timings(ours)
+    # A native stack serves only the run it was made for.
+    with pytest.raises(RuntimeError, match="native stack 'retrace': the run it was made for has "
+                                           "ended"):
+        WrappedBuiltin.made[-1].on_odometry(0.0, 0.1, 0.0)
