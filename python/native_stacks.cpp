@@ -28,8 +28,8 @@ py::dict AnswerOf(const bench::StackOutput& out, const std::optional<bench::MapC
   d["blocked"] = out.drive.blocked;
   d["emergency_stop"] = out.drive.emergency_stop;
   if (change) {
-    d["map_change"] =
-        py::make_tuple(change->from, change->to, PoseTuple(change->X_MkR), PoseTuple(change->X_MnR));
+    d["map_change"] = py::make_tuple(change->from, change->to, PoseTuple(change->X_MkR),
+                                     PoseTuple(change->X_MnR));
   }
   return d;
 }
