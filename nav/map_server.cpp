@@ -84,8 +84,7 @@ MapDecision MapServer::Decide(const FollowerOutput& f, const RoutePosition& pos,
   // was: it counts while the robot is at the end).
   const double length = current().path.Length();
   const bool tracked_end = pos.on_path && pos.s_extended >= length - kPathEndTolerance;
-  const bool follower_end = pos.s >= length - max_distance &&
-                            (f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path));
+  const bool follower_end = pos.s >= length - max_distance && AtPathEnd(f);
   if (pos.travel != Travel::kBackward && (tracked_end || follower_end)) {
     d.travel = Travel::kForward;
     if (!IsLast()) {

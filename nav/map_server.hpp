@@ -126,10 +126,6 @@ struct MapDecision {
 
 class MapServer {
  public:
-  /// The estimate counts as at the end of its path within this much arc length of it (m), or
-  /// when the follower says its goal is reached.
-  static constexpr double kPathEndTolerance = 0.05;
-
   /// Takes the teach bundle (its revisits are searched for here with `link` if it was never
   /// linked, nav::LinkRoute; link.drift is the graph's drift). `loop`: the route is driven again
   /// after its last map, as a log that goes round a loop lap after lap, when its last path ends,

@@ -120,6 +120,16 @@ struct FollowerOutput {
   bool off_path = false;
 };
 
+/// A path's end counts as reached within this much arc length of it (m).
+inline constexpr double kPathEndTolerance = 0.05;
+
+/// The follower is at the end of its path: its goal reached, or on the path within
+/// kPathEndTolerance of the end. The map server's rule for a path's end (eq. 1) and any stack
+/// that replays the taught paths share it.
+inline bool AtPathEnd(const FollowerOutput& f) {
+  return f.goal_reached || (f.remaining <= kPathEndTolerance && !f.off_path);
+}
+
 /// Follows a path given in the current map frame M from the localizer's pose estimates.
 class PathFollower {
  public:

@@ -24,8 +24,7 @@ void OdometryStack::OnScan(const core::LaserScan& scan) {
 StackOutput OdometryStack::OnControlTick(double /*t*/, double dt) {
   StackOutput out;
   nav::FollowerOutput follow = follower_.Compute(X_MR_, dt);
-  const bool at_end = follow.goal_reached ||
-                      (follow.remaining <= nav::MapServer::kPathEndTolerance && !follow.off_path);
+  const bool at_end = nav::AtPathEnd(follow);
   if (at_end && map_ + 1 < bundle_.maps.size()) {
     MapChange sw;
     sw.from = map_;

@@ -138,7 +138,7 @@ TEST(MapServer, DecidesOnTheEndOfThePathByGoalOrRemainingArc) {
   out.goal_reached = false;
   out.remaining = 0.2;
   EXPECT_EQ(DecideAt(server, out, X_MR, 2.0).step, MapStep::kStay);
-  out.remaining = MapServer::kPathEndTolerance;  // a log's estimate that passed the end
+  out.remaining = kPathEndTolerance;  // a log's estimate that passed the end
   EXPECT_EQ(DecideAt(server, out, X_MR, 2.0).step, MapStep::kSwitch);
   out.off_path = true;  // the progress is at the end, but the robot is elsewhere: on path 0
   EXPECT_EQ(DecideAt(server, out, X_MR, 2.0).step, MapStep::kStay);
