@@ -34,7 +34,18 @@ namespace retrace::python {
 namespace py = pybind11;
 namespace {
 
+using bench::OdometryIncrement;
 using bench::OdometryReading;
+
+// (N, 3) [t, distance, dtheta] of odometry increments.
+py::array_t<double> IncrementArray(const std::vector<OdometryIncrement>& increments) {
+  std::vector<double> values;
+  values.reserve(increments.size() * 3);
+  for (const OdometryIncrement& i : increments) {
+    values.insert(values.end(), {i.time, i.delta.distance, i.delta.dtheta});
+  }
+  return OwningArray(std::move(values), {static_cast<py::ssize_t>(increments.size()), 3});
+}
 
 // (N, 4) [t, x, y, yaw] of odometry readings.
 py::array_t<double> OdometryArray(const std::vector<OdometryReading>& readings) {
@@ -163,7 +174,7 @@ class Episode {
     }
     const bench::Observation& o = episode_->Observe();
     observed_ = true;
-    return {o.time, OdometryArray(o.odometry), ScanList(o.scans), o.handed_back};
+    return {o.time, IncrementArray(o.odometry), ScanList(o.scans), o.handed_back};
   }
 
   bool Act(const py::object& v, const py::object& omega, const py::object& estimate, int map,
@@ -319,8 +330,8 @@ void BindEpisodeTypes(py::module_& m) {
   py::class_<Observation>(m, "Observation", "What the sensors gave since the last step.")
       .def_readonly("time", &Observation::time, "s since the run started: the control tick's")
       .def_readonly("odometry", &Observation::odometry,
-                    "(K, 4) [t, x, y, yaw]: each odometry reading X_OR since the last step, in "
-                    "this run's odometry frame (the identity where the run started)")
+                    "(K, 3) [t, distance, dtheta]: each odometry increment since the last step, "
+                    "as every stack is given odometry (integrate_odometry adds one to a pose)")
       .def_readonly("scans", &Observation::scans, "[Scan] since the last step (often one or none)")
       .def_readonly("handed_back", &Observation::handed_back,
                     "an operator drove the robot (a scripted takeover: the answers were ignored "
@@ -435,6 +446,17 @@ py::list TaughtMapList(const nav::TeachBundle& bundle) {
 }
 
 void BindEpisodes(py::module_& m) {
+  m.def(
+      "integrate_odometry",
+      [](const py::object& pose, double distance, double dtheta) {
+        const std::vector<double> p = pose.cast<std::vector<double>>();
+        if (p.size() != 3) throw py::value_error("pose: (x, y, yaw)");
+        const core::Pose2 X = core::IntegrateOdometry({p[0], p[1], p[2]}, {distance, dtheta});
+        return py::make_tuple(X.x, X.y, X.theta);
+      },
+      py::arg("pose"), py::arg("distance"), py::arg("dtheta"),
+      "The pose (x, y, yaw) moved by one odometry increment, along the arc at the midpoint "
+      "heading: exactly as retrace's stacks and its simulated odometry integrate it.");
   BindScan(m);
   BindTeachingTypes(m);
   BindEpisodeTypes(m);

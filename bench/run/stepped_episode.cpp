@@ -54,8 +54,7 @@ class ObservingStack final : public NavigationStack {
   std::optional<StackAnswer> answer;
 
   void OnOdometry(double t, const core::OdometryDelta& delta) override {
-    X_OR_ = core::IntegrateOdometry(X_OR_, delta);
-    observation.odometry.push_back({t, X_OR_});
+    observation.odometry.push_back({t, delta});
     if (builtin_) builtin_->OnOdometry(t, delta);
   }
   void OnScan(const core::LaserScan& scan) override {
@@ -90,7 +89,6 @@ class ObservingStack final : public NavigationStack {
 
  private:
   std::unique_ptr<NavigationStack> builtin_;
-  core::Pose2 X_OR_;
   std::size_t map_ = 0;
   core::Pose2 X_MR_;
   bool handed_back_ = false;

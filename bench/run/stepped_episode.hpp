@@ -33,10 +33,17 @@ struct TeachingRequest {
   std::vector<std::string> overrides;  ///< a.b.c=value
 };
 
-/// An odometry reading: the wheel odometry's pose X_OR (its own frame O) at time t.
+/// An odometry reading: the wheel odometry's pose X_OR (its own frame O) at time t, as a log
+/// records it.
 struct OdometryReading {
   double time = 0.0;
   core::Pose2 X_OR;
+};
+
+/// An odometry increment at time t, as every stack is given odometry (NavigationStack::OnOdometry).
+struct OdometryIncrement {
+  double time = 0.0;
+  core::OdometryDelta delta;
 };
 
 /// The teaching drive, as a stack that builds its own maps sees it: every scan and odometry
@@ -71,7 +78,7 @@ AggregateMetrics AggregateSteppedRuns(const SteppedTeaching& teaching,
 /// What the sensors gave between two control ticks.
 struct Observation {
   double time = 0.0;  ///< s since the run started: the control tick's
-  std::vector<OdometryReading> odometry;
+  std::vector<OdometryIncrement> odometry;
   std::vector<core::LaserScan> scans;
   /// An operator drove the robot (a scripted takeover, ignoring the answers meanwhile) and
   /// handed it back at the last tick: where the stack is on the route is its to find again.

@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from ._retrace import Teaching
+from ._retrace import integrate_odometry as _integrate
 
 try:  # pragma: no cover - depends on the user's environment
     import gymnasium
@@ -188,10 +189,9 @@ class TeachRepeatEnv(_Env):
 
     def _observe(self):
         o = self._episode.observe()
-        for _, x, y, yaw in o.odometry.tolist():  # dead reckoning, one increment at a time
-            reading = (x, y, yaw)
-            self._pose = _compose(self._pose, _compose(_inverse(self._odom), reading))
-            self._odom = reading
+        for _, distance, dtheta in o.odometry.tolist():  # dead reckoning, increment by increment
+            self._pose = _integrate(self._pose, distance, dtheta)
+            self._odom = _integrate(self._odom, distance, dtheta)
         if o.scans:
             r = np.asarray(o.scans[-1].ranges, dtype=np.float32)
             self._scan = np.where(np.isfinite(r), np.minimum(r, self._range_max),

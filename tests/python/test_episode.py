@@ -74,8 +74,8 @@ def drive_on_odometry(teaching, episode, on_observation=None):
         observation = episode.observe()
         if on_observation is not None:
             on_observation(observation)
-        if len(observation.odometry):
-            pose = observation.odometry[-1, 1:]
+        for _, distance, dtheta in observation.odometry:  # dead reckoning
+            pose = np.array(retrace.integrate_odometry(pose, distance, dtheta))
         i = min(i + int(np.argmin(np.hypot(*(path[i:i + 30, :2] - pose[:2]).T))), len(path) - 1)
         goal = path[min(i + 8, len(path) - 1)]
         bearing = math.atan2(goal[1] - pose[1], goal[0] - pose[0]) - pose[2]
