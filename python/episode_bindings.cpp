@@ -79,7 +79,7 @@ struct Recording {
 struct TaughtMap {
   int index = 0;
   py::array_t<std::uint8_t> image;
-  py::array_t<double> log_odds;
+  py::object log_odds;  ///< (H, W) float64, or None: a map read from a teach folder's image
   double resolution = 0.0;
   py::tuple origin;
   py::array_t<double> path;
@@ -93,6 +93,26 @@ std::uint8_t TrinaryPixel(float log_odds) {
   const double p = core::InverseLogit(log_odds);
   if (p > thresholds.occupied_thresh) return 0;
   return p < thresholds.free_thresh ? 254 : 205;
+}
+
+// A TaughtMap built in Python (the results reader), its arrays' shapes checked.
+TaughtMap MakeTaughtMap(int index, const py::array_t<std::uint8_t>& image, double resolution,
+                        const std::pair<double, double>& origin, const py::array_t<double>& path,
+                        const py::array_t<double>& switch_pose, const py::object& log_odds) {
+  if (image.ndim() != 2) throw py::value_error("image: an (H, W) uint8 array");
+  if (!(resolution > 0.0)) throw py::value_error("resolution: m per cell, > 0");
+  if (path.ndim() != 2 || path.shape(1) != 3) throw py::value_error("path: an (N, 3) array");
+  if (switch_pose.ndim() != 1 || switch_pose.shape(0) != 3) {
+    throw py::value_error("switch_pose: (x, y, yaw)");
+  }
+  if (!log_odds.is_none()) {
+    const auto l = log_odds.cast<py::array_t<double>>();
+    if (l.ndim() != 2 || l.shape(0) != image.shape(0) || l.shape(1) != image.shape(1)) {
+      throw py::value_error("log_odds: None or an array of the image's shape");
+    }
+  }
+  return {index, image, log_odds, resolution, py::make_tuple(origin.first, origin.second), path,
+          switch_pose};
 }
 
 TaughtMap ToTaughtMap(int index, const nav::PartialMap& map) {
@@ -304,12 +324,19 @@ void BindTeachingTypes(py::module_& m) {
                     "odometry frame O")
       .def_readonly("reference", &Recording::reference,
                     "(N, 3) [x, y, yaw]: the ground truth X_WR at each odometry reading");
-  py::class_<TaughtMap>(m, "TaughtMap", "One map retrace taught, in its own frame M.")
+  py::class_<TaughtMap>(m, "TaughtMap",
+                        "One map retrace taught, in its own frame M: Teaching.maps, a Python "
+                        "stack's context['maps'] and load_results(...).modes[m].teach.maps.")
+      .def(py::init(&MakeTaughtMap), py::kw_only(), py::arg("index"), py::arg("image"),
+           py::arg("resolution"), py::arg("origin"), py::arg("path"), py::arg("switch_pose"),
+           py::arg("log_odds") = py::none())
       .def_readonly("index", &TaughtMap::index, "k: the map's place on the route")
       .def_readonly("image", &TaughtMap::image,
                     "(H, W) uint8: 0 occupied, 254 free, 205 unknown, row 0 the lowest y (as "
                     "read_map)")
-      .def_readonly("log_odds", &TaughtMap::log_odds, "(H, W) float64: each cell's log-odds")
+      .def_readonly("log_odds", &TaughtMap::log_odds,
+                    "(H, W) float64: each cell's log-odds (None for a map read from a teach "
+                    "folder, whose image keeps only the three classes)")
       .def_readonly("resolution", &TaughtMap::resolution, "m per cell")
       .def_readonly("origin", &TaughtMap::origin, "(x, y) of the lower-left corner, m")
       .def_property_readonly(

@@ -47,7 +47,6 @@ from ._retrace import (  # noqa: F401  (the extension: docs/PYTHON.md)
 from .results import (  # noqa: F401
     Comparison,
     Localization,
-    Map,
     Mode,
     Results,
     Run,
@@ -65,5 +64,5 @@ __all__ = [
     "RunResult", "ModeResult", "SweepResult", "ComparisonResult", "LogResult", "LogInfo",
     "Progress", "RetraceWarning",
     "Teaching", "Episode", "Observation", "Recording", "TaughtMap", "Scan",
-    "Results", "Mode", "Run", "Teach", "Map", "Localization", "Sweep", "Comparison",
+    "Results", "Mode", "Run", "Teach", "Localization", "Sweep", "Comparison",
 ]

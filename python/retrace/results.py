@@ -24,32 +24,6 @@ def _optional(path, read):
     return read(path) if path.exists() else None
 
 
-class Map:
-    """One occupancy map of a teach folder (maps/ogm_<k>.yaml and its image).
-
-    image: (H, W) uint8, 0 occupied, 254 free, 205 unknown, row 0 the lowest y (draw it with
-    ``imshow(m.image, origin="lower", extent=m.extent, cmap="gray")``); resolution: m per cell;
-    origin: (x, y) of the lower-left corner in the map's frame.
-    """
-
-    def __init__(self, yaml):
-        self.path = pathlib.Path(yaml)
-        data = _retrace.read_map(self.path)
-        self.image = data["image"]
-        self.resolution = data["resolution"]
-        self.origin = data["origin"]
-
-    @property
-    def extent(self):
-        """(left, right, bottom, top) in m, for matplotlib's imshow."""
-        height, width = self.image.shape
-        x, y = self.origin
-        return (x, x + width * self.resolution, y, y + height * self.resolution)
-
-    def __repr__(self):
-        return f"Map('{self.path}', {self.image.shape[1]}x{self.image.shape[0]} cells)"
-
-
 class Teach:
     """A teach folder (<mode>/teach): the partial maps, their taught paths, the drive's truth."""
 
@@ -63,8 +37,15 @@ class Teach:
 
     @functools.cached_property
     def maps(self):
-        """[Map] in map order."""
-        return [Map(self.path / "maps" / f"ogm_{k}.yaml") for k in range(self.count)]
+        """[TaughtMap] in map order: each map (maps/ogm_<k>.yaml and its image) with its taught
+        path and switch pose; log_odds is None (the image keeps only the three classes)."""
+        maps = []
+        for k in range(self.count):
+            grid = _retrace.read_map(self.path / "maps" / f"ogm_{k}.yaml")
+            maps.append(_retrace.TaughtMap(
+                index=k, image=grid["image"], resolution=grid["resolution"],
+                origin=grid["origin"], path=self.paths[k], switch_pose=self.switch_poses[k]))
+        return maps
 
     @functools.cached_property
     def paths(self):

@@ -38,6 +38,14 @@ def test_a_teach_folder_has_uint8_maps_and_taught_paths(small_runs):
         assert right - left == pytest.approx(grid.image.shape[1] * grid.resolution)
     for path in teach.paths:
         assert path.shape[1] == 3 and len(path) > 2
+    # One class for a taught map: the one a stepped Teaching hands out, path and switch pose in.
+    for k, grid in enumerate(teach.maps):
+        assert isinstance(grid, retrace.TaughtMap) and grid.index == k and grid.log_odds is None
+        np.testing.assert_array_equal(grid.path, teach.paths[k])
+        np.testing.assert_array_equal(grid.switch_pose, teach.switch_poses[k])
+    with pytest.raises(ValueError, match="path: an"):
+        retrace.TaughtMap(index=0, image=teach.maps[0].image, resolution=0.1, origin=(0, 0),
+                          path=np.zeros((3, 2)), switch_pose=np.zeros(3))
     # Each map's path ends at its switch pose.
     np.testing.assert_allclose(teach.paths[0][-1], teach.switch_poses[0], atol=1e-6)
     assert teach.gt.shape[1] == 4 and teach.odom.shape == teach.gt.shape
