@@ -55,6 +55,16 @@ Scenario RegistryScenario(const std::vector<std::string>& overrides = {}) {
   return LoadScenario(retrace::testing::kSource / "scenarios/small.yaml", parsed);
 }
 
+// The message loading the small scenario with `overrides` fails with ("": it loads).
+std::string RegistryError(const std::vector<std::string>& overrides) {
+  try {
+    RegistryScenario(overrides);
+  } catch (const core::ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(StackRegistry, ARegisteredStackDrivesTheRunsByNameWithItsOptions) {
   RegisterWrappedStack();
   const Scenario plain = RegistryScenario();
@@ -72,23 +82,15 @@ TEST(StackRegistry, ARegisteredStackDrivesTheRunsByNameWithItsOptions) {
 
 TEST(StackRegistry, WrongNamesAndOptionsAreRefusedNamingTheKey) {
   RegisterWrappedStack();
-  const auto error_of = [](const std::vector<std::string>& overrides) {
-    try {
-      RegistryScenario(overrides);
-    } catch (const core::ConfigError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  EXPECT_NE(error_of({"playback.stack=nope"})
+  EXPECT_NE(RegistryError({"playback.stack=nope"})
                 .find("playback.stack: unknown stack 'nope'; registered: odometry, retrace, "
                       "wrapped"),
             std::string::npos);
-  EXPECT_NE(error_of({"playback.stack=wrapped", "playback.stack_options.gian=1"})
+  EXPECT_NE(RegistryError({"playback.stack=wrapped", "playback.stack_options.gian=1"})
                 .find("playback.stack_options.gian: stack 'wrapped' takes no option 'gian' (its "
                       "options: gain, label)"),
             std::string::npos);
-  EXPECT_NE(error_of({"playback.stack_options.gain=1"})
+  EXPECT_NE(RegistryError({"playback.stack_options.gain=1"})
                 .find("stack 'retrace' takes no option 'gain' (it takes none)"),
             std::string::npos);
   EXPECT_THROW(RegisterStack({"retrace", "again", {}, [](const StackContext&) {
@@ -99,21 +101,13 @@ TEST(StackRegistry, WrongNamesAndOptionsAreRefusedNamingTheKey) {
 
 TEST(StackRegistry, ANumberOptionIsCheckedWithTheScenarioAndReadByTheStack) {
   RegisterWrappedStack();
-  const auto error_of = [](const std::vector<std::string>& overrides) {
-    try {
-      RegistryScenario(overrides);
-    } catch (const core::ConfigError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
   for (const std::string bad : {"fast", "2.5x", "nan", "inf"}) {
-    EXPECT_NE(error_of({"playback.stack=wrapped", "playback.stack_options.gain=" + bad})
+    EXPECT_NE(RegistryError({"playback.stack=wrapped", "playback.stack_options.gain=" + bad})
                   .find("playback.stack_options.gain: '" + bad + "' is not a number"),
               std::string::npos)
         << bad;
   }
-  EXPECT_EQ(error_of({"playback.stack=wrapped", "playback.stack_options.gain=-2e-1",
+  EXPECT_EQ(RegistryError({"playback.stack=wrapped", "playback.stack_options.gain=-2e-1",
                       "playback.stack_options.label=x"}),
             "");
   const Scenario scenario = RegistryScenario({"playback.stack=wrapped"});

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -371,6 +372,155 @@ TEST_P(McapRoundTrip, ReadsBackEveryMessageExactlyAcrossManyChunks) {
   EXPECT_GE(chunks, 8);
 }
 
+// The chunks and message indexes of a written file's data section, by their offsets.
+struct DataSection {
+  std::map<std::uint64_t, const Record*> chunk_at;
+  std::map<std::uint64_t, const Record*> index_at;
+  std::uint64_t indexed_messages = 0;
+};
+
+std::string_view CompressionName(McapCompression c) {
+  return c == McapCompression::kNone ? "" : c == McapCompression::kLz4 ? "lz4" : "zstd";
+}
+
+// A Chunk record: its time range, compression, and (uncompressed) size and CRC.
+void CheckChunk(const Record& r, McapCompression compression) {
+  ByteReader c(r.body);
+  const std::uint64_t start = c.U64(), end = c.U64(), size = c.U64();
+  const std::uint32_t crc = c.U32();
+  EXPECT_LE(start, end);
+  const std::string_view name = c.Chars(c.U32());
+  EXPECT_EQ(name, CompressionName(compression));
+  const std::span<const std::uint8_t> stored = c.Bytes(c.U64());
+  EXPECT_TRUE(c.AtEnd());
+  if (name.empty()) {
+    EXPECT_EQ(stored.size(), size);
+    EXPECT_EQ(crc, crc32_z(0, stored.data(), stored.size()));
+  }
+  EXPECT_NE(crc, 0u);
+}
+
+// Data: chunks, each followed by one Message Index per channel it holds; then Data End. *i is
+// the first record of the data section, and afterwards the first of the summary.
+DataSection CheckDataSection(const std::vector<Record>& records, std::size_t* i,
+                             McapCompression compression) {
+  DataSection data;
+  for (; records[*i].op != 0x0F; ++*i) {
+    const Record& r = records[*i];
+    if (r.op == 0x06) {
+      data.chunk_at[r.offset] = &r;
+      CheckChunk(r, compression);
+      continue;
+    }
+    EXPECT_EQ(r.op, 0x07) << "only chunks and message indexes in the data section";
+    data.index_at[r.offset] = &r;
+    ByteReader m(r.body);
+    m.U16();
+    const std::uint32_t length = m.U32();
+    EXPECT_EQ(length % 16, 0u);
+    data.indexed_messages += length / 16;
+  }
+  ByteReader data_end(records[*i].body);
+  EXPECT_EQ(data_end.U32(), 0u);
+  ++*i;
+  return data;
+}
+
+void CheckSchema(const Record& r) {
+  ByteReader s(r.body);
+  s.U16();
+  const std::string name(s.Chars(s.U32()));
+  EXPECT_EQ(s.Chars(s.U32()), "ros2msg");
+  EXPECT_EQ(s.Chars(s.U32()), RosMessageDefinition(name));
+}
+
+void CheckChannel(const Record& r) {
+  ByteReader c(r.body);
+  c.U16();
+  c.U16();
+  c.Chars(c.U32());
+  EXPECT_EQ(c.Chars(c.U32()), "cdr");
+  ByteReader metadata(c.Bytes(c.U32()));
+  EXPECT_EQ(metadata.Chars(metadata.U32()), "offered_qos_profiles");
+  EXPECT_EQ(metadata.Chars(metadata.U32()), "");
+}
+
+// The Statistics record of WriteSample's file: 200 scans on channel 1, 100 odometry on 2.
+void CheckStatistics(const Record& r, const std::vector<Message>& expected, std::size_t chunks) {
+  ByteReader s(r.body);
+  EXPECT_EQ(s.U64(), expected.size());  // messages
+  EXPECT_EQ(s.U16(), 2u);               // schemas
+  EXPECT_EQ(s.U32(), 2u);               // channels
+  EXPECT_EQ(s.U32(), 0u);               // attachments
+  EXPECT_EQ(s.U32(), 0u);               // metadata
+  EXPECT_EQ(s.U32(), chunks);           // chunks
+  EXPECT_EQ(s.U64(), static_cast<std::uint64_t>(expected.front().log_time_ns));
+  EXPECT_EQ(s.U64(), static_cast<std::uint64_t>(expected.back().log_time_ns));
+  ByteReader counts(s.Bytes(s.U32()));
+  EXPECT_EQ(counts.U16(), 1u);
+  EXPECT_EQ(counts.U64(), 200u);  // /scan
+  EXPECT_EQ(counts.U16(), 2u);
+  EXPECT_EQ(counts.U64(), 100u);  // /odom
+}
+
+// A Chunk Index: it points at a chunk of the data section and at that chunk's message indexes.
+void CheckChunkIndex(const Record& r, const DataSection& data) {
+  ByteReader c(r.body);
+  c.U64();
+  c.U64();
+  const std::uint64_t chunk_offset = c.U64(), chunk_length = c.U64();
+  ASSERT_EQ(data.chunk_at.count(chunk_offset), 1u);
+  const Record& chunk_record = *data.chunk_at.at(chunk_offset);
+  EXPECT_EQ(chunk_length, 9 + chunk_record.body.size());
+  ByteReader offsets(c.Bytes(c.U32()));
+  std::uint64_t index_bytes = 0;
+  while (!offsets.AtEnd()) {
+    const std::uint16_t channel = offsets.U16();
+    const std::uint64_t at = offsets.U64();
+    ASSERT_EQ(data.index_at.count(at), 1u);
+    ByteReader index(data.index_at.at(at)->body);
+    EXPECT_EQ(index.U16(), channel);
+    index_bytes += 9 + data.index_at.at(at)->body.size();
+  }
+  EXPECT_EQ(c.U64(), index_bytes);  // message_index_length
+  ByteReader chunk(chunk_record.body);
+  chunk.Skip(16);
+  const std::uint64_t uncompressed_size = chunk.U64();
+  chunk.U32();
+  EXPECT_EQ(c.Chars(c.U32()), chunk.Chars(chunk.U32()));  // compression
+  EXPECT_EQ(c.U64(), chunk.U64());                        // compressed_size
+  EXPECT_EQ(c.U64(), uncompressed_size);
+  EXPECT_TRUE(c.AtEnd());
+}
+
+using SummaryGroups = std::map<std::uint8_t, std::pair<std::uint64_t, std::uint64_t>>;
+
+// Summary: Schema, Channel, Statistics and Chunk Index records, grouped by opcode. Returns each
+// group's start and length; *i ends at the first Summary Offset.
+SummaryGroups CheckSummary(const std::vector<Record>& records, std::size_t* i,
+                           const DataSection& data, const std::vector<Message>& expected) {
+  SummaryGroups groups;  // op -> start, length
+  std::uint8_t previous = 0;
+  for (; records[*i].op != 0x0E; ++*i) {
+    const Record& r = records[*i];
+    if (r.op != previous) {
+      EXPECT_EQ(groups.count(r.op), 0u) << "records grouped by opcode";
+      groups[r.op] = {r.offset, 0};
+      previous = r.op;
+    }
+    groups[r.op].second += 9 + r.body.size();
+    switch (r.op) {
+      case 0x03: CheckSchema(r); break;
+      case 0x04: CheckChannel(r); break;
+      case 0x0B: CheckStatistics(r, expected, data.chunk_at.size()); break;
+      case 0x08: CheckChunkIndex(r, data); break;
+      default: ADD_FAILURE() << "unexpected opcode " << int{r.op} << " in the summary";
+    }
+  }
+  EXPECT_EQ(groups.size(), 4u);
+  return groups;
+}
+
 TEST_P(McapRoundTrip, WritesTheStructureTheSpecRequires) {
   const fs::path file = tmp_.path() / "out.mcap";
   const std::vector<Message> expected = WriteSample(file, GetParam(), 300, std::size_t{8} * 1024);
@@ -386,119 +536,13 @@ TEST_P(McapRoundTrip, WritesTheStructureTheSpecRequires) {
   EXPECT_EQ(header.Chars(header.U32()), "ros2");
   EXPECT_EQ(header.Chars(header.U32()), "retrace");
 
-  // Data: chunks, each followed by one Message Index per channel it holds; then Data End.
   std::size_t i = 1;
-  std::map<std::uint64_t, const Record*> chunk_at;
-  std::map<std::uint64_t, const Record*> index_at;
-  std::uint64_t indexed_messages = 0;
-  for (; records[i].op != 0x0F; ++i) {
-    const Record& r = records[i];
-    if (r.op == 0x06) {
-      chunk_at[r.offset] = &r;
-      ByteReader c(r.body);
-      const std::uint64_t start = c.U64(), end = c.U64(), size = c.U64();
-      const std::uint32_t crc = c.U32();
-      EXPECT_LE(start, end);
-      const std::string_view compression = c.Chars(c.U32());
-      EXPECT_EQ(compression, GetParam() == McapCompression::kNone  ? ""
-                             : GetParam() == McapCompression::kLz4 ? "lz4"
-                                                                   : "zstd");
-      const std::span<const std::uint8_t> stored = c.Bytes(c.U64());
-      EXPECT_TRUE(c.AtEnd());
-      if (compression.empty()) {
-        EXPECT_EQ(stored.size(), size);
-        EXPECT_EQ(crc, crc32_z(0, stored.data(), stored.size()));
-      }
-      EXPECT_NE(crc, 0u);
-    } else {
-      ASSERT_EQ(r.op, 0x07) << "only chunks and message indexes in the data section";
-      index_at[r.offset] = &r;
-      ByteReader m(r.body);
-      m.U16();
-      const std::uint32_t length = m.U32();
-      EXPECT_EQ(length % 16, 0u);
-      indexed_messages += length / 16;
-    }
-  }
-  EXPECT_EQ(indexed_messages, expected.size());
-  ByteReader data_end(records[i].body);
-  EXPECT_EQ(data_end.U32(), 0u);
-  ++i;
-
-  // Summary: Schema, Channel, Statistics, Chunk Index groups, then Summary Offsets, Footer.
+  const DataSection data = CheckDataSection(records, &i, GetParam());
+  EXPECT_EQ(data.indexed_messages, expected.size());
   const std::uint64_t summary_start = records[i].offset;
-  std::map<std::uint8_t, std::pair<std::uint64_t, std::uint64_t>> groups;  // op -> start, length
-  std::uint8_t previous = 0;
-  for (; records[i].op != 0x0E; ++i) {
-    const Record& r = records[i];
-    const std::uint64_t length = 9 + r.body.size();
-    if (r.op != previous) {
-      EXPECT_EQ(groups.count(r.op), 0u) << "records grouped by opcode";
-      groups[r.op] = {r.offset, 0};
-      previous = r.op;
-    }
-    groups[r.op].second += length;
-    if (r.op == 0x03) {
-      ByteReader s(r.body);
-      s.U16();
-      const std::string name(s.Chars(s.U32()));
-      EXPECT_EQ(s.Chars(s.U32()), "ros2msg");
-      EXPECT_EQ(s.Chars(s.U32()), RosMessageDefinition(name));
-    } else if (r.op == 0x04) {
-      ByteReader c(r.body);
-      c.U16();
-      c.U16();
-      c.Chars(c.U32());
-      EXPECT_EQ(c.Chars(c.U32()), "cdr");
-      ByteReader metadata(c.Bytes(c.U32()));
-      EXPECT_EQ(metadata.Chars(metadata.U32()), "offered_qos_profiles");
-      EXPECT_EQ(metadata.Chars(metadata.U32()), "");
-    } else if (r.op == 0x0B) {
-      ByteReader s(r.body);
-      EXPECT_EQ(s.U64(), expected.size());  // messages
-      EXPECT_EQ(s.U16(), 2u);               // schemas
-      EXPECT_EQ(s.U32(), 2u);               // channels
-      EXPECT_EQ(s.U32(), 0u);               // attachments
-      EXPECT_EQ(s.U32(), 0u);               // metadata
-      EXPECT_EQ(s.U32(), chunk_at.size());  // chunks
-      EXPECT_EQ(s.U64(), static_cast<std::uint64_t>(expected.front().log_time_ns));
-      EXPECT_EQ(s.U64(), static_cast<std::uint64_t>(expected.back().log_time_ns));
-      ByteReader counts(s.Bytes(s.U32()));
-      EXPECT_EQ(counts.U16(), 1u);
-      EXPECT_EQ(counts.U64(), 200u);  // /scan
-      EXPECT_EQ(counts.U16(), 2u);
-      EXPECT_EQ(counts.U64(), 100u);  // /odom
-    } else if (r.op == 0x08) {
-      ByteReader c(r.body);
-      c.U64();
-      c.U64();
-      const std::uint64_t chunk_offset = c.U64(), chunk_length = c.U64();
-      ASSERT_EQ(chunk_at.count(chunk_offset), 1u);
-      EXPECT_EQ(chunk_length, 9 + chunk_at[chunk_offset]->body.size());
-      ByteReader offsets(c.Bytes(c.U32()));
-      std::uint64_t index_bytes = 0;
-      while (!offsets.AtEnd()) {
-        const std::uint16_t channel = offsets.U16();
-        const std::uint64_t at = offsets.U64();
-        ASSERT_EQ(index_at.count(at), 1u);
-        ByteReader index(index_at[at]->body);
-        EXPECT_EQ(index.U16(), channel);
-        index_bytes += 9 + index_at[at]->body.size();
-      }
-      EXPECT_EQ(c.U64(), index_bytes);  // message_index_length
-      ByteReader chunk(chunk_at[chunk_offset]->body);
-      chunk.Skip(16);
-      const std::uint64_t uncompressed_size = chunk.U64();
-      chunk.U32();
-      EXPECT_EQ(c.Chars(c.U32()), chunk.Chars(chunk.U32()));  // compression
-      EXPECT_EQ(c.U64(), chunk.U64());                        // compressed_size
-      EXPECT_EQ(c.U64(), uncompressed_size);
-      EXPECT_TRUE(c.AtEnd());
-    } else {
-      ADD_FAILURE() << "unexpected opcode " << int{r.op} << " in the summary";
-    }
-  }
-  EXPECT_EQ(groups.size(), 4u);
+  SummaryGroups groups = CheckSummary(records, &i, data, expected);
+
+  // Summary Offsets (one per group), then the Footer.
   const std::uint64_t summary_offset_start = records[i].offset;
   for (; records[i].op == 0x0E; ++i) {
     ByteReader s(records[i].body);
@@ -736,8 +780,7 @@ TEST_F(McapWriterTest, RefusesAChunkDeclaringAHugeSize) {
                                  "the limit of 1073741824 at byte 33");
 }
 
-TEST_F(McapWriterTest, RefusesCorruptChunks) {
-  // A CRC that does not match.
+TEST_F(McapWriterTest, RefusesAChunkWhoseCrcDoesNotMatch) {
   const fs::path file = tmp_.path() / "crc.mcap";
   WriteSample(file, McapCompression::kNone, 3);
   Buffer bytes = FileBytes(file);
@@ -747,52 +790,69 @@ TEST_F(McapWriterTest, RefusesCorruptChunks) {
   WriteBytes(file, bytes);
   EXPECT_TRUE(Contains(ReadError(file), "chunk CRC mismatch: stored 0x")) << ReadError(file);
   EXPECT_TRUE(Contains(ReadError(file), " at byte " + std::to_string(chunk.offset)));
+}
 
-  // Compressed data that is cut short, or holds more than declared.
+// The only chunk of a file the writer compressed with `c`: its declared uncompressed size, its
+// compression's name and its compressed bytes.
+struct CompressedChunk {
+  std::uint64_t size = 0;
+  std::string compression;
+  Buffer data;
+};
+
+CompressedChunk WrittenChunk(const fs::path& file, McapCompression c) {
+  {
+    McapWriter w(file, c);
+    const std::uint16_t id = w.AddChannel("/y", "sensor_msgs/msg/LaserScan");
+    w.Write(id, 5, Buffer(300, 3));
+    w.Close();
+  }
+  const Buffer written = FileBytes(file);
+  ByteReader r(TopLevelRecords(written).at(1).body);
+  r.Skip(16);
+  CompressedChunk chunk;
+  chunk.size = r.U64();
+  r.U32();
+  chunk.compression = r.Chars(r.U32());
+  const std::span<const std::uint8_t> stored = r.Bytes(r.U64());
+  chunk.data.assign(stored.begin(), stored.end());
+  return chunk;
+}
+
+TEST_F(McapWriterTest, RefusesCompressedChunksCutShortMisdeclaredOrCorrupt) {
+  for (McapCompression c : {McapCompression::kLz4, McapCompression::kZstd}) {
+    const CompressedChunk chunk = WrittenChunk(tmp_.path() / "compressed.mcap", c);
+    const std::uint64_t size = chunk.size;
+    const std::string& compression = chunk.compression;
+    const Buffer& data = chunk.data;
+    // The file of one chunk holding `stored` and declaring `declared` uncompressed bytes.
+    const auto error = [&](const char* name, std::uint64_t declared, const Buffer& stored) {
+      Builder b = Start();
+      b.Record(0x06, ChunkRecord(declared, 0, compression, stored));
+      return ReadError(WriteBytes(tmp_.path() / name, Finish(b)));
+    };
+    EXPECT_TRUE(Contains(error("cut.mcap", size, Buffer(data.begin(), data.end() - 5)),
+                         "chunk: " + compression + " data"))
+        << compression;
+    EXPECT_TRUE(Contains(error("small.mcap", size - 10, data),
+                         "holds more than the declared " + std::to_string(size - 10) + " bytes"))
+        << compression;
+    EXPECT_TRUE(Contains(error("large.mcap", size + 10, data),
+                         "the chunk declares " + std::to_string(size + 10)))
+        << compression;
+    EXPECT_TRUE(Contains(error("garbage.mcap", size, Buffer(data.size(), 0xAB)),
+                         compression + " data corrupt"))
+        << compression;
+  }
+}
+
+TEST_F(McapWriterTest, RefusesAnUnknownCompressionAndAMisdeclaredPlainChunk) {
   Builder records;
   records.Record(0x03, SchemaRecord(1, "x/msg/Y"));
   records.Record(0x04, ChannelRecord(1, 1, "/y"));
   records.Record(0x05, MessageRecord(1, 5, Buffer(300, 3)));
   const Buffer plain = records.bytes();
-  const fs::path tmp = tmp_.path() / "compressed.mcap";
-  for (McapCompression c : {McapCompression::kLz4, McapCompression::kZstd}) {
-    // Compressed by the writer: the records of its only chunk.
-    {
-      McapWriter w(tmp, c);
-      const std::uint16_t id = w.AddChannel("/y", "sensor_msgs/msg/LaserScan");
-      w.Write(id, 5, Buffer(300, 3));
-      w.Close();
-    }
-    const Buffer written = FileBytes(tmp);
-    ByteReader r(TopLevelRecords(written).at(1).body);
-    r.Skip(16);
-    const std::uint64_t size = r.U64();
-    r.U32();
-    const std::string compression(r.Chars(r.U32()));
-    const std::span<const std::uint8_t> stored = r.Bytes(r.U64());
-    const Buffer data(stored.begin(), stored.end());
-
-    Builder cut = Start();
-    cut.Record(0x06, ChunkRecord(size, 0, compression, Buffer(data.begin(), data.end() - 5)));
-    EXPECT_TRUE(Contains(ReadError(WriteBytes(tmp_.path() / "cut.mcap", Finish(cut))),
-                         "chunk: " + compression + " data"))
-        << compression;
-    Builder small = Start();
-    small.Record(0x06, ChunkRecord(size - 10, 0, compression, data));
-    EXPECT_TRUE(Contains(ReadError(WriteBytes(tmp_.path() / "small.mcap", Finish(small))),
-                         "holds more than the declared " + std::to_string(size - 10) + " bytes"))
-        << compression;
-    Builder large = Start();
-    large.Record(0x06, ChunkRecord(size + 10, 0, compression, data));
-    EXPECT_TRUE(Contains(ReadError(WriteBytes(tmp_.path() / "large.mcap", Finish(large))),
-                         "the chunk declares " + std::to_string(size + 10)))
-        << compression;
-    Builder garbage = Start();
-    garbage.Record(0x06, ChunkRecord(size, 0, compression, Buffer(data.size(), 0xAB)));
-    EXPECT_TRUE(Contains(ReadError(WriteBytes(tmp_.path() / "garbage.mcap", Finish(garbage))),
-                         compression + " data corrupt"))
-        << compression;
-  }
+  const fs::path tmp = tmp_.path() / "plain.mcap";
   Builder unknown = Start();
   unknown.Record(0x06, ChunkRecord(plain.size(), 0, "brotli", plain));
   EXPECT_TRUE(Contains(ReadError(WriteBytes(tmp, Finish(unknown))),
