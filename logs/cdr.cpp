@@ -62,7 +62,6 @@ bool CdrReader::ReadBool() {
   return b == 1;
 }
 
-
 std::string CdrReader::ReadString() {
   const std::size_t at = reader_.offset();
   const std::uint32_t length = Read<std::uint32_t>();
@@ -94,6 +93,11 @@ std::vector<float> CdrReader::ReadFloat32Sequence() {
   std::vector<float> out(n);
   for (float& v : out) v = Read<float>();
   return out;
+}
+
+void CdrReader::SkipFloat32Sequence() {
+  const std::uint32_t n = ReadSequenceLength(sizeof(float));
+  reader_.Skip(std::uint64_t{n} * sizeof(float));  // aligned already: the count is 4 bytes
 }
 
 std::vector<double> CdrReader::ReadFloat64Sequence() {

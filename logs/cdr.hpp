@@ -43,6 +43,7 @@ class CdrReader {
   /// left (min_element_bytes: the smallest serialized size of one element, at least 1).
   std::uint32_t ReadSequenceLength(std::size_t min_element_bytes);
   std::vector<float> ReadFloat32Sequence();
+  void SkipFloat32Sequence();
   std::vector<double> ReadFloat64Sequence();
   /// A fixed-size float64 array (no count), e.g. a covariance: out.size() values.
   void ReadFloat64Array(std::span<double> out);

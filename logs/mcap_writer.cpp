@@ -1,12 +1,9 @@
 #include "logs/mcap_writer.hpp"
 
-#include <lz4frame.h>
 #include <zlib.h>
-#include <zstd.h>
 
 #include <algorithm>
 #include <array>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -16,6 +13,8 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "logs/internal/compression.hpp"
+#include "logs/internal/file_sink.hpp"
 #include "logs/internal/mcap_format.hpp"
 #include "logs/ros_messages.hpp"
 
@@ -129,16 +128,10 @@ struct SummaryGroup {
   std::uint64_t length;
 };
 
+// A chunk's compression field, by McapCompression.
 std::string_view CompressionName(McapCompression c) {
-  switch (c) {
-    case McapCompression::kNone:
-      return "";
-    case McapCompression::kLz4:
-      return "lz4";
-    case McapCompression::kZstd:
-      return "zstd";
-  }
-  return "";
+  static constexpr std::array<std::string_view, 3> kNames{"", "lz4", "zstd"};
+  return kNames[static_cast<std::size_t>(c)];
 }
 
 // The body of the Chunk Index record of chunk `c`, compressed with `compression`.
@@ -153,35 +146,12 @@ Bytes ChunkIndexRecord(const ChunkIndex& c, McapCompression compression) {
   return b;
 }
 
-std::vector<std::uint8_t> CompressZstd(std::span<const std::uint8_t> in) {
-  std::vector<std::uint8_t> out(ZSTD_compressBound(in.size()));
-  const std::size_t n =
-      ZSTD_compress(out.data(), out.size(), in.data(), in.size(), ZSTD_CLEVEL_DEFAULT);
-  if (ZSTD_isError(n)) {
-    throw core::IoError(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
-  }
-  out.resize(n);
-  return out;
-}
-
-std::vector<std::uint8_t> CompressLz4(std::span<const std::uint8_t> in) {
-  LZ4F_preferences_t prefs{};
-  prefs.frameInfo.contentSize = in.size();
-  std::vector<std::uint8_t> out(LZ4F_compressFrameBound(in.size(), &prefs));
-  const std::size_t n = LZ4F_compressFrame(out.data(), out.size(), in.data(), in.size(), &prefs);
-  if (LZ4F_isError(n)) {
-    throw core::IoError(std::string("lz4 compression failed: ") + LZ4F_getErrorName(n));
-  }
-  out.resize(n);
-  return out;
-}
-
 }  // namespace
 
 struct McapWriter::State {
-  std::string name;
-  std::ofstream out;
-  std::uint64_t pos = 0;  // bytes written
+  explicit State(const std::filesystem::path& path) : file(path) {}
+
+  internal::FileSink file;
   McapCompression compression = McapCompression::kNone;
   std::string profile;
   std::size_t chunk_bytes = kMcapChunkBytes;
@@ -203,13 +173,6 @@ struct McapWriter::State {
   std::uint64_t start_time = 0;
   std::uint64_t end_time = 0;
 
-  void Put(std::span<const std::uint8_t> bytes) {
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw core::IoError(name + ": cannot write at byte " + std::to_string(pos));
-    pos += bytes.size();
-  }
-
   void FlushChunk() {
     if (chunk.size() == 0) return;
     const std::span<const std::uint8_t> records = chunk.data();
@@ -217,16 +180,16 @@ struct McapWriter::State {
     std::vector<std::uint8_t> compressed;
     std::span<const std::uint8_t> stored = records;
     if (compression == McapCompression::kZstd) {
-      compressed = CompressZstd(records);
+      compressed = internal::CompressZstd(records);
       stored = compressed;
     } else if (compression == McapCompression::kLz4) {
-      compressed = CompressLz4(records);
+      compressed = internal::CompressLz4(records, {.content_size = true});
       stored = compressed;
     }
     ChunkIndex index;
     index.start_time = chunk_has_messages ? chunk_start_time : 0;
     index.end_time = chunk_has_messages ? chunk_end_time : 0;
-    index.chunk_offset = pos;
+    index.chunk_offset = file.pos();
     index.compressed_size = stored.size();
     index.uncompressed_size = records.size();
 
@@ -236,13 +199,13 @@ struct McapWriter::State {
     head.Str(CompressionName(compression)).U64(stored.size());
     Bytes prefix;
     prefix.U8(static_cast<std::uint8_t>(McapOp::kChunk)).U64(head.size() + stored.size());
-    Put(prefix.data());
-    Put(head.data());
-    Put(stored);
-    index.chunk_length = pos - index.chunk_offset;
+    file.Put(prefix.data());
+    file.Put(head.data());
+    file.Put(stored);
+    index.chunk_length = file.pos() - index.chunk_offset;
 
     // One Message Index record per channel with messages in the chunk.
-    const std::uint64_t indexes_start = pos;
+    const std::uint64_t indexes_start = file.pos();
     for (auto& [channel, entries] : chunk_index) {
       // Sorted by log time, as the MCAP libraries index them; offsets keep ties in file order.
       std::stable_sort(entries.begin(), entries.end(),
@@ -252,10 +215,10 @@ struct McapWriter::State {
       for (const auto& [time, offset] : entries) body.U64(time).U64(offset);
       Bytes record;
       record.Record(McapOp::kMessageIndex, body);
-      index.message_index_offsets[channel] = pos;
-      Put(record.data());
+      index.message_index_offsets[channel] = file.pos();
+      file.Put(record.data());
     }
-    index.message_index_length = pos - indexes_start;
+    index.message_index_length = file.pos() - indexes_start;
     chunk_indexes.push_back(std::move(index));
 
     chunk.clear();
@@ -282,11 +245,11 @@ struct McapWriter::State {
     return stats;
   }
 
-  // The summary section (to be written at pos), grouped by opcode, then the offsets of its
+  // The summary section (to be written at pos()), grouped by opcode, then the offsets of its
   // groups, the Footer (its CRC covering everything before it from the summary on) and the
   // trailing magic.
   Bytes SummaryAndFooter() const {
-    const std::uint64_t summary_start = pos;
+    const std::uint64_t summary_start = file.pos();
     Bytes summary;
     std::vector<SummaryGroup> groups;
     const auto group = [&](McapOp op, const auto& write_records) {
@@ -326,20 +289,17 @@ struct McapWriter::State {
 
 McapWriter::McapWriter(const std::filesystem::path& file, McapCompression compression,
                        std::string profile, std::size_t chunk_bytes)
-    : state_(std::make_unique<State>()) {
+    : state_(std::make_unique<State>(file)) {
   State& s = *state_;
-  s.name = file.string();
   s.compression = compression;
   s.profile = std::move(profile);
   s.chunk_bytes = std::max<std::size_t>(chunk_bytes, 1);
-  s.out.open(file, std::ios::binary | std::ios::trunc);
-  if (!s.out) throw core::IoError(s.name + ": cannot create the file");
-  s.Put(kMcapMagic);
+  s.file.Put(kMcapMagic);
   Bytes header;
   header.Str(s.profile).Str("retrace");
   Bytes record;
   record.Record(McapOp::kHeader, header);
-  s.Put(record.data());
+  s.file.Put(record.data());
 }
 
 McapWriter::~McapWriter() = default;
@@ -384,7 +344,7 @@ void McapWriter::Write(std::uint16_t channel, std::int64_t log_time_ns,
     throw std::invalid_argument("McapWriter: unknown channel " + std::to_string(channel));
   }
   if (log_time_ns < 0) {
-    throw core::IoError(s.name + ": log time " + std::to_string(log_time_ns) +
+    throw core::IoError(s.file.name() + ": log time " + std::to_string(log_time_ns) +
                         " ns is negative (MCAP times are unsigned)");
   }
   Channel& c = s.channels[channel - 1];
@@ -413,10 +373,9 @@ void McapWriter::Close() {
   data_end.U32(0);  // no CRC of the data section, as the MCAP C++ library writes it
   Bytes record;
   record.Record(McapOp::kDataEnd, data_end);
-  s.Put(record.data());
-  s.Put(s.SummaryAndFooter().data());
-  s.out.close();
-  if (!s.out) throw core::IoError(s.name + ": cannot finish writing the file");
+  s.file.Put(record.data());
+  s.file.Put(s.SummaryAndFooter().data());
+  s.file.Finish();
   s.closed = true;
 }
 

@@ -1,10 +1,7 @@
 #include "logs/ros1_bag_writer.hpp"
 
-#include <bzlib.h>
-#include <lz4frame.h>
-
 #include <algorithm>
-#include <fstream>
+#include <array>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -13,6 +10,8 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "logs/internal/compression.hpp"
+#include "logs/internal/file_sink.hpp"
 #include "logs/internal/ros1_bag_format.hpp"
 #include "logs/ros1_messages.hpp"
 
@@ -46,45 +45,10 @@ struct ChunkSummary {
   std::map<std::uint32_t, std::uint32_t> counts;
 };
 
+// A chunk's compression field, by Ros1BagCompression.
 std::string_view Ros1CompressionName(Ros1BagCompression c) {
-  switch (c) {
-    case Ros1BagCompression::kNone:
-      return "none";
-    case Ros1BagCompression::kBz2:
-      return "bz2";
-    case Ros1BagCompression::kLz4:
-      return "lz4";
-  }
-  return "none";
-}
-
-Buffer CompressBz2(std::span<const std::uint8_t> in) {
-  // bzip2's bound on its output: 1 % more than the input and 600 bytes.
-  unsigned length = static_cast<unsigned>(in.size() + in.size() / 100 + 600);
-  Buffer out(length);
-  const int ret =
-      BZ2_bzBuffToBuffCompress(reinterpret_cast<char*>(out.data()), &length,
-                               const_cast<char*>(reinterpret_cast<const char*>(in.data())),
-                               static_cast<unsigned>(in.size()), 9, 0, 0);
-  if (ret != BZ_OK) throw core::IoError("bz2 compression failed (" + std::to_string(ret) + ")");
-  out.resize(length);
-  return out;
-}
-
-// LZ4 frames as roslz4 reads and writes them: independent blocks of at most 1 MiB, a content
-// checksum, no content size (roslz4 refuses frames that differ in any of these).
-Buffer CompressRos1Lz4(std::span<const std::uint8_t> in) {
-  LZ4F_preferences_t prefs{};
-  prefs.frameInfo.blockSizeID = LZ4F_max1MB;
-  prefs.frameInfo.blockMode = LZ4F_blockIndependent;
-  prefs.frameInfo.contentChecksumFlag = LZ4F_contentChecksumEnabled;
-  Buffer out(LZ4F_compressFrameBound(in.size(), &prefs));
-  const std::size_t n = LZ4F_compressFrame(out.data(), out.size(), in.data(), in.size(), &prefs);
-  if (LZ4F_isError(n)) {
-    throw core::IoError(std::string("lz4 compression failed: ") + LZ4F_getErrorName(n));
-  }
-  out.resize(n);
-  return out;
+  static constexpr std::array<std::string_view, 3> kNames{"none", "bz2", "lz4"};
+  return kNames[static_cast<std::size_t>(c)];
 }
 
 // The bag header record: the index's position and counts, padded to kRos1BagHeaderBytes.
@@ -137,9 +101,9 @@ Buffer ChunkInfoRecord(const ChunkSummary& chunk) {
 }  // namespace
 
 struct Ros1BagWriter::State {
-  std::string name;
-  std::ofstream out;
-  std::uint64_t pos = 0;  // bytes written
+  explicit State(const std::filesystem::path& path) : file(path) {}
+
+  internal::FileSink file;
   Ros1BagCompression compression = Ros1BagCompression::kNone;
   std::size_t chunk_bytes = kRos1BagChunkBytes;
   bool closed = false;
@@ -151,24 +115,17 @@ struct Ros1BagWriter::State {
   ChunkSummary current;
   std::vector<ChunkSummary> chunks;  // written
 
-  void Put(std::span<const std::uint8_t> bytes) {
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw core::IoError(name + ": cannot write at byte " + std::to_string(pos));
-    pos += bytes.size();
-  }
-
   // The chunk record, then one index data record per connection with messages in it.
   void FlushChunk() {
     if (chunk.empty()) return;
-    current.pos = pos;
+    current.pos = file.pos();
     Buffer compressed;
     std::span<const std::uint8_t> stored = chunk;
     if (compression == Ros1BagCompression::kBz2) {
-      compressed = CompressBz2(chunk);
+      compressed = internal::CompressBz2(chunk);
       stored = compressed;
     } else if (compression == Ros1BagCompression::kLz4) {
-      compressed = CompressRos1Lz4(chunk);
+      compressed = internal::CompressLz4(chunk, {.roslz4 = true});
       stored = compressed;
     }
     Ros1FieldWriter header;
@@ -179,9 +136,9 @@ struct Ros1BagWriter::State {
     AppendU32(head, static_cast<std::uint32_t>(header.bytes().size()));
     head.insert(head.end(), header.bytes().begin(), header.bytes().end());
     AppendU32(head, static_cast<std::uint32_t>(stored.size()));
-    Put(head);
-    Put(stored);
-    for (auto& [conn, entries] : chunk_index) Put(IndexDataRecord(conn, entries));
+    file.Put(head);
+    file.Put(stored);
+    for (auto& [conn, entries] : chunk_index) file.Put(IndexDataRecord(conn, entries));
     chunks.push_back(std::move(current));
     current = {};
     chunk.clear();
@@ -212,15 +169,12 @@ struct Ros1BagWriter::State {
 
 Ros1BagWriter::Ros1BagWriter(const std::filesystem::path& file, Ros1BagCompression compression,
                              std::size_t chunk_bytes)
-    : state_(std::make_unique<State>()) {
+    : state_(std::make_unique<State>(file)) {
   State& s = *state_;
-  s.name = file.string();
   s.compression = compression;
   s.chunk_bytes = std::max<std::size_t>(chunk_bytes, 1);
-  s.out.open(file, std::ios::binary | std::ios::trunc);
-  if (!s.out) throw core::IoError(s.name + ": cannot create the file");
-  s.Put({reinterpret_cast<const std::uint8_t*>(kRos1BagMagic.data()), kRos1BagMagic.size()});
-  s.Put(BagHeaderRecord(0, 0, 0));
+  s.file.Put({reinterpret_cast<const std::uint8_t*>(kRos1BagMagic.data()), kRos1BagMagic.size()});
+  s.file.Put(BagHeaderRecord(0, 0, 0));
 }
 
 Ros1BagWriter::~Ros1BagWriter() = default;
@@ -243,7 +197,7 @@ void Ros1BagWriter::Write(std::uint32_t connection, std::int64_t log_time_ns,
     throw std::invalid_argument("Ros1BagWriter: unknown connection " + std::to_string(connection));
   }
   if (log_time_ns < 0 || log_time_ns > kLatestNs) {
-    throw core::IoError(s.name + ": record time " + std::to_string(log_time_ns) +
+    throw core::IoError(s.file.name() + ": record time " + std::to_string(log_time_ns) +
                         " ns is outside ROS 1 time (uint32 seconds since the epoch)");
   }
   BagConnection& c = s.connections[connection];
@@ -270,21 +224,17 @@ void Ros1BagWriter::Close() {
   State& s = *state_;
   if (s.closed) return;
   s.FlushChunk();
-  const std::uint64_t index_pos = s.pos;
+  const std::uint64_t index_pos = s.file.pos();
   std::uint32_t written = 0;
   for (std::uint32_t id = 0; id < s.connections.size(); ++id) {
     if (!s.connections[id].written) continue;  // rosbag lists only connections with messages
-    s.Put(ConnectionRecord(id, s.connections[id]));
+    s.file.Put(ConnectionRecord(id, s.connections[id]));
     ++written;
   }
-  for (const ChunkSummary& chunk : s.chunks) s.Put(ChunkInfoRecord(chunk));
-  s.out.seekp(static_cast<std::streamoff>(kRos1BagMagic.size()));
-  const Buffer header =
-      BagHeaderRecord(index_pos, written, static_cast<std::uint32_t>(s.chunks.size()));
-  s.out.write(reinterpret_cast<const char*>(header.data()),
-              static_cast<std::streamsize>(header.size()));
-  s.out.close();
-  if (!s.out) throw core::IoError(s.name + ": cannot finish writing the file");
+  for (const ChunkSummary& chunk : s.chunks) s.file.Put(ChunkInfoRecord(chunk));
+  s.file.Patch(kRos1BagMagic.size(),
+               BagHeaderRecord(index_pos, written, static_cast<std::uint32_t>(s.chunks.size())));
+  s.file.Finish();
   s.closed = true;
 }
 

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "logs/internal/ros_fields.hpp"
 #include "logs/ros1_serialization.hpp"
 #include "logs/ros_messages.hpp"
 
@@ -36,30 +37,10 @@ const std::map<std::string_view, std::string_view>& Md5Sums() {
   return kMd5;
 }
 
-struct Ros1Definition {
-  std::string_view fields;                // one "type name" line per field
-  std::vector<std::string_view> depends;  // the "pkg/Type" names its fields use
-};
-
-const std::map<std::string_view, Ros1Definition>& Ros1Definitions() {
-  static const std::map<std::string_view, Ros1Definition> kDefinitions{
+const internal::MessageDefinitions& Ros1Definitions() {
+  static const internal::MessageDefinitions kDefinitions = internal::WithSharedGeometry({
       {"std_msgs/Header", {"uint32 seq\ntime stamp\nstring frame_id\n", {}}},
-      {"geometry_msgs/Point", {"float64 x\nfloat64 y\nfloat64 z\n", {}}},
-      {"geometry_msgs/Vector3", {"float64 x\nfloat64 y\nfloat64 z\n", {}}},
       {"geometry_msgs/Quaternion", {"float64 x\nfloat64 y\nfloat64 z\nfloat64 w\n", {}}},
-      {"geometry_msgs/Pose",
-       {"geometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n",
-        {"geometry_msgs/Point", "geometry_msgs/Quaternion"}}},
-      {"geometry_msgs/PoseWithCovariance",
-       {"geometry_msgs/Pose pose\nfloat64[36] covariance\n", {"geometry_msgs/Pose"}}},
-      {"geometry_msgs/Twist",
-       {"geometry_msgs/Vector3 linear\ngeometry_msgs/Vector3 angular\n",
-        {"geometry_msgs/Vector3"}}},
-      {"geometry_msgs/TwistWithCovariance",
-       {"geometry_msgs/Twist twist\nfloat64[36] covariance\n", {"geometry_msgs/Twist"}}},
-      {"geometry_msgs/Transform",
-       {"geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n",
-        {"geometry_msgs/Vector3", "geometry_msgs/Quaternion"}}},
       {"geometry_msgs/TransformStamped",
        {"Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n",
         {"std_msgs/Header", "geometry_msgs/Transform"}}},
@@ -88,67 +69,8 @@ const std::map<std::string_view, Ros1Definition>& Ros1Definitions() {
         "float32 time_increment\nfloat32 scan_time\nfloat32 range_min\nfloat32 range_max\n"
         "sensor_msgs/LaserEcho[] ranges\nsensor_msgs/LaserEcho[] intensities\n",
         {"std_msgs/Header", "sensor_msgs/LaserEcho"}}},
-  };
+  });
   return kDefinitions;
-}
-
-// The dependencies of `name`, depth first in order of first use.
-void CollectRos1Dependencies(std::string_view name, std::vector<std::string_view>& out) {
-  for (std::string_view dep : Ros1Definitions().at(name).depends) {
-    if (std::find(out.begin(), out.end(), dep) != out.end()) continue;
-    out.push_back(dep);
-    CollectRos1Dependencies(dep, out);
-  }
-}
-
-std::string BuildRos1Definition(std::string_view name) {
-  std::string text(Ros1Definitions().at(name).fields);
-  std::vector<std::string_view> deps;
-  CollectRos1Dependencies(name, deps);
-  for (std::string_view dep : deps) {
-    text += std::string(80, '=');
-    text += "\nMSG: ";
-    text += dep;
-    text += '\n';
-    text += Ros1Definitions().at(dep).fields;
-  }
-  return text;
-}
-
-// ---- field groups ---------------------------------------------------------------------------
-
-struct Ros1Header {
-  double stamp = 0.0;
-  std::string frame_id;
-};
-
-Ros1Header ReadRos1Header(Ros1Reader& r) {
-  r.Read<std::uint32_t>();  // seq
-  const double stamp = Ros1StampSeconds(r.ReadTime());
-  return {stamp, r.ReadString()};
-}
-
-void WriteRos1Header(Ros1Writer& w, double stamp, std::string_view frame_id) {
-  w.Write<std::uint32_t>(0);  // seq
-  w.WriteTime(ToRos1Time(stamp));
-  w.WriteString(frame_id);
-}
-
-// geometry_msgs/Point (or Vector3) and Quaternion, projected onto the plane.
-core::Pose2 ReadRos1PlanarPose(Ros1Reader& r) {
-  const double x = r.Read<double>();
-  const double y = r.Read<double>();
-  r.Read<double>();  // z
-  const double qx = r.Read<double>();
-  const double qy = r.Read<double>();
-  const double qz = r.Read<double>();
-  const double qw = r.Read<double>();
-  return core::Pose2(x, y, YawFromQuaternion(qx, qy, qz, qw));
-}
-
-void WriteRos1PlanarPose(Ros1Writer& w, const core::Pose2& pose) {
-  w.WriteFloat64Values(std::array<double, 7>{
-      pose.x, pose.y, 0.0, 0.0, 0.0, std::sin(0.5 * pose.theta), std::cos(0.5 * pose.theta)});
 }
 
 // Runs `decode` on a reader over `data`, requiring it to use every byte, and prefixes any IoError
@@ -168,27 +90,12 @@ auto DecodeRos1As(std::string_view type, std::span<const std::uint8_t> data, Dec
   }
 }
 
-// The fields of a LaserScan or MultiEchoLaserScan before its ranges, into `m`; returns angle_max.
-float ReadRos1ScanFields(Ros1Reader& r, ScanMessage& m) {
-  Ros1Header h = ReadRos1Header(r);
-  m.scan.stamp = h.stamp;
-  m.frame_id = std::move(h.frame_id);
-  m.scan.angle_min = r.Read<float>();
-  const float angle_max = r.Read<float>();
-  m.scan.angle_increment = r.Read<float>();
-  r.Read<float>();  // time_increment
-  r.Read<float>();  // scan_time
-  m.scan.range_min = r.Read<float>();
-  m.scan.range_max = r.Read<float>();
-  return angle_max;
-}
-
 // sensor_msgs/LaserEcho[]: the first echo of each, +inf for a beam without one.
 std::vector<float> ReadFirstEchoes(Ros1Reader& r) {
-  const std::uint32_t n = r.ReadArrayLength(sizeof(std::uint32_t));
+  const std::uint32_t n = r.ReadSequenceLength(sizeof(std::uint32_t));
   std::vector<float> first(n, std::numeric_limits<float>::infinity());
   for (float& range : first) {
-    const std::uint32_t echoes = r.ReadArrayLength(sizeof(float));
+    const std::uint32_t echoes = r.ReadSequenceLength(sizeof(float));
     if (echoes == 0) continue;
     range = r.Read<float>();
     r.Skip(std::size_t{echoes - 1} * sizeof(float));
@@ -197,11 +104,27 @@ std::vector<float> ReadFirstEchoes(Ros1Reader& r) {
 }
 
 void SkipEchoes(Ros1Reader& r) {
-  const std::uint32_t n = r.ReadArrayLength(sizeof(std::uint32_t));
-  for (std::uint32_t i = 0; i < n; ++i) r.SkipFloat32Array();
+  const std::uint32_t n = r.ReadSequenceLength(sizeof(std::uint32_t));
+  for (std::uint32_t i = 0; i < n; ++i) r.SkipFloat32Sequence();
 }
 
 }  // namespace
+
+namespace internal {
+
+StampedFrame ReadHeader(Ros1Reader& r) {
+  r.Read<std::uint32_t>();  // seq
+  const double stamp = Ros1StampSeconds(r.ReadTime());
+  return {stamp, r.ReadString()};
+}
+
+void WriteHeader(Ros1Writer& w, double stamp, std::string_view frame_id) {
+  w.Write<std::uint32_t>(0);  // seq
+  w.WriteTime(ToRos1Time(stamp));
+  w.WriteString(frame_id);
+}
+
+}  // namespace internal
 
 std::string_view Ros1TypeMd5(std::string_view type) {
   const auto it = Md5Sums().find(type);
@@ -219,7 +142,8 @@ void RequireRos1Md5(std::string_view type, std::string_view md5sum) {
 std::string_view Ros1MessageDefinition(std::string_view type) {
   static const std::map<std::string_view, std::string> kTexts = [] {
     std::map<std::string_view, std::string> texts;
-    for (const auto& [name, md5] : Md5Sums()) texts.emplace(name, BuildRos1Definition(name));
+    for (const auto& [name, md5] : Md5Sums())
+      texts.emplace(name, internal::FullDefinition(Ros1Definitions(), name));
     return texts;
   }();
   const auto it = kTexts.find(type);
@@ -227,20 +151,14 @@ std::string_view Ros1MessageDefinition(std::string_view type) {
 }
 
 ScanMessage DecodeRos1LaserScan(std::span<const std::uint8_t> data) {
-  return DecodeRos1As(kRos1LaserScanType, data, [](Ros1Reader& r) {
-    ScanMessage m;
-    const float angle_max = ReadRos1ScanFields(r, m);
-    m.scan.ranges = r.ReadFloat32Array();
-    r.SkipFloat32Array();  // intensities
-    CheckScanGeometry(m, angle_max);
-    return m;
-  });
+  return DecodeRos1As(kRos1LaserScanType, data,
+                      [](Ros1Reader& r) { return internal::ReadLaserScan(r); });
 }
 
 ScanMessage DecodeRos1MultiEchoLaserScan(std::span<const std::uint8_t> data) {
   return DecodeRos1As(kRos1MultiEchoLaserScanType, data, [](Ros1Reader& r) {
     ScanMessage m;
-    const float angle_max = ReadRos1ScanFields(r, m);
+    const float angle_max = internal::ReadScanFields(r, m);
     m.scan.ranges = ReadFirstEchoes(r);
     SkipEchoes(r);  // intensities
     CheckScanGeometry(m, angle_max);
@@ -249,104 +167,48 @@ ScanMessage DecodeRos1MultiEchoLaserScan(std::span<const std::uint8_t> data) {
 }
 
 OdometryMessage DecodeRos1Odometry(std::span<const std::uint8_t> data) {
-  return DecodeRos1As(kRos1OdometryType, data, [](Ros1Reader& r) {
-    OdometryMessage m;
-    Ros1Header h = ReadRos1Header(r);
-    m.stamp = h.stamp;
-    m.frame_id = std::move(h.frame_id);
-    m.child_frame_id = r.ReadString();
-    m.pose = ReadRos1PlanarPose(r);
-    r.Skip((36 + 6 + 36) * sizeof(double));  // pose covariance, twist, twist covariance
-    return m;
-  });
+  return DecodeRos1As(kRos1OdometryType, data,
+                      [](Ros1Reader& r) { return internal::ReadOdometry(r); });
 }
 
 TfMessage DecodeRos1TfMessage(std::span<const std::uint8_t> data, std::string_view type) {
-  return DecodeRos1As(type, data, [](Ros1Reader& r) {
-    TfMessage m;
-    const std::uint32_t n = r.ReadArrayLength(kMinRos1TransformBytes);
-    m.transforms.reserve(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      TransformMessage t;
-      Ros1Header h = ReadRos1Header(r);
-      t.stamp = h.stamp;
-      t.parent = std::move(h.frame_id);
-      t.child = r.ReadString();
-      t.X_PC = ReadRos1PlanarPose(r);
-      m.transforms.push_back(std::move(t));
-    }
-    return m;
-  });
+  return DecodeRos1As(
+      type, data, [](Ros1Reader& r) { return internal::ReadTfMessage(r, kMinRos1TransformBytes); });
 }
 
 PoseStampedMessage DecodeRos1PoseStamped(std::span<const std::uint8_t> data) {
-  return DecodeRos1As(kRos1PoseStampedType, data, [](Ros1Reader& r) {
-    PoseStampedMessage m;
-    Ros1Header h = ReadRos1Header(r);
-    m.stamp = h.stamp;
-    m.frame_id = std::move(h.frame_id);
-    m.pose = ReadRos1PlanarPose(r);
-    return m;
-  });
+  return DecodeRos1As(kRos1PoseStampedType, data,
+                      [](Ros1Reader& r) { return internal::ReadPoseStamped(r); });
 }
 
 PoseStampedMessage DecodeRos1PoseWithCovarianceStamped(std::span<const std::uint8_t> data) {
   return DecodeRos1As(kRos1PoseWithCovarianceStampedType, data, [](Ros1Reader& r) {
-    PoseStampedMessage m;
-    Ros1Header h = ReadRos1Header(r);
-    m.stamp = h.stamp;
-    m.frame_id = std::move(h.frame_id);
-    m.pose = ReadRos1PlanarPose(r);
-    r.Skip(36 * sizeof(double));  // covariance
-    return m;
+    return internal::ReadPoseStamped(r, /*covariance=*/true);
   });
 }
 
 std::vector<std::uint8_t> EncodeRos1LaserScan(const ScanMessage& message) {
-  const core::LaserScan& s = message.scan;
   Ros1Writer w;
-  WriteRos1Header(w, s.stamp, message.frame_id);
-  const double angle_max = s.size() > 0 ? s.Angle(s.size() - 1) : s.angle_min;
-  w.Write<float>(static_cast<float>(s.angle_min));
-  w.Write<float>(static_cast<float>(angle_max));
-  w.Write<float>(static_cast<float>(s.angle_increment));
-  w.Write<float>(0.0f);  // time_increment
-  w.Write<float>(0.0f);  // scan_time
-  w.Write<float>(static_cast<float>(s.range_min));
-  w.Write<float>(static_cast<float>(s.range_max));
-  w.WriteFloat32Array(s.ranges);
-  w.WriteFloat32Array({});  // intensities
+  internal::WriteLaserScan(w, message);
   return w.Take();
 }
 
 std::vector<std::uint8_t> EncodeRos1Odometry(const OdometryMessage& message,
                                              const core::Twist& twist) {
-  static const std::array<double, 36> kZeroCovariance{};
   Ros1Writer w;
-  WriteRos1Header(w, message.stamp, message.frame_id);
-  w.WriteString(message.child_frame_id);
-  WriteRos1PlanarPose(w, message.pose);
-  w.WriteFloat64Values(kZeroCovariance);
-  w.WriteFloat64Values(std::array<double, 6>{twist.v, 0.0, 0.0, 0.0, 0.0, twist.omega});
-  w.WriteFloat64Values(kZeroCovariance);
+  internal::WriteOdometry(w, message, twist);
   return w.Take();
 }
 
 std::vector<std::uint8_t> EncodeRos1TfMessage(const TfMessage& message) {
   Ros1Writer w;
-  w.WriteArrayLength(static_cast<std::uint32_t>(message.transforms.size()));
-  for (const TransformMessage& t : message.transforms) {
-    WriteRos1Header(w, t.stamp, t.parent);
-    w.WriteString(t.child);
-    WriteRos1PlanarPose(w, t.X_PC);
-  }
+  internal::WriteTfMessage(w, message);
   return w.Take();
 }
 
 std::vector<std::uint8_t> EncodeRos1PoseStamped(const PoseStampedMessage& message) {
   Ros1Writer w;
-  WriteRos1Header(w, message.stamp, message.frame_id);
-  WriteRos1PlanarPose(w, message.pose);
+  internal::WritePoseStamped(w, message);
   return w.Take();
 }
 

@@ -56,7 +56,7 @@ std::string Ros1Reader::ReadString() {
   return std::string(reader_.Chars(length));
 }
 
-std::uint32_t Ros1Reader::ReadArrayLength(std::size_t min_element_bytes) {
+std::uint32_t Ros1Reader::ReadSequenceLength(std::size_t min_element_bytes) {
   const std::size_t at = reader_.offset();
   const std::uint32_t count = reader_.U32();
   const std::uint64_t need =
@@ -69,8 +69,8 @@ std::uint32_t Ros1Reader::ReadArrayLength(std::size_t min_element_bytes) {
   return count;
 }
 
-std::vector<float> Ros1Reader::ReadFloat32Array() {
-  const std::uint32_t n = ReadArrayLength(sizeof(float));
+std::vector<float> Ros1Reader::ReadFloat32Sequence() {
+  const std::uint32_t n = ReadSequenceLength(sizeof(float));
   std::vector<float> out(n);
   if constexpr (std::endian::native == std::endian::little) {
     // One copy: the array is little endian and packed, as a float vector is here.
@@ -82,8 +82,8 @@ std::vector<float> Ros1Reader::ReadFloat32Array() {
   return out;
 }
 
-void Ros1Reader::SkipFloat32Array() {
-  const std::uint32_t n = ReadArrayLength(sizeof(float));
+void Ros1Reader::SkipFloat32Sequence() {
+  const std::uint32_t n = ReadSequenceLength(sizeof(float));
   reader_.Skip(std::uint64_t{n} * sizeof(float));
 }
 
@@ -107,14 +107,14 @@ void Ros1Writer::WriteString(std::string_view s) {
   data_.insert(data_.end(), s.begin(), s.end());
 }
 
-void Ros1Writer::WriteArrayLength(std::uint32_t count) { Write<std::uint32_t>(count); }
+void Ros1Writer::WriteSequenceLength(std::uint32_t count) { Write<std::uint32_t>(count); }
 
-void Ros1Writer::WriteFloat32Array(std::span<const float> values) {
-  WriteArrayLength(static_cast<std::uint32_t>(values.size()));
+void Ros1Writer::WriteFloat32Sequence(std::span<const float> values) {
+  WriteSequenceLength(static_cast<std::uint32_t>(values.size()));
   for (float v : values) Write<float>(v);
 }
 
-void Ros1Writer::WriteFloat64Values(std::span<const double> values) {
+void Ros1Writer::WriteFloat64Array(std::span<const double> values) {
   for (double v : values) Write<double>(v);
 }
 

@@ -45,13 +45,17 @@ class Ros1Reader {
   }
   Ros1Time ReadTime();
   std::string ReadString();
-  /// The element count of a variable-length array, refused unless `count * min_element_bytes`
-  /// bytes are left (min_element_bytes: the smallest serialized size of one element, at least 1).
-  std::uint32_t ReadArrayLength(std::size_t min_element_bytes);
-  std::vector<float> ReadFloat32Array();
-  /// Skips a variable-length float32 array.
-  void SkipFloat32Array();
-  /// Skips `n` bytes (a fixed-size array).
+  // A variable-length array T[] is a "sequence", as ROS 2's CdrReader calls it: the two readers
+  // share their names (logs/internal/ros_fields.hpp reads the messages of both through them).
+
+  /// The element count of a sequence, refused unless `count * min_element_bytes` bytes are left
+  /// (min_element_bytes: the smallest serialized size of one element, at least 1).
+  std::uint32_t ReadSequenceLength(std::size_t min_element_bytes);
+  std::vector<float> ReadFloat32Sequence();
+  void SkipFloat32Sequence();
+  /// Skips a fixed-size float64 array of `n` values.
+  void SkipFloat64Array(std::size_t n) { reader_.Skip(n * sizeof(double)); }
+  /// Skips `n` bytes.
   void Skip(std::size_t n) { reader_.Skip(n); }
 
   /// Bytes read so far.
@@ -71,10 +75,10 @@ class Ros1Writer {
   void Write(T v);
   void WriteTime(Ros1Time t);
   void WriteString(std::string_view s);
-  void WriteArrayLength(std::uint32_t count);
-  void WriteFloat32Array(std::span<const float> values);
+  void WriteSequenceLength(std::uint32_t count);
+  void WriteFloat32Sequence(std::span<const float> values);
   /// A fixed-size float64 array (no count).
-  void WriteFloat64Values(std::span<const double> values);
+  void WriteFloat64Array(std::span<const double> values);
 
   /// Hands over the message.
   std::vector<std::uint8_t> Take() { return std::move(data_); }

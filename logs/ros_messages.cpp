@@ -15,6 +15,7 @@
 #include "core/limits.hpp"
 #include "core/quaternion.hpp"
 #include "logs/cdr.hpp"
+#include "logs/internal/ros_fields.hpp"
 
 namespace retrace::logs {
 namespace {
@@ -25,92 +26,41 @@ constexpr std::size_t kMinTransformStampedBytes = 72;
 
 // ---- ros2msg definitions -------------------------------------------------------------------
 
-struct Definition {
-  std::string_view name;                  // "pkg/Type" as in a "MSG:" line
-  std::string_view fields;                // one "type name" line per field
-  std::vector<std::string_view> depends;  // the "pkg/Type" names its fields use
-};
-
-const std::map<std::string_view, Definition>& Definitions() {
-  static const std::map<std::string_view, Definition> kDefinitions = [] {
-    std::map<std::string_view, Definition> d;
-    const auto add = [&d](Definition def) { d.emplace(def.name, std::move(def)); };
-    add({"builtin_interfaces/Time", "int32 sec\nuint32 nanosec\n", {}});
-    add({"std_msgs/Header",
-         "builtin_interfaces/Time stamp\nstring frame_id\n",
-         {"builtin_interfaces/Time"}});
-    add({"geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n", {}});
-    add({"geometry_msgs/Vector3", "float64 x\nfloat64 y\nfloat64 z\n", {}});
-    add({"geometry_msgs/Quaternion", "float64 x 0\nfloat64 y 0\nfloat64 z 0\nfloat64 w 1\n", {}});
-    add({"geometry_msgs/Pose",
-         "geometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n",
-         {"geometry_msgs/Point", "geometry_msgs/Quaternion"}});
-    add({"geometry_msgs/PoseWithCovariance",
-         "geometry_msgs/Pose pose\nfloat64[36] covariance\n",
-         {"geometry_msgs/Pose"}});
-    add({"geometry_msgs/Twist",
-         "geometry_msgs/Vector3 linear\ngeometry_msgs/Vector3 angular\n",
-         {"geometry_msgs/Vector3"}});
-    add({"geometry_msgs/TwistWithCovariance",
-         "geometry_msgs/Twist twist\nfloat64[36] covariance\n",
-         {"geometry_msgs/Twist"}});
-    add({"geometry_msgs/Transform",
-         "geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n",
-         {"geometry_msgs/Vector3", "geometry_msgs/Quaternion"}});
-    add({"geometry_msgs/TransformStamped",
-         "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n",
-         {"std_msgs/Header", "geometry_msgs/Transform"}});
-    add({"sensor_msgs/LaserScan",
-         "std_msgs/Header header\n"
-         "float32 angle_min\n"
-         "float32 angle_max\n"
-         "float32 angle_increment\n"
-         "float32 time_increment\n"
-         "float32 scan_time\n"
-         "float32 range_min\n"
-         "float32 range_max\n"
-         "float32[] ranges\n"
-         "float32[] intensities\n",
-         {"std_msgs/Header"}});
-    add({"nav_msgs/Odometry",
-         "std_msgs/Header header\n"
-         "string child_frame_id\n"
-         "geometry_msgs/PoseWithCovariance pose\n"
-         "geometry_msgs/TwistWithCovariance twist\n",
-         {"std_msgs/Header", "geometry_msgs/PoseWithCovariance",
-          "geometry_msgs/TwistWithCovariance"}});
-    add({"tf2_msgs/TFMessage",
-         "geometry_msgs/TransformStamped[] transforms\n",
-         {"geometry_msgs/TransformStamped"}});
-    add({"geometry_msgs/PoseStamped",
-         "std_msgs/Header header\ngeometry_msgs/Pose pose\n",
-         {"std_msgs/Header", "geometry_msgs/Pose"}});
-    return d;
-  }();
+const internal::MessageDefinitions& Definitions() {
+  static const internal::MessageDefinitions kDefinitions = internal::WithSharedGeometry({
+      {"builtin_interfaces/Time", {"int32 sec\nuint32 nanosec\n", {}}},
+      {"std_msgs/Header",
+       {"builtin_interfaces/Time stamp\nstring frame_id\n", {"builtin_interfaces/Time"}}},
+      {"geometry_msgs/Quaternion", {"float64 x 0\nfloat64 y 0\nfloat64 z 0\nfloat64 w 1\n", {}}},
+      {"geometry_msgs/TransformStamped",
+       {"std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n",
+        {"std_msgs/Header", "geometry_msgs/Transform"}}},
+      {"sensor_msgs/LaserScan",
+       {"std_msgs/Header header\n"
+        "float32 angle_min\n"
+        "float32 angle_max\n"
+        "float32 angle_increment\n"
+        "float32 time_increment\n"
+        "float32 scan_time\n"
+        "float32 range_min\n"
+        "float32 range_max\n"
+        "float32[] ranges\n"
+        "float32[] intensities\n",
+        {"std_msgs/Header"}}},
+      {"nav_msgs/Odometry",
+       {"std_msgs/Header header\n"
+        "string child_frame_id\n"
+        "geometry_msgs/PoseWithCovariance pose\n"
+        "geometry_msgs/TwistWithCovariance twist\n",
+        {"std_msgs/Header", "geometry_msgs/PoseWithCovariance",
+         "geometry_msgs/TwistWithCovariance"}}},
+      {"tf2_msgs/TFMessage",
+       {"geometry_msgs/TransformStamped[] transforms\n", {"geometry_msgs/TransformStamped"}}},
+      {"geometry_msgs/PoseStamped",
+       {"std_msgs/Header header\ngeometry_msgs/Pose pose\n",
+        {"std_msgs/Header", "geometry_msgs/Pose"}}},
+  });
   return kDefinitions;
-}
-
-// The dependencies of `name`, depth first in order of first use.
-void CollectDependencies(std::string_view name, std::vector<std::string_view>& out) {
-  for (std::string_view dep : Definitions().at(name).depends) {
-    if (std::find(out.begin(), out.end(), dep) != out.end()) continue;
-    out.push_back(dep);
-    CollectDependencies(dep, out);
-  }
-}
-
-std::string BuildDefinition(std::string_view name) {
-  std::string text(Definitions().at(name).fields);
-  std::vector<std::string_view> deps;
-  CollectDependencies(name, deps);
-  for (std::string_view dep : deps) {
-    text += std::string(80, '=');
-    text += "\nMSG: ";
-    text += dep;
-    text += '\n';
-    text += Definitions().at(dep).fields;
-  }
-  return text;
 }
 
 // "sensor_msgs/msg/LaserScan" -> "sensor_msgs/LaserScan".
@@ -118,49 +68,6 @@ std::string ShortName(std::string_view type) {
   const std::size_t slash = type.find("/msg/");
   if (slash == std::string_view::npos) return std::string(type);
   return std::string(type.substr(0, slash)) + "/" + std::string(type.substr(slash + 5));
-}
-
-// ---- field groups ---------------------------------------------------------------------------
-
-struct Header {
-  double stamp = 0.0;
-  std::string frame_id;
-};
-
-Header ReadHeader(CdrReader& r) {
-  RosTime t;
-  t.sec = r.Read<std::int32_t>();
-  t.nanosec = r.Read<std::uint32_t>();
-  return {StampSeconds(t), r.ReadString()};
-}
-
-void WriteHeader(CdrWriter& w, double stamp, std::string_view frame_id) {
-  const RosTime t = ToRosTime(stamp);
-  w.Write<std::int32_t>(t.sec);
-  w.Write<std::uint32_t>(t.nanosec);
-  w.WriteString(frame_id);
-}
-
-// geometry_msgs/Point (or Vector3) and Quaternion, projected onto the plane.
-core::Pose2 ReadPlanarPose(CdrReader& r) {
-  const double x = r.Read<double>();
-  const double y = r.Read<double>();
-  r.Read<double>();  // z
-  const double qx = r.Read<double>();
-  const double qy = r.Read<double>();
-  const double qz = r.Read<double>();
-  const double qw = r.Read<double>();
-  return core::Pose2(x, y, YawFromQuaternion(qx, qy, qz, qw));
-}
-
-void WritePlanarPose(CdrWriter& w, const core::Pose2& pose) {
-  w.Write<double>(pose.x);
-  w.Write<double>(pose.y);
-  w.Write<double>(0.0);
-  w.Write<double>(0.0);
-  w.Write<double>(0.0);
-  w.Write<double>(std::sin(0.5 * pose.theta));
-  w.Write<double>(std::cos(0.5 * pose.theta));
 }
 
 // Runs `decode` on a reader over `cdr`, prefixing any IoError with the type name.
@@ -184,6 +91,24 @@ std::string NumF(float v) {
 }
 
 }  // namespace
+
+namespace internal {
+
+StampedFrame ReadHeader(CdrReader& r) {
+  RosTime t;
+  t.sec = r.Read<std::int32_t>();
+  t.nanosec = r.Read<std::uint32_t>();
+  return {StampSeconds(t), r.ReadString()};
+}
+
+void WriteHeader(CdrWriter& w, double stamp, std::string_view frame_id) {
+  const RosTime t = ToRosTime(stamp);
+  w.Write<std::int32_t>(t.sec);
+  w.Write<std::uint32_t>(t.nanosec);
+  w.WriteString(frame_id);
+}
+
+}  // namespace internal
 
 double StampSeconds(RosTime t) {
   return static_cast<double>(t.sec) + static_cast<double>(t.nanosec) * 1e-9;
@@ -250,115 +175,44 @@ void CheckScanGeometry(ScanMessage& m, float angle_max) {
 }
 
 ScanMessage DecodeLaserScan(std::span<const std::uint8_t> cdr) {
-  return DecodeAs(kLaserScanType, cdr, [](CdrReader& r) {
-    ScanMessage m;
-    Header h = ReadHeader(r);
-    m.scan.stamp = h.stamp;
-    m.frame_id = std::move(h.frame_id);
-    const float angle_min = r.Read<float>();
-    const float angle_max = r.Read<float>();
-    const float angle_increment = r.Read<float>();
-    r.Read<float>();  // time_increment
-    r.Read<float>();  // scan_time
-    m.scan.range_min = r.Read<float>();
-    m.scan.range_max = r.Read<float>();
-    m.scan.ranges = r.ReadFloat32Sequence();
-    r.ReadFloat32Sequence();  // intensities
-    m.scan.angle_min = angle_min;
-    m.scan.angle_increment = angle_increment;
-    CheckScanGeometry(m, angle_max);
-    return m;
-  });
+  return DecodeAs(kLaserScanType, cdr, [](CdrReader& r) { return internal::ReadLaserScan(r); });
 }
 
 std::vector<std::uint8_t> EncodeLaserScan(const ScanMessage& message) {
-  const core::LaserScan& s = message.scan;
   CdrWriter w;
-  WriteHeader(w, s.stamp, message.frame_id);
-  const double angle_max = s.size() > 0 ? s.Angle(s.size() - 1) : s.angle_min;
-  w.Write<float>(static_cast<float>(s.angle_min));
-  w.Write<float>(static_cast<float>(angle_max));
-  w.Write<float>(static_cast<float>(s.angle_increment));
-  w.Write<float>(0.0f);  // time_increment
-  w.Write<float>(0.0f);  // scan_time
-  w.Write<float>(static_cast<float>(s.range_min));
-  w.Write<float>(static_cast<float>(s.range_max));
-  w.WriteFloat32Sequence(s.ranges);
-  w.WriteFloat32Sequence({});  // intensities
+  internal::WriteLaserScan(w, message);
   return w.Take();
 }
 
 OdometryMessage DecodeOdometry(std::span<const std::uint8_t> cdr) {
-  return DecodeAs(kOdometryType, cdr, [](CdrReader& r) {
-    OdometryMessage m;
-    Header h = ReadHeader(r);
-    m.stamp = h.stamp;
-    m.frame_id = std::move(h.frame_id);
-    m.child_frame_id = r.ReadString();
-    m.pose = ReadPlanarPose(r);
-    r.SkipFloat64Array(36);     // pose covariance
-    r.SkipFloat64Array(3 + 3);  // twist: linear, angular
-    r.SkipFloat64Array(36);     // twist covariance
-    return m;
-  });
+  return DecodeAs(kOdometryType, cdr, [](CdrReader& r) { return internal::ReadOdometry(r); });
 }
 
 std::vector<std::uint8_t> EncodeOdometry(const OdometryMessage& message, const core::Twist& twist) {
-  static const std::array<double, 36> kZeroCovariance{};
   CdrWriter w;
-  WriteHeader(w, message.stamp, message.frame_id);
-  w.WriteString(message.child_frame_id);
-  WritePlanarPose(w, message.pose);
-  w.WriteFloat64Array(kZeroCovariance);
-  w.WriteFloat64Array(std::array<double, 6>{twist.v, 0.0, 0.0, 0.0, 0.0, twist.omega});
-  w.WriteFloat64Array(kZeroCovariance);
+  internal::WriteOdometry(w, message, twist);
   return w.Take();
 }
 
 TfMessage DecodeTfMessage(std::span<const std::uint8_t> cdr) {
   return DecodeAs(kTfMessageType, cdr, [](CdrReader& r) {
-    TfMessage m;
-    const std::uint32_t n = r.ReadSequenceLength(kMinTransformStampedBytes);
-    m.transforms.reserve(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      TransformMessage t;
-      Header h = ReadHeader(r);
-      t.stamp = h.stamp;
-      t.parent = std::move(h.frame_id);
-      t.child = r.ReadString();
-      t.X_PC = ReadPlanarPose(r);
-      m.transforms.push_back(std::move(t));
-    }
-    return m;
+    return internal::ReadTfMessage(r, kMinTransformStampedBytes);
   });
 }
 
 std::vector<std::uint8_t> EncodeTfMessage(const TfMessage& message) {
   CdrWriter w;
-  w.WriteSequenceLength(static_cast<std::uint32_t>(message.transforms.size()));
-  for (const TransformMessage& t : message.transforms) {
-    WriteHeader(w, t.stamp, t.parent);
-    w.WriteString(t.child);
-    WritePlanarPose(w, t.X_PC);
-  }
+  internal::WriteTfMessage(w, message);
   return w.Take();
 }
 
 PoseStampedMessage DecodePoseStamped(std::span<const std::uint8_t> cdr) {
-  return DecodeAs(kPoseStampedType, cdr, [](CdrReader& r) {
-    PoseStampedMessage m;
-    Header h = ReadHeader(r);
-    m.stamp = h.stamp;
-    m.frame_id = std::move(h.frame_id);
-    m.pose = ReadPlanarPose(r);
-    return m;
-  });
+  return DecodeAs(kPoseStampedType, cdr, [](CdrReader& r) { return internal::ReadPoseStamped(r); });
 }
 
 std::vector<std::uint8_t> EncodePoseStamped(const PoseStampedMessage& message) {
   CdrWriter w;
-  WriteHeader(w, message.stamp, message.frame_id);
-  WritePlanarPose(w, message.pose);
+  internal::WritePoseStamped(w, message);
   return w.Take();
 }
 
@@ -367,7 +221,7 @@ std::string_view RosMessageDefinition(std::string_view type) {
     std::map<std::string_view, std::string> texts;
     for (std::string_view type_name :
          {kLaserScanType, kOdometryType, kTfMessageType, kPoseStampedType}) {
-      texts.emplace(type_name, BuildDefinition(ShortName(type_name)));
+      texts.emplace(type_name, internal::FullDefinition(Definitions(), ShortName(type_name)));
     }
     return texts;
   }();

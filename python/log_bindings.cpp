@@ -149,104 +149,92 @@ void BindLogResult(py::module_& m) {
            [](const LogResult& r) { return "LogResult(out='" + r.out.string() + "')"; });
 }
 
+// The arguments every log function shares, as one struct.
+LogArguments Arguments(const Path& log, const OptionalPath& out, bool figures,
+                       std::optional<double> from_s, std::optional<double> to_s,
+                       bool synthetic_odometry, const OptionalPath& reference,
+                       const OptionalPath& config, py::object set, py::object seed,
+                       std::string scan, std::string odometry, std::string reference_topic,
+                       std::string odom_frame, std::string base_frame) {
+  StreamArguments streams{std::move(scan), std::move(odometry), std::move(reference_topic),
+                          std::move(odom_frame), std::move(base_frame)};
+  return {log,    out, from_s, to_s,    synthetic_odometry, reference,
+          config, set, seed,   figures, std::move(streams)};
+}
+
+// Defines `name` with `own` (the log and the function's own keywords) followed by the keywords
+// every log function shares, which `f` takes last: from_s, to_s, synthetic_odometry, reference,
+// config, set, seed and the five stream choices (StreamArguments).
+template <typename F, typename... Own>
+void DefLogFunction(py::module_& m, const char* name, F&& f, const char* doc, Own&&... own) {
+  m.def(name, std::forward<F>(f), std::forward<Own>(own)..., py::arg("from_s") = py::none(),
+        py::arg("to_s") = py::none(), py::arg("synthetic_odometry") = false,
+        py::arg("reference") = py::none(), py::arg("config") = py::none(),
+        py::arg("set") = py::none(), py::arg("seed") = py::none(), py::arg("scan_topic") = "",
+        py::arg("odometry_topic") = "", py::arg("reference_topic") = "",
+        py::arg("odom_frame") = "odom", py::arg("base_frame") = "", doc);
+}
+
 void BindLogTeach(py::module_& m) {
-  m.def(
-      "log_teach",
+  DefLogFunction(
+      m, "log_teach",
       [](const Path& log, const OptionalPath& out, py::object modes,
-         const std::optional<std::string>& switch_points, std::optional<double> from_s,
-         std::optional<double> to_s, bool synthetic_odometry, const OptionalPath& reference,
-         const OptionalPath& config, py::object set, py::object seed, bool figures,
-         std::string scan_topic, std::string odometry_topic, std::string reference_topic,
+         const std::optional<std::string>& switch_points, bool figures,
+         std::optional<double> from_s, std::optional<double> to_s, bool synthetic_odometry,
+         const OptionalPath& reference, const OptionalPath& config, py::object set, py::object seed,
+         std::string scan, std::string odometry, std::string reference_topic,
          std::string odom_frame, std::string base_frame) {
-        const LogArguments a{log,
-                             out,
-                             from_s,
-                             to_s,
-                             synthetic_odometry,
-                             reference,
-                             config,
-                             set,
-                             seed,
-                             figures,
-                             {scan_topic, odometry_topic, reference_topic, odom_frame, base_frame}};
-        return LogTeach(a, modes, switch_points);
+        return LogTeach(
+            Arguments(log, out, figures, from_s, to_s, synthetic_odometry, reference, config, set,
+                      seed, scan, odometry, reference_topic, odom_frame, base_frame),
+            modes, switch_points);
       },
-      py::arg("log"), py::kw_only(), py::arg("out"), py::arg("modes") = py::none(),
-      py::arg("switch_points") = py::none(), py::arg("from_s") = py::none(),
-      py::arg("to_s") = py::none(), py::arg("synthetic_odometry") = false,
-      py::arg("reference") = py::none(), py::arg("config") = py::none(),
-      py::arg("set") = py::none(), py::arg("seed") = py::none(), py::arg("figures") = true,
-      py::arg("scan_topic") = "", py::arg("odometry_topic") = "", py::arg("reference_topic") = "",
-      py::arg("odom_frame") = "odom", py::arg("base_frame") = "",
       "`retrace log-teach`: the teach folders (<out>/<mode>/teach) of a recorded log's drive. "
       "switch_points: 'online' (default), 'auto' or 's1,s2,...' (m along the driven path). "
-      "Returns a LogResult.");
+      "Returns a LogResult.",
+      py::arg("log"), py::kw_only(), py::arg("out"), py::arg("modes") = py::none(),
+      py::arg("switch_points") = py::none(), py::arg("figures") = true);
 }
 
 void BindLogLocalize(py::module_& m) {
-  m.def(
-      "log_localize",
+  DefLogFunction(
+      m, "log_localize",
       [](const Path& log, const Path& teach, const OptionalPath& out,
          const std::optional<std::vector<double>>& initial_pose, bool every_odometry_tick,
-         std::optional<double> from_s, std::optional<double> to_s, bool synthetic_odometry,
-         const OptionalPath& reference, const OptionalPath& config, py::object set, py::object seed,
-         bool figures, std::string scan_topic, std::string odometry_topic,
+         bool figures, std::optional<double> from_s, std::optional<double> to_s,
+         bool synthetic_odometry, const OptionalPath& reference, const OptionalPath& config,
+         py::object set, py::object seed, std::string scan, std::string odometry,
          std::string reference_topic, std::string odom_frame, std::string base_frame) {
-        const LogArguments a{log,
-                             out,
-                             from_s,
-                             to_s,
-                             synthetic_odometry,
-                             reference,
-                             config,
-                             set,
-                             seed,
-                             figures,
-                             {scan_topic, odometry_topic, reference_topic, odom_frame, base_frame}};
-        return LogLocalize(a, teach, initial_pose, every_odometry_tick);
+        return LogLocalize(
+            Arguments(log, out, figures, from_s, to_s, synthetic_odometry, reference, config, set,
+                      seed, scan, odometry, reference_topic, odom_frame, base_frame),
+            teach, initial_pose, every_odometry_tick);
       },
-      py::arg("log"), py::kw_only(), py::arg("teach"), py::arg("out"),
-      py::arg("initial_pose") = py::none(), py::arg("every_odometry_tick") = false,
-      py::arg("from_s") = py::none(), py::arg("to_s") = py::none(),
-      py::arg("synthetic_odometry") = false, py::arg("reference") = py::none(),
-      py::arg("config") = py::none(), py::arg("set") = py::none(), py::arg("seed") = py::none(),
-      py::arg("figures") = true, py::arg("scan_topic") = "", py::arg("odometry_topic") = "",
-      py::arg("reference_topic") = "", py::arg("odom_frame") = "odom", py::arg("base_frame") = "",
       "`retrace log-localize`: localize a recorded log in the maps of the teach folder `teach`, "
       "against its reference, and write the results folder `out`. initial_pose: (x, y, yaw_deg) "
-      "in map 0. Returns a LogResult with metrics.");
+      "in map 0. Returns a LogResult with metrics.",
+      py::arg("log"), py::kw_only(), py::arg("teach"), py::arg("out"),
+      py::arg("initial_pose") = py::none(), py::arg("every_odometry_tick") = false,
+      py::arg("figures") = true);
 }
 
 void BindLogSimulate(py::module_& m) {
-  m.def(
-      "log_simulate",
+  DefLogFunction(
+      m, "log_simulate",
       [](const Path& log, const Path& teach, const Path& out, std::optional<double> from_s,
          std::optional<double> to_s, bool synthetic_odometry, const OptionalPath& reference,
-         const OptionalPath& config, py::object set, py::object seed, std::string scan_topic,
-         std::string odometry_topic, std::string reference_topic, std::string odom_frame,
+         const OptionalPath& config, py::object set, py::object seed, std::string scan,
+         std::string odometry, std::string reference_topic, std::string odom_frame,
          std::string base_frame) {
-        const LogArguments a{log,
-                             out,
-                             from_s,
-                             to_s,
-                             synthetic_odometry,
-                             reference,
-                             config,
-                             set,
-                             seed,
-                             false,
-                             {scan_topic, odometry_topic, reference_topic, odom_frame, base_frame}};
-        return LogSimulate(a, teach);
+        return LogSimulate(
+            Arguments(log, out, false, from_s, to_s, synthetic_odometry, reference, config, set,
+                      seed, scan, odometry, reference_topic, odom_frame, base_frame),
+            teach);
       },
-      py::arg("log"), py::kw_only(), py::arg("teach"), py::arg("out"),
-      py::arg("from_s") = py::none(), py::arg("to_s") = py::none(),
-      py::arg("synthetic_odometry") = false, py::arg("reference") = py::none(),
-      py::arg("config") = py::none(), py::arg("set") = py::none(), py::arg("seed") = py::none(),
-      py::arg("scan_topic") = "", py::arg("odometry_topic") = "", py::arg("reference_topic") = "",
-      py::arg("odom_frame") = "odom", py::arg("base_frame") = "",
       "`retrace log-simulate`: drive the log's reference again in the simulator, in the "
       "consistent map of `teach`, and write the simulated log `out` (MCAP). Returns a "
-      "LogResult.");
+      "LogResult.",
+      py::arg("log"), py::kw_only(), py::arg("teach"), py::arg("out"));
 }
 
 }  // namespace

@@ -6,6 +6,9 @@
 # Prints the executions per target; exits 1 on any finding.
 #
 # Usage: scripts/fuzz.sh <build dir> <seconds per target> [target ...]
+#   The seconds are spent where the parsers are: each target runs its weight times them (the binary
+#   log containers 2, CDR, the ROS map, map image and rosbag2 metadata readers 1, the YAML files
+#   and --set overrides 0.5, the line formats CSV, TUM, path and route 0.25; at least 1 s).
 #   The build dir must be configured with Clang and -DRETRACE_FUZZ=ON (scripts/test.sh builds
 #   build-asan so); targets default to all of them.
 # Environment: FUZZ_RUNS=N stops a target after N executions (before its time is up);
@@ -72,13 +75,25 @@ dict="$work/keys.dict"
   printf '"none"\n"bz2"\n"lz4"\n"#ROSBAG V2.0\\x0a"\n'
 } | sort -u >"$dict"
 
-run_one() {  # run_one <target>: one target for $seconds, its stats in logs/<target>.txt
+weight() {  # weight <target>: its share of the seconds per target
+  case "$1" in
+    carmen | mcap | db3 | bag) echo 2 ;;
+    cdr | ros_map | map_image | rosbag2_metadata) echo 1 ;;
+    world | scenario | suite | sweep | set_override) echo 0.5 ;;
+    *) echo 0.25 ;;
+  esac
+}
+export -f weight
+
+run_one() {  # run_one <target>: one target for its seconds, its stats in logs/<target>.txt
   local t="$1"
+  local time
+  time=$(awk -v s="$seconds" -v w="$(weight "$t")" 'BEGIN {t = int(s * w + 0.5); print (t < 1 ? 1 : t)}')
   mkdir -p "$work/corpus/$t"
   local fork=()
   [ "$forks" -gt 0 ] && fork=(-fork="$forks" -ignore_crashes=0 -ignore_timeouts=0 -ignore_ooms=0)
   "$build/fuzz/fuzz_$t" "$work/corpus/$t" "$work/seeds/$t" -dict="$work/keys.dict" "${fork[@]}" \
-    -max_total_time="$seconds" -runs="$runs" -timeout="$timeout" -report_slow_units="$timeout" -rss_limit_mb=2048 -print_final_stats=1 \
+    -max_total_time="$time" -runs="$runs" -timeout="$timeout" -report_slow_units="$timeout" -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$work/findings/$t-" >"$work/logs/$t.txt" 2>&1 || true
   local execs
   if [ "$forks" -gt 0 ]; then  # fork mode's parent prints the running total as "#N: cov: ..."
@@ -93,7 +108,8 @@ runs="${FUZZ_RUNS:--1}"
 timeout="${FUZZ_TIMEOUT:-5}"
 forks="${FUZZ_FORK:-0}"
 export build work seconds runs timeout forks
-printf '%s\n' "${targets[@]}" | xargs -P "${FUZZ_JOBS:-$(nproc)}" -I{} bash -c 'run_one {}' | sort >"$work/execs.txt"
+# The longest first, so that the cores finish together.
+for t in "${targets[@]}"; do echo "$(weight "$t") $t"; done | sort -rn | cut -d' ' -f2 | xargs -P "${FUZZ_JOBS:-$(nproc)}" -I{} bash -c 'run_one {}' | sort >"$work/execs.txt"
 
 # A hang must reproduce: on a loaded machine an input can take longer than the timeout only
 # because the fuzzer did not get the CPU. Each timeout or slow input runs again alone; one that
@@ -111,7 +127,7 @@ done
 findings=$(find "$work/findings" -type f | wc -l)
 printf '%-18s %12s\n' target executions
 while read -r t n; do printf '%-18s %12s\n' "$t" "$n"; done <"$work/execs.txt"
-echo "fuzzing: ${#targets[@]} targets x ${seconds} s, $(awk '{s += $2} END {print s}' "$work/execs.txt") executions, $findings findings"
+echo "fuzzing: ${#targets[@]} targets, ${seconds} s per target weighted by parser, $(awk '{s += $2} END {print s}' "$work/execs.txt") executions, $findings findings"
 if [ "$findings" -gt 0 ]; then
   for f in "$work"/findings/*; do
     t=$(basename "$f" | cut -d- -f1)

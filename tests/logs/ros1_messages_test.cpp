@@ -68,12 +68,12 @@ Buffer MultiEchoScan() {
   Ros1Writer w;
   WriteHeader(w, {100, 500'000'000}, "laser");
   for (float v : {-0.5f, 0.5f, 0.5f, 0.0f, 0.1f, 0.2f, 40.0f}) w.Write<float>(v);
-  w.WriteArrayLength(3);  // ranges: LaserEcho[]
-  w.WriteFloat32Array(std::vector<float>{2.0f, 7.0f});
-  w.WriteFloat32Array(std::vector<float>{});
-  w.WriteFloat32Array(std::vector<float>{3.5f});
-  w.WriteArrayLength(3);  // intensities
-  for (int i = 0; i < 3; ++i) w.WriteFloat32Array(std::vector<float>{1.0f});
+  w.WriteSequenceLength(3);  // ranges: LaserEcho[]
+  w.WriteFloat32Sequence(std::vector<float>{2.0f, 7.0f});
+  w.WriteFloat32Sequence(std::vector<float>{});
+  w.WriteFloat32Sequence(std::vector<float>{3.5f});
+  w.WriteSequenceLength(3);  // intensities
+  for (int i = 0; i < 3; ++i) w.WriteFloat32Sequence(std::vector<float>{1.0f});
   return w.Take();
 }
 
@@ -109,7 +109,7 @@ TEST(Ros1Serialization, StringsHaveNoTerminatorAndCountsAreCheckedBeforeAllocati
   EXPECT_EQ(r.remaining(), 0U);
 
   const Buffer huge_count = {0xff, 0xff, 0xff, 0x7f, 0, 0, 0, 0};
-  EXPECT_TRUE(Contains(IoErrorOf([&] { Ros1Reader(huge_count).ReadFloat32Array(); }),
+  EXPECT_TRUE(Contains(IoErrorOf([&] { Ros1Reader(huge_count).ReadFloat32Sequence(); }),
                        "array of 2147483647 elements at byte 0 needs at least"));
   EXPECT_TRUE(Contains(IoErrorOf([&] { Ros1Reader(huge_count).ReadString(); }),
                        "string length 2147483647 at byte 0 beyond the end"));

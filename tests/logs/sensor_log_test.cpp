@@ -121,9 +121,9 @@ fs::path WriteRos1Bag(const fs::path& file, bool multi_echo = false, bool close 
       p.WriteTime(ToRos1Time(t));
       p.WriteString("map");
       const core::Pose2 X = Truth(t);
-      p.WriteFloat64Values(std::vector<double>{X.x, X.y, 0.0, 0.0, 0.0, std::sin(0.5 * X.theta),
+      p.WriteFloat64Array(std::vector<double>{X.x, X.y, 0.0, 0.0, 0.0, std::sin(0.5 * X.theta),
                                                std::cos(0.5 * X.theta)});
-      p.WriteFloat64Values(std::vector<double>(36, 0.0));
+      p.WriteFloat64Array(std::vector<double>(36, 0.0));
       w.Write(truth, ns, p.Take());
     }
     if (k % 5 != 0) continue;
@@ -139,9 +139,9 @@ fs::path WriteRos1Bag(const fs::path& file, bool multi_echo = false, bool close 
     const double angle_max = s.Angle(s.size() - 1);
     for (double v : {s.angle_min, angle_max, s.angle_increment, 0.0, 0.0, s.range_min, s.range_max})
       e.Write<float>(static_cast<float>(v));
-    e.WriteArrayLength(static_cast<std::uint32_t>(s.size()));
-    for (float r : s.ranges) e.WriteFloat32Array(std::vector<float>{r, r + 1.0f});
-    e.WriteArrayLength(0);
+    e.WriteSequenceLength(static_cast<std::uint32_t>(s.size()));
+    for (float r : s.ranges) e.WriteFloat32Sequence(std::vector<float>{r, r + 1.0f});
+    e.WriteSequenceLength(0);
     w.Write(scan, ns, e.Take());
   }
   if (close) w.Close();
