@@ -5,7 +5,7 @@
 #    committed baseline (navigation metrics gated, timing reported) and the Python module's tests;
 #  - an AddressSanitizer + UndefinedBehaviorSanitizer build (Clang) of the program, the unit
 #    and integration tests and the fuzz targets; runs the tests, then every fuzz target for
-#    RETRACE_FUZZ_SECONDS (default 10) seconds.
+#    RETRACE_FUZZ_SECONDS (default 6) seconds, weighted by parser (scripts/fuzz.sh).
 # Each test runs once, in the build where it pays. Prints how long each stage took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -41,8 +41,10 @@ scripts/build.sh build -DRETRACE_WERROR=ON -DCMAKE_UNITY_BUILD=ON -DRETRACE_TEST
 stage "System tests (Release)"
 ctest --test-dir build --output-on-failure -j "$jobs" -L system
 
-stage "Regression suite bench/suites/ci.yaml against results/baselines/ci.json"
+stage "Regression suite bench/suites/ci.yaml against results/baselines/ci.json; the docs' tables"
 ./build/retrace bench bench/suites/ci.yaml --jobs "$jobs"
+# The docs' tables: every block names its command, and the suite's table equals this run of it.
+scripts/results.py check --output ci-suite=results/bench/ci
 
 stage "Python module tests (Release: pytest tests/python)"
 # What ctest runs as python.pytest where the integration tier is built with the module.
@@ -61,8 +63,8 @@ stage "Unit and integration tests (AddressSanitizer + UBSan)"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|integration'
 
-stage "Fuzzing: every parser's fuzz target for ${RETRACE_FUZZ_SECONDS:-10} s"
-scripts/fuzz.sh build-asan "${RETRACE_FUZZ_SECONDS:-10}"
+stage "Fuzzing: every parser's fuzz target, ${RETRACE_FUZZ_SECONDS:-6} s weighted by parser"
+scripts/fuzz.sh build-asan "${RETRACE_FUZZ_SECONDS:-6}"
 
 stage ""
 # The stage table, as docs/BENCHMARKS.md "CI stages" keeps its history.

@@ -293,3 +293,14 @@ std::vector<CollisionEvent> PhysicsWorld::TakeCollisions() {
 }
 
 }  // namespace retrace::sim
+
+// Box2D times every b2World::Step for its b2Profile, reading the clock (gettimeofday) at each
+// phase. retrace never reads the profile, so the timer's three methods are defined here without a
+// clock: Debian's libbox2d calls them through its procedure linkage table, and these definitions,
+// linked into every program that steps a PhysicsWorld (this file is), take their place (ELF
+// symbol interposition; docs/BENCHMARKS.md, "Box2D's step timer"). A Box2D that does not export
+// its timer (a static or hidden-visibility build) keeps its own: nothing changes but the cost.
+// b2World::GetProfile() reads 0 ms.
+b2Timer::b2Timer() {}
+void b2Timer::Reset() {}
+float b2Timer::GetMilliseconds() const { return 0.0f; }

@@ -59,3 +59,65 @@ def test_every_python_example_of_the_docs_runs(tmp_path):
         assert result.returncode == 0, f"section '{title}':\n{result.stdout}{result.stderr}"
     # The examples' figures were drawn.
     assert list((tmp_path / "results").rglob("*.png"))
+
+
+RESULTS_SCRIPT = SOURCE_DIR / "scripts" / "results.py"
+
+
+def results_script(*args):
+    return subprocess.run([sys.executable, str(RESULTS_SCRIPT), *map(str, args)],
+                          capture_output=True, text=True, timeout=120)
+
+
+def fake_suite_report(folder):
+    """A `retrace bench` folder with one entry: what scripts/results.py reads of it."""
+    folder.mkdir()
+    values = {"success_rate": 0.5, "tracking_error_m.pooled.rms": 0.123,
+              "localization_error_m.pooled.p95": 0.25, "localization_error_m.pooled.max": 1.5,
+              "repeatability_m": 0.02, "switch_error.max_m": 0.07,
+              "collisions.pedestrian_incidents": 0.25, "localizer.silent_failure_time_s": 0.0}
+    report = {"entries": [{"name": "small", "modes": ["partial"]}],
+              "metrics": {f"small.partial.{k}": {"mean": v} for k, v in values.items()}}
+    (folder / "report.json").write_text(json.dumps(report))
+
+
+def test_the_docs_tables_are_checked_against_their_command(tmp_path):
+    """scripts/results.py: a table written from its command's output checks clean; a number
+    edited by hand fails the check on the platform the table was made on; elsewhere only the
+    table's shape is gated."""
+    docs = tmp_path / "docs_root"
+    (docs / "docs").mkdir(parents=True)
+    for name in ("README.md", "docs/RESULTS.md"):
+        (docs / name).write_text((SOURCE_DIR / name).read_text())
+    fake_suite_report(tmp_path / "suite")
+    given = ["--docs", docs, "--output", f"ci-suite={tmp_path / 'suite'}"]
+    results = docs / "docs" / "RESULTS.md"
+
+    written = results_script("write", "ci-suite", *given)
+    assert written.returncode == 0, written.stderr
+    assert "| small | partial | 0.5 | 0.123 | 0.250 | 1.50 |" in results.read_text()
+    clean = results_script("check", "--under", "0", *given)
+    assert clean.returncode == 0, clean.stderr
+
+    made = results.read_text()
+    results.write_text(made.replace("| 0.123 |", "| 0.124 |"))
+    edited = results_script("check", "--under", "0", *given)
+    assert edited.returncode == 1
+    assert "'ci-suite' differs from what its command gives now" in edited.stderr
+    assert "-| small | partial | 0.5 | 0.124 |" in edited.stderr
+
+    # Made on another platform: the number moved by chaos, not by hand, is reported only ...
+    foreign = re.sub(r"(<!-- results: ci-suite platform:)\w+", r"\1ffffffff", made)
+    results.write_text(foreign.replace("| 0.123 |", "| 0.124 |"))
+    moved = results_script("check", "--under", "0", *given)
+    assert moved.returncode == 0, moved.stderr
+    assert "numbers are not gated here" in moved.stdout
+    # ... but a row that is not there is a different table.
+    results.write_text(foreign.replace("| small | partial |", "| small | partial | 1 |"))
+    assert results_script("check", "--under", "0", *given).returncode == 1
+
+    # A block whose first line does not name its command.
+    results.write_text(made.replace("`scripts/results.py write ci-suite`:", "Made by:"))
+    unnamed = results_script("check", "--under", "0", *given)
+    assert unnamed.returncode == 1
+    assert "does not name its command" in unnamed.stderr
