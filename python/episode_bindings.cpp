@@ -28,6 +28,7 @@
 #include "python/numpy_arrays.hpp"
 #include "python/pose_arrays.hpp"
 #include "python/scan_objects.hpp"
+#include "python/stack_answer.hpp"
 #include "python/taught_maps.hpp"
 
 namespace retrace::python {
@@ -111,8 +112,8 @@ TaughtMap MakeTaughtMap(int index, const py::array_t<std::uint8_t>& image, doubl
       throw py::value_error("log_odds: None or an array of the image's shape");
     }
   }
-  return {index, image, log_odds, resolution, py::make_tuple(origin.first, origin.second), path,
-          switch_pose};
+  return {index, image,      log_odds, resolution, py::make_tuple(origin.first, origin.second),
+          path,  switch_pose};
 }
 
 TaughtMap ToTaughtMap(int index, const nav::PartialMap& map) {
@@ -197,8 +198,17 @@ class Episode {
     return {o.time, IncrementArray(o.odometry), ScanList(o.scans), o.handed_back};
   }
 
-  bool Act(const py::object& v, const py::object& omega, const py::object& estimate, int map,
-           bool lost, bool route_done) {
+  // The keywords of act() beside the command and the estimate: a registered stack's answer's
+  // (python/stack_answer.hpp).
+  struct ActKeywords {
+    int map = 0;
+    bool lost = false, off_map = false, route_done = false;
+    bool modified = false, blocked = false, emergency_stop = false;
+    py::object map_change;
+  };
+
+  bool Act(const py::object& v, const py::object& omega, const py::object& estimate,
+           const ActKeywords& k) {
     if (!observed_) throw core::Error("act: nothing to answer yet: observe() first");
     if (builtin_) {
       if (!estimate.is_none() || !v.is_none() || !omega.is_none()) {
@@ -213,14 +223,21 @@ class Episode {
                               "missing: act(v, omega, estimate=(x, y, yaw), map=k) needs the "
                               "command, v in m/s and omega in rad/s");
     }
-    if (map < 0) throw core::ConfigError("map", "must be >= 0");
-    bench::StackAnswer answer;
-    answer.command = {Number(v, "v"), Number(omega, "omega")};
-    answer.X_MR = EstimateArgument(estimate);
-    answer.map = static_cast<std::size_t>(map);
-    answer.lost = lost;
-    answer.route_done = route_done;
-    const bool done = episode_->Act(answer);
+    if (k.map < 0) throw core::ConfigError("map", "must be >= 0");
+    py::dict answer;
+    answer["map"] = k.map;
+    answer["lost"] = k.lost;
+    answer["off_map"] = k.off_map;
+    answer["route_done"] = k.route_done;
+    answer["modified"] = k.modified;
+    answer["blocked"] = k.blocked;
+    answer["emergency_stop"] = k.emergency_stop;
+    answer["map_change"] = k.map_change;
+    const core::Pose2 X_MR = EstimateArgument(estimate);
+    answer["v"] = Number(v, "v");
+    answer["omega"] = Number(omega, "omega");
+    answer["estimate"] = py::make_tuple(X_MR.x, X_MR.y, X_MR.theta);
+    const bool done = episode_->Act(StackAnswerOf(answer, "act()"));
     observed_ = false;
     return done;
   }
@@ -374,15 +391,27 @@ void BindEpisodeTypes(py::module_& m) {
            "Steps the world to the next control tick (1 / nav.control_rate_hz s); returns the "
            "Observation on the way. Raises RuntimeError when the run is done or the last "
            "observation was not answered.")
-      .def("act", &Episode::Act, py::arg("v") = py::none(), py::arg("omega") = py::none(),
-           py::kw_only(),
-           py::arg("estimate") = py::none(), py::arg("map") = 0, py::arg("lost") = false,
-           py::arg("route_done") = false,
-           "Answers the last observation: the command (v m/s, omega rad/s), the estimate (x, y, "
-           "yaw) in map `map`'s frame (scored against the truth there), whether the stack deems "
-           "itself lost, and whether it believes it reached the route's end (on the last map: "
-           "the run ends, a success when the robot is within limits.lost_distance of the end). "
-           "A built-in episode takes act() with no arguments. Returns done.")
+      .def(
+          "act",
+          [](Episode& e, const py::object& v, const py::object& omega, const py::object& estimate,
+             int map, bool lost, bool off_map, bool route_done, bool modified, bool blocked,
+             bool emergency_stop, const py::object& map_change) {
+            return e.Act(
+                v, omega, estimate,
+                {map, lost, off_map, route_done, modified, blocked, emergency_stop, map_change});
+          },
+          py::arg("v") = py::none(), py::arg("omega") = py::none(), py::kw_only(),
+          py::arg("estimate") = py::none(), py::arg("map") = 0, py::arg("lost") = false,
+          py::arg("off_map") = false, py::arg("route_done") = false, py::arg("modified") = false,
+          py::arg("blocked") = false, py::arg("emergency_stop") = false,
+          py::arg("map_change") = py::none(),
+          "Answers the last observation as a stack answers (docs/PYTHON.md): the command (v "
+          "m/s, omega rad/s), the estimate (x, y, yaw) in map `map`'s frame (scored against the "
+          "truth there), and the keywords map, lost, off_map, route_done (on the last map: the "
+          "run ends, a success when the robot is within limits.lost_distance of the end), "
+          "modified, blocked, emergency_stop and map_change ((from, to, X_MkR, X_MnR); without "
+          "it a change of map is one from the last estimate). A built-in episode takes act() "
+          "with no arguments. Returns done.")
       .def("metrics", &Episode::Metrics,
            "The run's metrics once done, as an entry of <mode>/metrics.json's runs.")
       .def_property_readonly(

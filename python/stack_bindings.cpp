@@ -23,6 +23,7 @@
 #include "python/bindings.hpp"
 #include "python/native_stacks.hpp"
 #include "python/scan_objects.hpp"
+#include "python/stack_answer.hpp"
 #include "python/taught_maps.hpp"
 
 namespace retrace::python {
@@ -38,36 +39,6 @@ SharedObject Share(py::object object) {
     const py::gil_scoped_acquire gil;
     delete p;
   });
-}
-
-// (x, y, yaw) from a Python sequence, or a ConfigError naming what was given.
-core::Pose2 PoseOf(const py::handle& value, const std::string& name) {
-  std::vector<double> v;
-  try {
-    v = value.cast<std::vector<double>>();
-  } catch (const py::cast_error&) {
-    throw core::ConfigError("estimate", name + " returned an estimate that is not (x, y, yaw)");
-  }
-  if (v.size() != 3) {
-    throw core::ConfigError("estimate", name + " returned an estimate of " +
-                                            std::to_string(v.size()) + " numbers, not (x, y, yaw)");
-  }
-  return {v[0], v[1], v[2]};
-}
-
-// (from, to, X_MkR, X_MnR) from a Python answer's map_change, or a ConfigError.
-bench::MapChange MapChangeOf(const py::handle& value, const std::string& what) {
-  py::tuple t;
-  try {
-    t = value.cast<py::tuple>();
-  } catch (const py::cast_error&) {
-  }
-  if (t.size() != 4) {
-    throw core::ConfigError("answer", what + " answered a map_change that is not (from, to, "
-                                             "X_MkR, X_MnR)");
-  }
-  return {t[0].cast<std::size_t>(), t[1].cast<std::size_t>(), PoseOf(t[2], what),
-          PoseOf(t[3], what)};
 }
 
 class PythonStack final : public bench::NavigationStack {
@@ -122,44 +93,11 @@ class PythonStack final : public bench::NavigationStack {
     }
   }
 
-  // The answer of on_control_tick or resume: a dict with v, omega and estimate (required), map,
-  // lost, off_map, route_done, modified, blocked, emergency_stop and map_change (optional); a
-  // change of map without map_change is recorded as a change from the last estimate.
+  // The answer of on_control_tick or resume (python/stack_answer.hpp); a change of map without
+  // map_change is recorded as a change from the last estimate.
   bench::StackOutput Output(const py::object& answer) {
-    const std::string what = "stack '" + name_ + "'";
-    if (!py::isinstance<py::dict>(answer)) {
-      throw core::ConfigError("answer", what + " must answer with a dict {v, omega, estimate, "
-                                               "map, lost, route_done}");
-    }
-    const py::dict d = answer;
-    for (const char* key : {"v", "omega", "estimate"}) {
-      if (!d.contains(key)) {
-        throw core::ConfigError("answer", what + " answered without '" + key +
-                                              "': {v, omega, estimate} are required");
-      }
-    }
-    bench::StackOutput out;
-    out.drive.command = {d["v"].cast<double>(), d["omega"].cast<double>()};
-    out.X_MR = PoseOf(d["estimate"], what);
-    out.map = d.contains("map") ? d["map"].cast<std::size_t>() : 0;
-    out.lost = d.contains("lost") && d["lost"].cast<bool>();
-    out.off_map = d.contains("off_map") && d["off_map"].cast<bool>();
-    out.route_done = d.contains("route_done") && d["route_done"].cast<bool>();
-    out.drive.modified = d.contains("modified") && d["modified"].cast<bool>();
-    out.drive.blocked = d.contains("blocked") && d["blocked"].cast<bool>();
-    out.drive.emergency_stop = d.contains("emergency_stop") && d["emergency_stop"].cast<bool>();
-    if (d.contains("map_change")) {
-      out.map_change = MapChangeOf(d["map_change"], what);
-      if (out.map_change->to != out.map) {
-        throw core::ConfigError("answer", what + " answered a map_change into map " +
-                                              std::to_string(out.map_change->to) + " in map " +
-                                              std::to_string(out.map));
-      }
-    } else if (out.map != map_) {
-      out.map_change = bench::MapChange{map_, out.map, X_MR_, out.X_MR};
-    }
-    map_ = out.map;
-    X_MR_ = out.X_MR;
+    bench::StackOutput out = StackAnswerOf(answer, "stack '" + name_ + "'");
+    map_changes_.Apply(&out);
     return out;
   }
 
@@ -167,8 +105,7 @@ class PythonStack final : public bench::NavigationStack {
   SharedObject stack_;
   std::shared_ptr<bool> alive_;
   const bench::StackInsight* insight_;
-  std::size_t map_ = 0;
-  core::Pose2 X_MR_;
+  bench::MapChangeTracker map_changes_;
 };
 
 // What the factory is given: the taught maps, the robot, the run, the options and the maker of
@@ -215,9 +152,8 @@ void RegisterPythonStack(const std::string& name, const py::object& factory,
 }  // namespace
 
 void BindStacks(py::module_& m) {
-  m.def("register_stack", &RegisterPythonStack, py::arg("name"), py::arg("factory"),
-        py::kw_only(), py::arg("options") = std::map<std::string, std::string>{},
-        py::arg("summary") = "",
+  m.def("register_stack", &RegisterPythonStack, py::arg("name"), py::arg("factory"), py::kw_only(),
+        py::arg("options") = std::map<std::string, std::string>{}, py::arg("summary") = "",
         "Registers a navigation stack written in Python under `name`, for playback.stack in "
         "any scenario this interpreter runs (retrace.run, compare, sweep). factory(context) "
         "returns the stack for one run; context: {'maps' [TaughtMap], 'robot_radius', "

@@ -5,12 +5,12 @@
 #include <utility>
 
 #include "bench/engine/mode_list.hpp"
-#include "bench/stack/navigation_stack.hpp"
 #include "bench/engine/playback.hpp"
 #include "bench/engine/playback_episode.hpp"
-#include "bench/engine/stack_registry.hpp"
 #include "bench/engine/sensor_tap.hpp"
+#include "bench/engine/stack_registry.hpp"
 #include "bench/metrics/experiment.hpp"
+#include "bench/stack/navigation_stack.hpp"
 #include "core/check.hpp"
 #include "core/errors.hpp"
 #include "core/path_projection.hpp"
@@ -41,6 +41,31 @@ void RequireFinite(const core::Pose2& p, const char* what) {
   }
 }
 
+// The checks of SteppedEpisode::Act on a caller's answer.
+void CheckAnswer(const StackOutput& answer, std::size_t maps) {
+  const auto check_map = [maps](std::size_t map) {
+    if (map >= maps) {
+      throw core::ConfigError("answer", "map " + std::to_string(map) +
+                                            " is not a map of the route (it has " +
+                                            std::to_string(maps) + ")");
+    }
+  };
+  check_map(answer.map);
+  RequireFinite(answer.X_MR, "the estimate");
+  if (!std::isfinite(answer.drive.command.v) || !std::isfinite(answer.drive.command.omega)) {
+    throw core::ConfigError("answer", "the command must be finite");
+  }
+  if (const std::optional<MapChange>& change = answer.map_change) {
+    check_map(change->from);
+    if (change->to != answer.map) {
+      throw core::ConfigError("answer", "a map_change into map " + std::to_string(change->to) +
+                                            " answered in map " + std::to_string(answer.map));
+    }
+    RequireFinite(change->X_MkR, "the map_change's estimate before");
+    RequireFinite(change->X_MnR, "the map_change's estimate after");
+  }
+}
+
 }  // namespace
 
 // The stack the episode sees: it records each step's sensor data for the caller, and answers
@@ -51,7 +76,7 @@ class ObservingStack final : public NavigationStack {
       : builtin_(std::move(builtin)) {}
 
   Observation observation;
-  std::optional<StackAnswer> answer;
+  std::optional<StackOutput> answer;
 
   void OnOdometry(double t, const core::OdometryDelta& delta) override {
     observation.odometry.push_back({t, delta});
@@ -63,16 +88,8 @@ class ObservingStack final : public NavigationStack {
   }
   StackOutput OnControlTick(double t, double dt) override {
     if (builtin_) return builtin_->OnControlTick(t, dt);
-    const StackAnswer& a = *answer;
-    StackOutput out;
-    out.drive = {.command = a.command};
-    out.X_MR = a.X_MR;
-    out.map = a.map;
-    out.lost = a.lost;
-    out.route_done = a.route_done;
-    if (a.map != map_) out.map_change = MapChange{map_, a.map, X_MR_, a.X_MR};
-    map_ = a.map;
-    X_MR_ = a.X_MR;
+    StackOutput out = *answer;
+    map_changes_.Apply(&out);
     return out;
   }
   std::optional<MapChange> Resume(StackOutput* out) override {
@@ -82,15 +99,12 @@ class ObservingStack final : public NavigationStack {
   }
   // Whether the robot was handed back since the last call.
   bool TakeHandedBack() { return std::exchange(handed_back_, false); }
-  const StackInsight* insight() const override {
-    return builtin_ ? builtin_->insight() : nullptr;
-  }
+  const StackInsight* insight() const override { return builtin_ ? builtin_->insight() : nullptr; }
   bool builtin() const { return builtin_ != nullptr; }
 
  private:
   std::unique_ptr<NavigationStack> builtin_;
-  std::size_t map_ = 0;
-  core::Pose2 X_MR_;
+  MapChangeTracker map_changes_;
   bool handed_back_ = false;
 };
 
@@ -143,9 +157,9 @@ SteppedEpisode::SteppedEpisode(std::shared_ptr<const SteppedTeaching> teaching, 
   std::unique_ptr<NavigationStack> stack;
   if (builtin) stack = MakeStack(t.scenario, t.teach.bundle, run);
   s.stack = std::make_unique<ObservingStack>(std::move(stack));
-  s.episode = std::make_unique<PlaybackEpisode>(
-      t.scenario, t.teach.bundle, t.teach.trace, run, PlaybackTimeout(t.scenario, t.duration_s),
-      *s.stack);
+  s.episode =
+      std::make_unique<PlaybackEpisode>(t.scenario, t.teach.bundle, t.teach.trace, run,
+                                        PlaybackTimeout(t.scenario, t.duration_s), *s.stack);
 }
 
 SteppedEpisode::~SteppedEpisode() = default;
@@ -167,20 +181,12 @@ const Observation& SteppedEpisode::Observe() {
   return s.stack->observation;
 }
 
-bool SteppedEpisode::Act(const std::optional<StackAnswer>& answer) {
+bool SteppedEpisode::Act(const std::optional<StackOutput>& answer) {
   State& s = *state_;
   if (!s.observed) throw core::ConfigError("step", "observe before acting");
   if (!s.stack->builtin()) {
     if (!answer) throw core::ConfigError("answer", "the episode has no builtin stack: answer");
-    if (answer->map >= maps()) {
-      throw core::ConfigError("answer", "map " + std::to_string(answer->map) +
-                                            " is not a map of the route (it has " +
-                                            std::to_string(maps()) + ")");
-    }
-    RequireFinite(answer->X_MR, "the estimate");
-    if (!std::isfinite(answer->command.v) || !std::isfinite(answer->command.omega)) {
-      throw core::ConfigError("answer", "the command must be finite");
-    }
+    CheckAnswer(*answer, maps());
   }
   s.stack->answer = answer;
   s.observed = false;

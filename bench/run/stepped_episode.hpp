@@ -19,6 +19,7 @@
 #include "bench/engine/teach_drive.hpp"
 #include "bench/engine/trace.hpp"
 #include "bench/metrics/metrics.hpp"
+#include "bench/stack/navigation_stack.hpp"
 #include "core/laser_scan.hpp"
 #include "core/pose2.hpp"
 #include "core/twist.hpp"
@@ -85,18 +86,6 @@ struct Observation {
   bool handed_back = false;
 };
 
-/// The caller's answer at a control tick.
-struct StackAnswer {
-  core::Twist command;
-  /// Its estimate in map `map`'s frame, the taught maps' (map k starts at the teaching drive's
-  /// odometry pose where the drive began it, so that map 0 of a partial or single map is the
-  /// teaching drive's odometry frame: the frame of a stack without maps).
-  core::Pose2 X_MR;
-  std::size_t map = 0;
-  bool lost = false;
-  bool route_done = false;  ///< it believes it has reached the end of the route
-};
-
 class SteppedEpisode {
  public:
   /// Playback run `run` (>= 0) of `teaching`; with `builtin`, retrace's own stack
@@ -114,10 +103,13 @@ class SteppedEpisode {
   /// Steps the world to the next control tick; the sensor data on the way. Throws
   /// core::ConfigError("step") when the run is done, or when Act was not called since.
   const Observation& Observe();
-  /// The control tick with the caller's answer (ignored with `builtin`: pass nullopt). Throws
-  /// core::ConfigError("answer") for an answer without a builtin stack missing, a map index out
-  /// of range or a non-finite value; ("step") before Observe. Returns done().
-  bool Act(const std::optional<StackAnswer>& answer);
+  /// The control tick with the caller's answer, as any stack answers (ignored with `builtin`:
+  /// pass nullopt). An answer in another map than the one before that names no map_change
+  /// changed maps from the estimate before (MapChangeTracker). Throws core::ConfigError("answer")
+  /// for an answer without a builtin stack missing, a map index out of range, a map_change that
+  /// does not end in the answer's map or a non-finite value; ("step") before Observe. Returns
+  /// done().
+  bool Act(const std::optional<StackOutput>& answer);
   bool done() const;
   /// The run's trace and metrics (as `retrace run` computes them), once done(); throws
   /// core::ConfigError("step") before.

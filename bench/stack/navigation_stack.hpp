@@ -45,10 +45,27 @@ struct StackOutput {
   /// teaching drive's odometry pose where it began). Scored against the local truth there.
   core::Pose2 X_MR;
   std::size_t map = 0;
-  bool lost = false;        ///< the stack deems itself lost
-  bool off_map = false;     ///< no map covers its place: it runs on odometry alone
-  bool route_done = false;  ///< it reached the end of the route
+  bool lost = false;                    ///< the stack deems itself lost
+  bool off_map = false;                 ///< no map covers its place: it runs on odometry alone
+  bool route_done = false;              ///< it reached the end of the route
   std::optional<MapChange> map_change;  ///< the map change it made at this tick
+};
+
+/// The map changes a stack's answers imply: an answer in another map than the one before, which
+/// names no map_change itself, changed maps from the answer before's estimate to its own. The
+/// harness applies it to every answer that does not come from retrace's navigator.
+class MapChangeTracker {
+ public:
+  void Apply(StackOutput* out) {
+    if (!out->map_change && out->map != map_)
+      out->map_change = MapChange{map_, out->map, X_MR_, out->X_MR};
+    map_ = out->map;
+    X_MR_ = out->X_MR;
+  }
+
+ private:
+  std::size_t map_ = 0;
+  core::Pose2 X_MR_;
 };
 
 /// Defined by the harness (bench/engine/stack_insight.hpp) for stacks built on retrace's

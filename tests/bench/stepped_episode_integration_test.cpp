@@ -66,19 +66,19 @@ TEST(SteppedEpisode, MisuseIsRefusedWithOneMessage) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(key([&] { episode.Act(StackAnswer{}); }), "step");  // act before observe
+  EXPECT_EQ(key([&] { episode.Act(StackOutput{}); }), "step");  // act before observe
   EXPECT_GT(episode.Observe().odometry.size(), 0u);
   EXPECT_EQ(key([&] { episode.Observe(); }), "step");  // observe twice
   EXPECT_EQ(key([&] { episode.Act(std::nullopt); }), "answer");
-  StackAnswer beyond;
+  StackOutput beyond;
   beyond.map = 7;
   EXPECT_EQ(key([&] { episode.Act(beyond); }), "answer");
-  StackAnswer nan_estimate;
+  StackOutput nan_estimate;
   nan_estimate.X_MR.x = std::nan("");
   EXPECT_EQ(key([&] { episode.Act(nan_estimate); }), "answer");
   EXPECT_EQ(key([&] { episode.trace(); }), "step");  // not done
-  StackAnswer forward;
-  forward.command = {0.3, 0.0};
+  StackOutput forward;
+  forward.drive.command = {0.3, 0.0};
   EXPECT_FALSE(episode.Act(forward));
   TeachingRequest all = SmallRequest();
   all.mode = "all";
@@ -91,9 +91,9 @@ TEST(SteppedEpisode, AStackThatClaimsTheGoalFarFromItIsLostNotSuccessful) {
   TeachingRequest request = SmallRequest();
   request.overrides = {"limits.lost_distance=0.5"};
   SteppedEpisode episode(TeachForStepping(request), 0, false);
-  StackAnswer answer;
+  StackOutput answer;
   answer.map = episode.maps() - 1;
-  answer.command = {0.4, 0.0};
+  answer.drive.command = {0.4, 0.0};
   while (episode.Observe().time < 5.0) ASSERT_FALSE(episode.Act(answer));
   answer.route_done = true;
   EXPECT_TRUE(episode.Act(answer));

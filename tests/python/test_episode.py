@@ -65,9 +65,9 @@ def test_teaching_hands_out_the_recording_and_the_taught_maps():
     assert teaching.lidar_mount.shape == (3,) and teaching.robot_radius > 0
 
 
-def drive_on_odometry(teaching, episode, on_observation=None):
+def drive_on_odometry(teaching, episode, on_observation=None, **answer):
     """Drives map 0's taught path to its end on dead reckoning (the estimate is the odometry);
-    `on_observation` sees each observation first."""
+    `on_observation` sees each observation first; `answer` adds keywords to every act()."""
     path = teaching.maps[0].path
     pose, i = np.zeros(3), 0
     while not episode.done:
@@ -82,7 +82,7 @@ def drive_on_odometry(teaching, episode, on_observation=None):
         bearing = math.atan2(math.sin(bearing), math.cos(bearing))
         at_end = i == len(path) - 1 and math.dist(pose[:2], path[-1, :2]) < 0.3
         episode.act(0.0 if at_end else 0.5, max(-1.0, min(1.0, 2.0 * bearing)), estimate=pose,
-                    route_done=at_end)
+                    route_done=at_end, **answer)
     return episode.metrics()
 
 
@@ -96,6 +96,20 @@ def test_a_stack_on_odometry_alone_is_scored_against_the_truth():
     assert 0.0 < metrics["localization_error_m"]["rms"] < 1.0
     samples = episode.samples()
     assert samples["est"].shape == samples["gt"].shape == (metrics["samples"], 3)
+
+
+def test_a_stepped_answer_is_a_whole_stack_answer():
+    """act() takes what a registered stack answers: a stack that says it is off every map is
+    counted so; a map_change must end in the map answered."""
+    teaching = retrace.Teaching(SMALL, mode="single", progress=False)
+    metrics = drive_on_odometry(teaching, teaching.episode(0), off_map=True)
+    assert metrics["localizer"]["off_map_time_s"] > 0.9 * metrics["time_s"]
+    episode = teaching.episode(1)
+    episode.observe()
+    with pytest.raises(ValueError, match="map_change into map 1 in map 0"):
+        episode.act(0.1, 0.0, estimate=(0, 0, 0), map_change=(0, 1, (0, 0, 0), (0, 0, 0)))
+    with pytest.raises(ValueError, match="map_change that is not \\(from, to"):
+        episode.act(0.1, 0.0, estimate=(0, 0, 0), map_change=(0, 1))
 
 
 def test_a_python_stack_is_told_when_an_operator_hands_the_robot_back():
