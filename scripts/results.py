@@ -142,7 +142,8 @@ def render_campus_modes(folder):
             pair(m, "localization_error_m.pooled.rms", "localization_error_m.pooled.max"),
             pair(m, "repeatability_m", "repeatability_max_spread_m"),
             pair(m, "switch_error.mean_m", "switch_error.max_m") if switching else "–",
-            count(m.get("collisions.pedestrian_incidents")), f3(m.get("collisions.min_clearance_m")),
+            count(m.get("collisions.pedestrian_incidents")),
+            f3(m.get("collisions.min_clearance_m")),
             f"{m['dynamic_points.precision']:.2f} / {m['dynamic_points.recall']:.2f}",
             f3(m.get("localizer.max_jump_m"))])
     return table(["mode", "success", "tracking RMS / max (m)", "localization RMS / max (m)",
