@@ -44,8 +44,8 @@ void WriteRunFiles(const std::filesystem::path& dir, const LogLocalizeResult& ru
   for (const LocalizerSample& u : run.updates) {
     updates.AddRow({u.time, u.beams_tested, u.beams_rejected, u.spread, u.rejection_particles,
                     u.cpu_s * 1e3, int{u.lost}, u.trial_updates, u.trial_log_bayes_factor,
-                    int{u.reacquired}, u.evidence.explained, u.evidence.shorter,
-                    u.evidence.unknown, u.evidence.through_wall, u.reliability});
+                    int{u.reacquired}, u.evidence.explained, u.evidence.shorter, u.evidence.unknown,
+                    u.evidence.through_wall, u.reliability});
   }
   updates.Commit();
   std::vector<EventRow> events = SwitchEvents(run.switches);
@@ -130,8 +130,8 @@ std::string SummaryText(const LogLocalizeMetrics& m, const LogLocalizeResult& ru
             std::to_string(h.reacquisitions_wrong) +
             " took it more than 0.5 m farther; largest single-update error increase " +
             core::FixedText(h.max_error_increase_m, 2) + " m (at " +
-            core::FixedText(h.max_error_increase_time_s, 1) + " s); " +
-            std::to_string(m.switches) + " map switches, " + std::to_string(h.wrong_switches) +
+            core::FixedText(h.max_error_increase_time_s, 1) + " s); " + std::to_string(m.switches) +
+            " map switches, " + std::to_string(h.wrong_switches) +
             " into a map whose taught path the reference was not on\n"
             "  silent failure (error above 1 m, not lost, not off map) " +
             core::FixedText(h.silent_failure_time_s, 1) + " s, longest " +
@@ -153,21 +153,10 @@ LogManifestInfo LocalizeManifest(const LogLocalizeRequest& options, const std::s
                                  const ModeTeach& teach) {
   LogManifestInfo manifest;
   manifest.command_line = command_line;
-  manifest.fields = {
-      {"log", index.name},
-      {"log_format", std::string(logs::LogFormatName(index.format))},
-      {"teach", options.teach_dir.string()},
-      {"mode", std::string(core::EnumName(teach.mode))},
-      {"scan_topic", index.scan_topic},
-      {"stamps", index.nominal_scan_rate_hz > 0.0
-                     ? "nominal, --scan-rate " + core::FormatNumber(index.nominal_scan_rate_hz) +
-                           " Hz"
-                     : "the log's"},
-      {"odometry", streams.odometry_source},
-      {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
-      {"lidar_mount", index.mount_source},
-      {"from_s", core::FormatNumber(run.first_s)},
-      {"to_s", core::FormatNumber(run.last_s)}};
+  manifest.fields = LogManifestFields(index, streams, run.first_s, run.last_s);
+  manifest.fields.insert(
+      manifest.fields.begin() + 2,
+      {{"teach", options.teach_dir.string()}, {"mode", std::string(core::EnumName(teach.mode))}});
   manifest.notes = index.notes;
   if (const std::string off_route = OffRouteWarning(series); !off_route.empty())
     manifest.notes.push_back("warning: " + off_route);

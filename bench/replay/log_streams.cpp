@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "core/format.hpp"
 
 namespace retrace::bench {
 
@@ -107,6 +108,22 @@ LogStreams PrepareLogStreams(const logs::LogIndex& index, const LogConfig& confi
     streams.odometry_source = "synthetic, drawn from " + streams.reference_source;
   }
   return streams;
+}
+
+std::vector<std::pair<std::string, std::string>> LogManifestFields(const logs::LogIndex& index,
+                                                                   const LogStreams& streams,
+                                                                   double from_s, double to_s) {
+  const double rate = index.nominal_scan_rate_hz;
+  return {{"log", index.name},
+          {"log_format", std::string(logs::LogFormatName(index.format))},
+          {"scan_topic", index.scan_topic},
+          {"stamps",
+           rate > 0.0 ? "nominal, --scan-rate " + core::FormatNumber(rate) + " Hz" : "the log's"},
+          {"odometry", streams.odometry_source},
+          {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
+          {"lidar_mount", index.mount_source},
+          {"from_s", core::FormatNumber(from_s)},
+          {"to_s", core::FormatNumber(to_s)}};
 }
 
 }  // namespace retrace::bench

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/replay/log_config.hpp"
@@ -45,5 +46,12 @@ LogStreams PrepareLogStreams(const logs::LogIndex& index, const LogConfig& confi
 /// model driven along `truth` in steps of at most 2 cm and 1 degree.
 std::vector<io::StampedPose> SyntheticOdometry(const std::vector<io::StampedPose>& truth,
                                                const sim::OdometryConfig& config, core::Rng rng);
+
+/// The manifest fields every log command writes about the log and its streams, in order: log,
+/// log_format, scan_topic, stamps (the log's, or nominal from --scan-rate), odometry, reference,
+/// lidar_mount, from_s and to_s (the span used, s since the log's first scan).
+std::vector<std::pair<std::string, std::string>> LogManifestFields(const logs::LogIndex& index,
+                                                                   const LogStreams& streams,
+                                                                   double from_s, double to_s);
 
 }  // namespace retrace::bench

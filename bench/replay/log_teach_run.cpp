@@ -46,21 +46,9 @@ LogManifestInfo TeachManifest(const LogTeaching& taught, MapMode mode,
   const LogTeachResult& result = taught.result;
   LogManifestInfo manifest;
   manifest.command_line = command_line;
-  manifest.fields = {
-      {"log", index.name},
-      {"log_format", std::string(logs::LogFormatName(index.format))},
-      {"mode", std::string(core::EnumName(mode))},
-      {"scan_topic", index.scan_topic},
-      {"stamps", index.nominal_scan_rate_hz > 0.0
-                     ? "nominal, --scan-rate " + core::FormatNumber(index.nominal_scan_rate_hz) +
-                           " Hz"
-                     : "the log's"},
-      {"odometry", streams.odometry_source},
-      {"reference", streams.reference_source.empty() ? "none" : streams.reference_source},
-      {"lidar_mount", index.mount_source},
-      {"from_s", core::FormatNumber(result.first_s)},
-      {"to_s", core::FormatNumber(result.last_s)},
-      {"scans", std::to_string(result.scans)}};
+  manifest.fields = LogManifestFields(index, streams, result.first_s, result.last_s);
+  manifest.fields.insert(manifest.fields.begin() + 2, {"mode", std::string(core::EnumName(mode))});
+  manifest.fields.emplace_back("scans", std::to_string(result.scans));
   manifest.notes = index.notes;
   manifest.config_yaml = io::ConfigToYaml(taught.config);
   manifest.wall_time_s = wall_time_s;
