@@ -14,8 +14,11 @@ import retrace
 from conftest import SMALL, SOURCE_DIR
 
 CHILD = textwrap.dedent("""
-    import sys
+    import signal, sys
     import retrace
+    # A shell's background job starts with SIGINT ignored, and Python then installs no
+    # KeyboardInterrupt for it: give the child the interactive Ctrl-C whoever started the tests.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     started = []
     def progress(p):
         if not started:
