@@ -224,20 +224,17 @@ class Episode {
                               "command, v in m/s and omega in rad/s");
     }
     if (k.map < 0) throw core::ConfigError("map", "must be >= 0");
-    py::dict answer;
-    answer["map"] = k.map;
-    answer["lost"] = k.lost;
-    answer["off_map"] = k.off_map;
-    answer["route_done"] = k.route_done;
-    answer["modified"] = k.modified;
-    answer["blocked"] = k.blocked;
-    answer["emergency_stop"] = k.emergency_stop;
-    answer["map_change"] = k.map_change;
-    const core::Pose2 X_MR = EstimateArgument(estimate);
-    answer["v"] = Number(v, "v");
-    answer["omega"] = Number(omega, "omega");
-    answer["estimate"] = py::make_tuple(X_MR.x, X_MR.y, X_MR.theta);
-    const bool done = episode_->Act(StackAnswerOf(answer, "act()"));
+    // Built directly, not through a dict: this runs at every control tick.
+    bench::StackOutput answer;
+    answer.drive = {
+        {Number(v, "v"), Number(omega, "omega")}, k.modified, k.blocked, k.emergency_stop};
+    answer.X_MR = EstimateArgument(estimate);
+    answer.map = static_cast<std::size_t>(k.map);
+    answer.lost = k.lost;
+    answer.off_map = k.off_map;
+    answer.route_done = k.route_done;
+    if (!k.map_change.is_none()) answer.map_change = MapChangeOf(k.map_change, "act()");
+    const bool done = episode_->Act(answer);  // checks the maps (SteppedEpisode::Act)
     observed_ = false;
     return done;
   }

@@ -26,7 +26,8 @@ core::Pose2 PoseOf(const py::handle& value, const std::string& what) {
   return {v[0], v[1], v[2]};
 }
 
-// (from, to, X_MkR, X_MnR) from a Python answer's map_change, or a ConfigError.
+}  // namespace
+
 bench::MapChange MapChangeOf(const py::handle& value, const std::string& what) {
   py::tuple t;
   try {
@@ -41,8 +42,6 @@ bench::MapChange MapChangeOf(const py::handle& value, const std::string& what) {
   return {t[0].cast<std::size_t>(), t[1].cast<std::size_t>(), PoseOf(t[2], what),
           PoseOf(t[3], what)};
 }
-
-}  // namespace
 
 bench::StackOutput StackAnswerOf(const py::handle& answer, const std::string& what) {
   if (!py::isinstance<py::dict>(answer)) {

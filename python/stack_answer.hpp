@@ -18,4 +18,8 @@ namespace retrace::python {
 /// Throws core::ConfigError("answer" or "estimate") for a malformed answer.
 bench::StackOutput StackAnswerOf(const pybind11::handle& answer, const std::string& what);
 
+/// A map_change (from, to, X_MkR, X_MnR) as a stack's answer gives it; throws
+/// core::ConfigError("answer" or "estimate") for anything else.
+bench::MapChange MapChangeOf(const pybind11::handle& value, const std::string& what);
+
 }  // namespace retrace::python

@@ -106,7 +106,7 @@ def test_a_stepped_answer_is_a_whole_stack_answer():
     assert metrics["localizer"]["off_map_time_s"] > 0.9 * metrics["time_s"]
     episode = teaching.episode(1)
     episode.observe()
-    with pytest.raises(ValueError, match="map_change into map 1 in map 0"):
+    with pytest.raises(ValueError, match="map_change into map 1 answered in map 0"):
         episode.act(0.1, 0.0, estimate=(0, 0, 0), map_change=(0, 1, (0, 0, 0), (0, 0, 0)))
     with pytest.raises(ValueError, match="map_change that is not \\(from, to"):
         episode.act(0.1, 0.0, estimate=(0, 0, 0), map_change=(0, 1))
