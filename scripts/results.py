@@ -286,22 +286,41 @@ def body(table_id, folder):
 # Running, checking, writing
 
 
-def produce(source_id, retrace, given, scratch):
-    """The folder holding source_id's output: the one given, or a fresh run's."""
-    if source_id in given:
-        return pathlib.Path(given[source_id])
-    out = pathlib.Path(scratch) / source_id
-    args = [str(out) if a == "{out}" else a for a in SOURCES[source_id].args]
-    print(f"results.py: running {SOURCES[source_id].command()} "
-          f"(about {duration(SOURCES[source_id].seconds)})", flush=True)
-    proc = subprocess.run([retrace] + args, cwd=ROOT, capture_output=True, text=True)
-    if proc.returncode != 0 and not (out / "report.json").exists():
-        sys.exit(f"results.py: {SOURCES[source_id].command()} failed "
-                 f"(exit {proc.returncode}):\n{proc.stderr[-2000:]}")
-    return out
+class Outputs:
+    """The folder each source's command wrote: the one --output gave, or its run's in `folder`,
+    each command run at most once."""
+
+    def __init__(self, retrace, given, folder):
+        self.retrace, self.given, self.folder, self.made = retrace, given, folder, {}
+
+    def __getitem__(self, source_id):
+        if source_id in self.given:
+            return pathlib.Path(self.given[source_id])
+        if source_id not in self.made:
+            self.made[source_id] = self.run(source_id)
+        return self.made[source_id]
+
+    def run(self, source_id):
+        source = SOURCES[source_id]
+        if not pathlib.Path(self.retrace).is_file():
+            sys.exit(f"results.py: no program {self.retrace} to run `{source.command()}` with: "
+                     f"build it (scripts/build.sh build), or give --retrace or --output "
+                     f"{source_id}=DIR")
+        out = pathlib.Path(self.folder).resolve() / source_id
+        args = [str(out) if a == "{out}" else a for a in source.args]
+        print(f"results.py: running {source.command()} (about {duration(source.seconds)})",
+              flush=True)
+        proc = subprocess.run([self.retrace] + args, cwd=ROOT, capture_output=True, text=True)
+        if proc.returncode != 0 and not (out / "report.json").exists():  # bench: 1 = regression
+            sys.exit(f"results.py: {source.command()} failed (exit {proc.returncode}):\n"
+                     f"{proc.stderr[-2000:]}")
+        return out
 
 
 def blocks(doc):
+    if not (DOCS / doc).is_file():
+        sys.exit(f"results.py: no {doc} in {DOCS} (--docs names the folder holding README.md "
+                 f"and docs/)")
     text = (DOCS / doc).read_text()
     return text, {m.group("id"): m for m in BLOCK.finditer(text)}
 
@@ -355,16 +374,14 @@ def cmd_check(args, given):
     due = [t for t, spec in TABLES.items()
            if spec.source in given or SOURCES[spec.source].seconds < args.under]
     with tempfile.TemporaryDirectory(prefix="retrace_results_") as scratch:
-        folders = {}
+        outputs = Outputs(args.retrace, given, scratch)
         for table_id in due:
             spec = TABLES[table_id]
-            if spec.source not in folders:
-                folders[spec.source] = produce(spec.source, args.retrace, given, scratch)
             _, found = blocks(spec.doc)
             if table_id in found:
                 block = found[table_id]
                 problems += compare_block(table_id, block.group("platform"), here,
-                                          body(table_id, folders[spec.source]),
+                                          body(table_id, outputs[spec.source]),
                                           block.group("body"))
     skipped = sorted(set(TABLES) - set(due))
     print(f"results.py: {len(TABLES)} tables, structure checked; regenerated and compared: "
@@ -384,19 +401,16 @@ def cmd_write(args, given):
     with tempfile.TemporaryDirectory(prefix="retrace_results_") as scratch:
         if args.keep:
             args.keep.mkdir(parents=True, exist_ok=True)
-        folders = {}
+        outputs = Outputs(args.retrace, given, args.keep or scratch)
         for table_id in ids:
             spec = TABLES[table_id]
-            if spec.source not in folders:
-                folders[spec.source] = produce(spec.source, args.retrace, given,
-                                               args.keep.resolve() if args.keep else scratch)
             text, found = blocks(spec.doc)
             if table_id not in found:
                 sys.exit(f"results.py: {spec.doc} has no block '<!-- results: {table_id} "
                          f"platform:... -->' ... '<!-- /results -->' to write into")
             block = found[table_id]
             new = (f"<!-- results: {table_id} platform:{here} -->\n"
-                   f"{body(table_id, folders[spec.source])}<!-- /results -->")
+                   f"{body(table_id, outputs[spec.source])}<!-- /results -->")
             (DOCS / spec.doc).write_text(text[:block.start()] + new + text[block.end():])
             print(f"results.py: wrote '{table_id}' into {spec.doc}")
     return 0
@@ -440,10 +454,6 @@ def main():
             sys.exit(f"results.py: --output {shlex.quote(item)}: expected SOURCE=DIR with "
                      f"SOURCE one of {', '.join(SOURCES)}")
         given[source_id] = folder
-    if args.command != "list" and not pathlib.Path(args.retrace).exists() and \
-            len(given) < len(SOURCES):
-        print(f"results.py: note: {args.retrace} does not exist (build it, or --retrace)",
-              file=sys.stderr)
     return {"list": cmd_list, "check": cmd_check, "write": cmd_write}[args.command](args, given)
 
 
