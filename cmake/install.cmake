@@ -19,6 +19,7 @@ set(retrace_include_dir ${CMAKE_INSTALL_INCLUDEDIR}/retrace)
 set(retrace_package_dir ${CMAKE_INSTALL_LIBDIR}/cmake/retrace)
 
 install(TARGETS retrace RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS retrace_video_codec LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/retrace)
 install(TARGETS ${retrace_export_targets} EXPORT retraceTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${retrace_include_dir})

@@ -5,8 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -17,15 +15,14 @@
 #include "core/limits.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
-#include "io/internal/decoded_image.hpp"
+#include "io/decoded_image.hpp"
 #include "io/internal/image_header.hpp"
 #include "io/internal/png_reader.hpp"
+#include "io/png.hpp"
 #include "io/read_file.hpp"
 
 namespace retrace::io {
 namespace {
-
-using internal::DecodedImage;
 
 // ---------------------------------------------------------------------------------------------
 // Netpbm: PGM (P2 ASCII, P5 binary), PBM (P1, P4) and PPM (P3, P6), parsed strictly here rather
@@ -372,19 +369,13 @@ std::vector<std::uint8_t> GridToPixels(const core::OccupancyGrid& grid,
 }
 
 // The pixels (w x h) as a PNG file's bytes; throws core::IoError naming `path` if encoding fails.
-// (`pixels` is not changed: cv::Mat only takes a mutable pointer.)
-std::string EncodePng(std::vector<std::uint8_t>& pixels, int w, int h,
-                      const std::filesystem::path& path) {
-  const cv::Mat mat(h, w, CV_8UC1, pixels.data());
-  std::vector<std::uint8_t> encoded;
-  bool ok = false;
+std::string EncodeMapPng(const std::vector<std::uint8_t>& pixels, int w, int h,
+                         const std::filesystem::path& path) {
   try {
-    ok = cv::imencode(".png", mat, encoded);
-  } catch (const cv::Exception& e) {
-    throw core::IoError(path.string() + ": cannot encode PNG: " + e.msg);
+    return io::EncodePng(pixels, w, h, 1);
+  } catch (const core::IoError& e) {
+    throw core::IoError(path.string() + ": " + e.what());
   }
-  if (!ok) throw core::IoError(path.string() + ": cannot encode PNG");
-  return std::string(encoded.begin(), encoded.end());
 }
 
 // The pixels of `grid` as a binary PGM file's bytes, the resolution in its comment.
@@ -469,7 +460,7 @@ void WriteRosMap(const std::filesystem::path& yaml, const core::OccupancyGrid& g
   image_name.replace_extension(png ? ".png" : ".pgm");
   const std::filesystem::path image_path = yaml.parent_path() / image_name;
   const std::string image_bytes =
-      png ? EncodePng(pixels, grid.width(), grid.height(), image_path) : EncodePgm(pixels, grid);
+      png ? EncodeMapPng(pixels, grid.width(), grid.height(), image_path) : EncodePgm(pixels, grid);
   const RosMapMetadata meta = WrittenMetadata(image_name.string(), grid, options);
   // Image first: the YAML must never name a missing or partial image.
   WriteFileAtomic(image_path, image_bytes);

@@ -1,14 +1,11 @@
 #include "viz/image.hpp"
 
 #include <algorithm>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-#include <string_view>
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
-#include "viz/internal/cv_image.hpp"
+#include "io/png.hpp"
 
 namespace retrace::viz {
 
@@ -25,38 +22,39 @@ Image::Image(int width_in, int height_in, Rgba fill)
 Rgba Image::At(int x, int y) const {
   RETRACE_CHECK(x >= 0 && y >= 0 && x < width && y < height);
   const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                         static_cast<std::size_t>(x)) * 3;
+                         static_cast<std::size_t>(x)) *
+                        3;
   return {rgb[i], rgb[i + 1], rgb[i + 2], 255};
 }
 
 std::vector<std::uint8_t> EncodePng(const Image& image) {
   if (image.empty()) throw core::IoError("cannot encode an empty image as PNG");
-  cv::Mat bgr;
-  cv::cvtColor(internal::ToMat(image), bgr, cv::COLOR_RGB2BGR);
-  std::vector<std::uint8_t> bytes;
-  // Fixed compression parameters: the same pixels always give the same bytes.
-  const std::vector<int> params{cv::IMWRITE_PNG_COMPRESSION, 6, cv::IMWRITE_PNG_STRATEGY,
-                                cv::IMWRITE_PNG_STRATEGY_DEFAULT};
-  if (!cv::imencode(".png", bgr, bytes, params)) throw core::IoError("PNG encoding failed");
-  return bytes;
+  const std::string bytes = io::EncodePng(image.rgb, image.width, image.height, 3);
+  return {bytes.begin(), bytes.end()};
 }
 
 void WritePng(const Image& image, const std::filesystem::path& png) {
-  std::vector<std::uint8_t> bytes;
+  if (image.empty()) throw core::IoError(png.string() + ": cannot encode an empty image as PNG");
+  std::string bytes;
   try {
-    bytes = EncodePng(image);
+    bytes = io::EncodePng(image.rgb, image.width, image.height, 3);
   } catch (const core::IoError& e) {
     throw core::IoError(png.string() + ": " + e.what());
   }
-  io::WriteFileAtomic(png, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  io::WriteFileAtomic(png, bytes);
 }
 
 Image ReadPng(const std::filesystem::path& png) {
-  const cv::Mat bgr = cv::imread(png.string(), cv::IMREAD_COLOR);
-  if (bgr.empty()) throw core::IoError(png.string() + ": missing or not a readable image");
-  cv::Mat rgb;
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-  return internal::FromMat(rgb);
+  const io::DecodedImage decoded = io::ReadPngFile(png);
+  Image image(decoded.width, decoded.height);
+  const auto channels = static_cast<std::size_t>(decoded.channels);
+  const bool colour = decoded.channels >= 3;  // grey (+ alpha) is spread over R, G and B
+  for (std::size_t p = 0; p * 3 < image.rgb.size(); ++p) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      image.rgb[p * 3 + c] = decoded.data[p * channels + (colour ? c : 0)];
+    }
+  }
+  return image;
 }
 
 Image ComposeGrid(const std::vector<Image>& tiles, int columns, int gap, Rgba background) {

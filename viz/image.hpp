@@ -30,11 +30,12 @@ struct Image {
 /// Throws core::IoError if the image is empty, encoding fails or the file cannot be written.
 void WritePng(const Image& image, const std::filesystem::path& png);
 
-/// The PNG (or any image OpenCV decodes) bytes encoded in memory; the same bytes WritePng
-/// writes. Throws core::IoError for an empty image or a failed encoding.
+/// The PNG file's bytes, encoded in memory (io/png.hpp); the same bytes WritePng writes. Throws
+/// core::IoError for an empty image or a failed encoding.
 std::vector<std::uint8_t> EncodePng(const Image& image);
 
-/// Reads an image file as RGB. Throws core::IoError if it is missing or not decodable.
+/// Reads a PNG file as RGB (grey spread over the three channels, alpha dropped). Throws
+/// core::IoError if it is missing, not a PNG or not decodable.
 Image ReadPng(const std::filesystem::path& png);
 
 /// Places `tiles` in a grid of `columns`, left to right then top to bottom, with `gap` pixels

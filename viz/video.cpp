@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 #include <system_error>
 
 #include "core/errors.hpp"
@@ -13,6 +12,7 @@
 #include "viz/internal/cv_image.hpp"
 #include "viz/internal/snapshot_layers.hpp"
 #include "viz/render_error.hpp"
+#include "viz/video_codec/video_codec_loader.hpp"
 
 namespace retrace::viz {
 namespace {
@@ -130,15 +130,22 @@ Image RenderVideoFrame(const VideoFrame& frame, const VideoFrameOptions& options
 
 class VideoWriter::Impl {
  public:
-  cv::VideoWriter writer;
+  const RetraceVideoCodecApi& codec = internal::VideoCodec();
+  void* video = nullptr;  // open between the constructor and Close()
+
+  void Release() {
+    codec.close(video);
+    video = nullptr;
+  }
 };
 
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, double fps)
-    : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
+    : width_(width), height_(height) {
   CheckEvenSize(width, height);
   if (!(fps > 0.0) || !std::isfinite(fps)) {
     throw RenderError("video frame rate must be positive, got " + std::to_string(fps));
   }
+  impl_ = std::make_unique<Impl>();
   std::error_code ec;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
   if (ec)
@@ -154,9 +161,8 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
     target.replace_extension(c.ext);
     std::filesystem::path temp = target;
     temp.replace_filename(target.stem().string() + ".partial" + c.ext);
-    const int fourcc = cv::VideoWriter::fourcc(c.fourcc[0], c.fourcc[1], c.fourcc[2], c.fourcc[3]);
-    if (impl_->writer.open(temp.string(), cv::CAP_FFMPEG, fourcc, fps, cv::Size(width, height)) ||
-        impl_->writer.open(temp.string(), fourcc, fps, cv::Size(width, height))) {
+    impl_->video = impl_->codec.open(temp.c_str(), c.fourcc, fps, width, height);
+    if (impl_->video != nullptr) {
       path_ = target;
       temp_ = temp;
       codec_ = c.fourcc;
@@ -168,29 +174,29 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
 }
 
 VideoWriter::~VideoWriter() {
-  if (impl_ && impl_->writer.isOpened()) {
-    impl_->writer.release();
+  if (impl_ && impl_->video != nullptr) {
+    impl_->Release();
     std::error_code ec;
     std::filesystem::remove(temp_, ec);
   }
 }
 
 void VideoWriter::Write(const Image& frame) {
-  if (!impl_->writer.isOpened()) throw RenderError(path_.string() + ": video already closed");
+  if (impl_->video == nullptr) throw RenderError(path_.string() + ": video already closed");
   if (frame.width != width_ || frame.height != height_) {
     throw RenderError(path_.string() + ": frame of " + std::to_string(frame.width) + " x " +
                       std::to_string(frame.height) + " px in a video of " + std::to_string(width_) +
                       " x " + std::to_string(height_) + " px");
   }
-  cv::Mat bgr;
-  cv::cvtColor(internal::ToMat(frame), bgr, cv::COLOR_RGB2BGR);
-  impl_->writer.write(bgr);
+  if (impl_->codec.write_rgb(impl_->video, frame.rgb.data()) != 0) {
+    throw RenderError(path_.string() + ": the video encoder refused a frame");
+  }
   ++frames_;
 }
 
 void VideoWriter::Close() {
-  if (!impl_->writer.isOpened()) throw RenderError(path_.string() + ": video already closed");
-  impl_->writer.release();
+  if (impl_->video == nullptr) throw RenderError(path_.string() + ": video already closed");
+  impl_->Release();
   std::error_code ec;
   std::filesystem::rename(temp_, path_, ec);
   if (ec) {
@@ -200,17 +206,14 @@ void VideoWriter::Close() {
 }
 
 VideoInfo ProbeVideo(const std::filesystem::path& path) {
-  // FFmpeg only: it reads what VideoWriter writes, and other backends would probe cameras.
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw core::IoError(path.string() + ": no such video");
-  cv::VideoCapture cap(path.string(), cv::CAP_FFMPEG);
-  if (!cap.isOpened()) throw core::IoError(path.string() + ": cannot open video");
   VideoInfo info;
-  info.frames = static_cast<int>(std::lround(cap.get(cv::CAP_PROP_FRAME_COUNT)));
-  info.width = static_cast<int>(cap.get(cv::CAP_PROP_FRAME_WIDTH));
-  info.height = static_cast<int>(cap.get(cv::CAP_PROP_FRAME_HEIGHT));
-  info.fps = cap.get(cv::CAP_PROP_FPS);
+  if (internal::VideoCodec().probe(path.c_str(), &info.frames, &info.width, &info.height,
+                                   &info.fps) != 0) {
+    throw core::IoError(path.string() + ": cannot open video");
+  }
   return info;
 }
 

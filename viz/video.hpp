@@ -1,7 +1,7 @@
 #pragma once
 // Videos of playback runs: frames rendered from above, following the robot (map, taught path,
 // scan, particles, pedestrians, estimate vs truth, map switches, time and speed), encoded with
-// OpenCV's video writer.
+// OpenCV's video writer, loaded as a plugin on first use (viz/video_codec/).
 
 #include <filesystem>
 #include <limits>
@@ -71,7 +71,8 @@ class VideoWriter {
   /// Opens a video of width x height px (even) at `fps`. Codecs tried in order: H.264 ("avc1")
   /// and MPEG-4 part 2 ("mp4v") in an .mp4 container, then Motion JPEG ("MJPG") in .avi; with
   /// MJPG the file name's extension becomes .avi (see path()). Throws RenderError for a bad
-  /// size or fps or when no codec opens, core::IoError when the folder cannot be created.
+  /// size or fps, when the codec plugin does not load or when no codec opens, core::IoError
+  /// when the folder cannot be created.
   VideoWriter(const std::filesystem::path& path, int width, int height, double fps);
   /// Without Close(): removes the temporary file, leaving the target untouched.
   ~VideoWriter();

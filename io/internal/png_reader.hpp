@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "io/internal/decoded_image.hpp"
+#include "io/decoded_image.hpp"
 
 namespace retrace::io::internal {
 

@@ -1,10 +1,10 @@
 #pragma once
-// An 8-bit image as the map image readers return it.
+// An 8-bit image as the map image readers and io/png.hpp return it.
 
 #include <cstdint>
 #include <vector>
 
-namespace retrace::io::internal {
+namespace retrace::io {
 
 /// Interleaved 8-bit channels (1 grey, 2 grey + alpha, 3 colour, 4 colour + alpha), row 0 at the
 /// top.
@@ -15,4 +15,4 @@ struct DecodedImage {
   std::vector<std::uint8_t> data;
 };
 
-}  // namespace retrace::io::internal
+}  // namespace retrace::io
