@@ -22,7 +22,7 @@ packages=(
 for arg in "$@"; do
   case "$arg" in
     --test)
-      packages+=(python3-pytest python3-pytest-xdist python3-matplotlib
+      packages+=(python3-pytest python3-matplotlib
                  chromium python3-junitparser python3-jsonschema python3-rosbag python3-sensor-msgs
                  python3-nav-msgs python3-tf2-msgs python3-geometry-msgs)
       ;;

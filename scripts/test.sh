@@ -48,7 +48,7 @@ scripts/results.py check --output ci-suite=results/bench/ci
 
 stage "Python module tests (Release: pytest tests/python)"
 # What ctest runs as python.pytest where the integration tier is built with the module.
-PYTHONPATH=build/python /usr/bin/python3 -m pytest -q -p no:cacheprovider -n "$jobs" tests/python
+PYTHONPATH=build/python /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
 
 stage "AddressSanitizer + UBSan build (Clang: program, unit and integration tests)"
 # Clang, so that a second compiler's warnings are errors too, and because it builds the

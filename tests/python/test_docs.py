@@ -1,17 +1,16 @@
 """Every ```python block of docs/PYTHON.md runs as written: the blocks of each section in order, in
 one interpreter (as a reader would run them one after the other; each section imports what it
-uses), one test per section (pytest-xdist runs them side by side), each from a scratch folder
-laid out like the repository (its scenarios/, worlds/, bench/ and tests/ linked in), so that what
-they write stays there."""
+uses), the sections side by side (one interpreter each, as many at once as there are cores), from
+a scratch folder laid out like the repository (its scenarios/, worlds/, bench/ and tests/ linked
+in), so that what they write stays there."""
 
+import concurrent.futures
 import json
 import os
 import re
 import subprocess
 import sys
 import textwrap
-
-import pytest
 
 from conftest import SOURCE_DIR
 
@@ -40,25 +39,26 @@ def python_blocks(markdown):
     return sections
 
 
-SECTIONS = python_blocks((SOURCE_DIR / "docs" / "PYTHON.md").read_text())
+def run_section(folder, index, blocks):
+    (folder / f"blocks_{index}.json").write_text(json.dumps(blocks))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    return subprocess.run([sys.executable, "-c", DRIVER, f"blocks_{index}.json"], cwd=folder,
+                          env=env, capture_output=True, text=True, timeout=600)
 
 
-def test_the_docs_have_python_examples():
-    assert sum(len(blocks) for blocks in SECTIONS.values()) >= 3
-
-
-@pytest.mark.parametrize("title", list(SECTIONS))
-def test_every_python_example_of_the_docs_runs(tmp_path, title):
+def test_every_python_example_of_the_docs_runs(tmp_path):
+    sections = python_blocks((SOURCE_DIR / "docs" / "PYTHON.md").read_text())
+    assert sum(len(blocks) for blocks in sections.values()) >= 3
     for folder in ("scenarios", "worlds", "bench", "tests"):
         (tmp_path / folder).symlink_to(SOURCE_DIR / folder)
-    (tmp_path / "blocks.json").write_text(json.dumps(SECTIONS[title]))
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
-    result = subprocess.run([sys.executable, "-c", DRIVER, "blocks.json"], cwd=tmp_path, env=env,
-                            capture_output=True, text=True, timeout=600)
-    assert result.returncode == 0, f"section '{title}':\n{result.stdout}{result.stderr}"
-    # The section's figures were drawn.
-    if any("savefig" in code for _, code in SECTIONS[title]):
-        assert list((tmp_path / "results").rglob("*.png"))
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count()) as pool:
+        done = {title: pool.submit(run_section, tmp_path, i, blocks)
+                for i, (title, blocks) in enumerate(sections.items())}
+    for title, future in done.items():
+        result = future.result()
+        assert result.returncode == 0, f"section '{title}':\n{result.stdout}{result.stderr}"
+    # The examples' figures were drawn.
+    assert list((tmp_path / "results").rglob("*.png"))
 
 
 RESULTS_SCRIPT = SOURCE_DIR / "scripts" / "results.py"
