@@ -3,11 +3,11 @@
 #include <png.h>
 
 #include <csetjmp>
-#include <cstring>
 #include <vector>
 
 #include "core/errors.hpp"
 #include "io/internal/image_header.hpp"
+#include "io/internal/png_messages.hpp"
 #include "io/internal/png_reader.hpp"
 #include "io/read_file.hpp"
 
@@ -16,17 +16,8 @@ namespace {
 
 struct Sink {
   std::string bytes;
-  char error[256] = {};  // libpng's error message, when it gives up
+  internal::PngMessage message;  // libpng's, when it gives up
 };
-
-void OnError(png_structp png, png_const_charp message) {
-  auto* sink = static_cast<Sink*>(png_get_error_ptr(png));
-  std::strncpy(sink->error, message != nullptr ? message : "unknown error",
-               sizeof(sink->error) - 1);
-  png_longjmp(png, 1);
-}
-
-void OnWarning(png_structp, png_const_charp) {}  // benign by libpng's definition: not printed
 
 void OnWrite(png_structp png, png_bytep data, png_size_t size) {
   static_cast<Sink*>(png_get_io_ptr(png))->bytes.append(reinterpret_cast<const char*>(data), size);
@@ -41,11 +32,11 @@ struct WriteStruct {
 };
 
 // The part that may longjmp: it creates no object with a destructor, and `rows` belongs to the
-// caller, so nothing is skipped when libpng jumps back. False with sink.error set on failure.
-bool Encode(png_structp png, png_infop info, int width, int height, int channels,
+// caller, so nothing is skipped when libpng jumps back. False with sink.message set on failure.
+bool Encode(png_structp png, png_infop info, Sink& sink, int width, int height, int channels,
             std::vector<png_bytep>& rows) {
   if (setjmp(png_jmpbuf(png)) != 0) return false;
-  png_set_write_fn(png, png_get_error_ptr(png), OnWrite, OnFlush);
+  png_set_write_fn(png, &sink, OnWrite, OnFlush);
   png_set_compression_level(png, 6);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
                channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
@@ -68,7 +59,8 @@ std::string EncodePng(std::span<const std::uint8_t> pixels, int width, int heigh
   }
   Sink sink;
   WriteStruct write;
-  write.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, OnError, OnWarning);
+  write.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink.message, internal::OnPngError,
+                                      internal::OnPngWarning);
   if (write.png != nullptr) write.info = png_create_info_struct(write.png);
   if (write.png == nullptr || write.info == nullptr) {
     throw core::IoError("cannot encode PNG: libpng could not start");
@@ -80,8 +72,8 @@ std::string EncodePng(std::span<const std::uint8_t> pixels, int width, int heigh
     // libpng's row type is mutable; it only reads the rows it writes.
     rows[r] = const_cast<png_bytep>(pixels.data() + r * row_bytes);
   }
-  if (!Encode(write.png, write.info, width, height, channels, rows)) {
-    throw core::IoError(std::string("cannot encode PNG: ") + sink.error);
+  if (!Encode(write.png, write.info, sink, width, height, channels, rows)) {
+    throw core::IoError(std::string("cannot encode PNG: ") + sink.message.text);
   }
   return std::move(sink.bytes);
 }

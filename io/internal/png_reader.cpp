@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "io/internal/png_messages.hpp"
 
 namespace retrace::io::internal {
 namespace {
@@ -15,17 +16,8 @@ namespace {
 struct Source {
   std::string_view bytes;
   std::size_t at = 0;
-  char error[256] = {};  // libpng's error message, when it gives up
+  PngMessage message;  // libpng's, when it gives up
 };
-
-void OnError(png_structp png, png_const_charp message) {
-  auto* source = static_cast<Source*>(png_get_error_ptr(png));
-  std::strncpy(source->error, message != nullptr ? message : "unknown error",
-               sizeof(source->error) - 1);
-  png_longjmp(png, 1);
-}
-
-void OnWarning(png_structp, png_const_charp) {}  // benign by libpng's definition: not printed
 
 void OnRead(png_structp png, png_bytep out, png_size_t size) {
   auto* source = static_cast<Source*>(png_get_io_ptr(png));
@@ -42,12 +34,12 @@ struct ReadStruct {
 
 // The part that may longjmp: it creates no object with a destructor, and `image` and `rows`
 // belong to the caller, so nothing is skipped or left indeterminate when libpng jumps back.
-// Returns false with source.error set when libpng refused the file; sets `bit_depth` to the
+// Returns false with source.message set when libpng refused the file; sets `bit_depth` to the
 // file's and returns true without decoding when it is 16.
-bool Decode(png_structp png, png_infop info, DecodedImage& image, std::vector<png_bytep>& rows,
-            int& bit_depth) {
+bool Decode(png_structp png, png_infop info, Source& source, DecodedImage& image,
+            std::vector<png_bytep>& rows, int& bit_depth) {
   if (setjmp(png_jmpbuf(png)) != 0) return false;
-  png_set_read_fn(png, png_get_error_ptr(png), OnRead);
+  png_set_read_fn(png, &source, OnRead);
   png_read_info(png, info);
   bit_depth = png_get_bit_depth(png, info);
   if (bit_depth == 16) return true;
@@ -76,9 +68,11 @@ bool Decode(png_structp png, png_infop info, DecodedImage& image, std::vector<pn
 }  // namespace
 
 DecodedImage ReadPng(std::string_view bytes, const std::filesystem::path& path) {
-  Source source{bytes};
+  Source source;
+  source.bytes = bytes;
   ReadStruct read;
-  read.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &source, OnError, OnWarning);
+  read.png =
+      png_create_read_struct(PNG_LIBPNG_VER_STRING, &source.message, OnPngError, OnPngWarning);
   if (read.png != nullptr) read.info = png_create_info_struct(read.png);
   if (read.png == nullptr || read.info == nullptr) {
     throw core::IoError(path.string() + ": cannot decode PNG: libpng could not start");
@@ -86,8 +80,8 @@ DecodedImage ReadPng(std::string_view bytes, const std::filesystem::path& path) 
   DecodedImage image;
   std::vector<png_bytep> rows;
   int bit_depth = 8;
-  if (!Decode(read.png, read.info, image, rows, bit_depth)) {
-    throw core::IoError(path.string() + ": cannot decode PNG: " + source.error);
+  if (!Decode(read.png, read.info, source, image, rows, bit_depth)) {
+    throw core::IoError(path.string() + ": cannot decode PNG: " + source.message.text);
   }
   if (bit_depth == 16) {
     throw core::IoError(path.string() +
