@@ -1,6 +1,6 @@
 #pragma once
 // Bridges between viz::Image and OpenCV (private to viz). Inside viz, cv::Mat images are
-// CV_8UC3 in R, G, B channel order, like viz::Image; only encoding swaps to OpenCV's BGR.
+// CV_8UC3 in R, G, B channel order, like viz::Image; only the video plugin swaps to OpenCV's BGR.
 
 #include <cmath>
 #include <opencv2/core.hpp>
