@@ -16,24 +16,26 @@ struct Video {
   cv::Mat bgr;
 };
 
-void* Open(const char* path, const char* fourcc, double fps, int width, int height) {
-  auto video = std::make_unique<Video>();
-  const int code = cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]);
-  const cv::Size size(width, height);
+// No exception may cross the C table: every entry point catches all (OpenCV's, bad_alloc) and
+// answers with its failure value.
+void* Open(const char* path, const char* fourcc, double fps, int width, int height) noexcept {
   try {
+    auto video = std::make_unique<Video>();
+    const int code = cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]);
+    const cv::Size size(width, height);
     // FFmpeg first: it reads back what it writes; another backend only if FFmpeg cannot.
     if (!video->writer.open(path, cv::CAP_FFMPEG, code, fps, size) &&
         !video->writer.open(path, code, fps, size)) {
       return nullptr;
     }
-  } catch (const cv::Exception&) {
+    video->bgr.create(height, width, CV_8UC3);
+    return video.release();
+  } catch (...) {
     return nullptr;
   }
-  video->bgr.create(height, width, CV_8UC3);
-  return video.release();
 }
 
-int WriteRgb(void* handle, const unsigned char* rgb) {
+int WriteRgb(void* handle, const unsigned char* rgb) noexcept {
   auto* video = static_cast<Video*>(handle);
   const std::size_t pixels = video->bgr.total();
   unsigned char* bgr = video->bgr.ptr<unsigned char>();
@@ -44,30 +46,34 @@ int WriteRgb(void* handle, const unsigned char* rgb) {
   }
   try {
     video->writer.write(video->bgr);
-  } catch (const cv::Exception&) {
+  } catch (...) {
     return 1;
   }
   return 0;
 }
 
-void Close(void* handle) {
+void Close(void* handle) noexcept {
   auto* video = static_cast<Video*>(handle);
   try {
     video->writer.release();
-  } catch (const cv::Exception&) {  // the caller checks the file
+  } catch (...) {  // the caller checks the file
   }
   delete video;
 }
 
-int Probe(const char* path, int* frames, int* width, int* height, double* fps) {
-  // FFmpeg only: it reads what the writer writes, and other backends would probe cameras.
-  cv::VideoCapture capture(path, cv::CAP_FFMPEG);
-  if (!capture.isOpened()) return 1;
-  *frames = static_cast<int>(std::lround(capture.get(cv::CAP_PROP_FRAME_COUNT)));
-  *width = static_cast<int>(capture.get(cv::CAP_PROP_FRAME_WIDTH));
-  *height = static_cast<int>(capture.get(cv::CAP_PROP_FRAME_HEIGHT));
-  *fps = capture.get(cv::CAP_PROP_FPS);
-  return 0;
+int Probe(const char* path, int* frames, int* width, int* height, double* fps) noexcept {
+  try {
+    // FFmpeg only: it reads what the writer writes, and other backends would probe cameras.
+    cv::VideoCapture capture(path, cv::CAP_FFMPEG);
+    if (!capture.isOpened()) return 1;
+    *frames = static_cast<int>(std::lround(capture.get(cv::CAP_PROP_FRAME_COUNT)));
+    *width = static_cast<int>(capture.get(cv::CAP_PROP_FRAME_WIDTH));
+    *height = static_cast<int>(capture.get(cv::CAP_PROP_FRAME_HEIGHT));
+    *fps = capture.get(cv::CAP_PROP_FPS);
+    return 0;
+  } catch (...) {
+    return 1;
+  }
 }
 
 constexpr RetraceVideoCodecApi kApi{kRetraceVideoCodecVersion, Open, WriteRgb, Close, Probe};
