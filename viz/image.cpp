@@ -1,6 +1,7 @@
 #include "viz/image.hpp"
 
 #include <algorithm>
+#include <string_view>
 
 #include "core/check.hpp"
 #include "core/errors.hpp"
@@ -34,14 +35,14 @@ std::vector<std::uint8_t> EncodePng(const Image& image) {
 }
 
 void WritePng(const Image& image, const std::filesystem::path& png) {
-  if (image.empty()) throw core::IoError(png.string() + ": cannot encode an empty image as PNG");
-  std::string bytes;
+  std::vector<std::uint8_t> bytes;
   try {
-    bytes = io::EncodePng(image.rgb, image.width, image.height, 3);
+    bytes = EncodePng(image);
   } catch (const core::IoError& e) {
     throw core::IoError(png.string() + ": " + e.what());
   }
-  io::WriteFileAtomic(png, bytes);
+  io::WriteFileAtomic(png,
+                      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 Image ReadPng(const std::filesystem::path& png) {
